@@ -1,0 +1,66 @@
+# straylight - one Makefile at the top; each folder adds its part in
+# <folder>/module.mk.  Targets: all, test, demo, bench, deps, install, fuzz.
+#
+#   make            build library, `stray` and tests into build/
+#   make test       deps, then the whole test suite, then again under
+#                   ASan+UBSan (build/asan)
+#   make demo       the main job on the built-in reference system
+#   make install PREFIX=DIR
+
+PREFIX ?= /usr/local
+B ?= build
+SAN ?= 0
+CC ?= cc
+CLANG ?= clang
+PYTHON ?= python3
+
+MODULES := libstray tools tests
+
+WARN := -Wall -Wextra -Werror
+OPT ?= -O2 -g
+ifeq ($(SAN),1)
+OPT := -O1 -g -fno-omit-frame-pointer
+SANFLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all
+endif
+
+# Host code: C99 plus POSIX; the freestanding core adds -ffreestanding.
+CFLAGS_BASE := -std=c99 $(WARN) $(OPT) $(SANFLAGS) -MMD -MP
+CPPFLAGS_HOST := -D_POSIX_C_SOURCE=200809L -Ilibstray/include
+LDLIBS_BASE := -lm
+
+.PHONY: all test check demo bench deps install fuzz clean
+all:
+
+include $(foreach m,$(MODULES),$(m)/module.mk)
+
+# Generic rules: every object lands under $(B)/obj mirroring the source.
+$(B)/obj/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_BASE) $(CPPFLAGS_HOST) $(EXTRA_CFLAGS) -c $< -o $@
+
+$(B)/obj/%.o: %.S
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS_HOST) $(EXTRA_CFLAGS) -c $< -o $@
+
+deps:
+	@scripts/install-deps.sh
+
+# The README's test command.  Installs what is missing, runs every test
+# binary, then repeats the suite under AddressSanitizer and UBSan.
+test: deps
+	@$(MAKE) --no-print-directory check
+	@$(MAKE) --no-print-directory check B=build/asan SAN=1
+
+check: all $(TESTS)
+	@tests/run-tests.sh $(B) $(TESTS)
+
+demo: deps all
+	@scripts/demo.sh $(B)
+
+bench: all $(BENCHES)
+	@scripts/bench.sh $(B) $(BENCHES)
+
+clean:
+	rm -rf build
+
+-include $(shell find $(B)/obj -name '*.d' 2>/dev/null)

@@ -1,0 +1,309 @@
+/*
+ * fdr.c - false detections per image from the system attenuation
+ * (thesis §2.3, eq. 2.3-2.18).  Freestanding: linked by firmware_fdr.
+ *
+ * Notation follows the thesis: I_px expected stray photons per pixel
+ * (eq. 2.3), n_pps pixels per star window, I_drs the designed reference
+ * star's photons (eq. 2.12), I_sdt the star-detection threshold (eq. 2.16),
+ * Pr_fd the false-detection probability of one window (eq. 2.17).
+ *
+ * Extensions (off by default): detector noise adds a variance
+ * b = n_pps (read_noise^2 + dark_current t_exp) to every window, dark mean
+ * subtracted; the Poisson model uses exact Poisson tails through the
+ * regularized incomplete gamma function, with the Gaussian part of b
+ * folded in by the shifted-Poisson approximation of Snyder, Hammoud &
+ * White (1993, JOSA A 10, 1014); a region map replaces uniform light.
+ */
+#include <float.h>
+#include <math.h>
+
+#include "stray/fdr.h"
+#include "stray/root.h"
+#include "stray/tail.h"
+
+/* Past this window mean the Poisson tail is evaluated as a Gaussian: the
+ * threshold is then < 1e-2 standard deviations out, where the skew error
+ * z^3 / (6 sqrt(mu)) is below 1e-9 (the series would need > 1e5 terms). */
+#define POISSON_GAUSS_MEAN 1e8
+
+#define ALPHA_SEARCH_MIN 1e-30
+#define ALPHA_SEARCH_MAX 1e12
+
+static int positive(double v)
+{
+	return isfinite(v) && v > 0.0;
+}
+
+static int non_negative(double v)
+{
+	return isfinite(v) && v >= 0.0;
+}
+
+static int map_check(const struct stray_region_map *map,
+		     struct stray_error *err)
+{
+	double sum = 0.0;
+	unsigned r;
+
+	if (map->n < 1 || map->n > STRAY_MAP_REGIONS_MAX)
+		return stray_error_set_value(err, STRAY_EINVAL, "map_regions",
+			STRAY_MSG("must be 1..64 regions"), (double)map->n);
+	for (r = 0; r < map->n; r++) {
+		if (!non_negative(map->fraction[r]))
+			return stray_error_set_value(err, STRAY_EINVAL,
+				"map_fraction", STRAY_MSG("must be >= 0"),
+				map->fraction[r]);
+		if (!non_negative(map->rel_alpha[r]))
+			return stray_error_set_value(err, STRAY_EINVAL,
+				"map_rel_alpha", STRAY_MSG("must be >= 0"),
+				map->rel_alpha[r]);
+		sum += map->fraction[r];
+	}
+	if (fabs(sum - 1.0) > 1e-6)
+		return stray_error_set_value(err, STRAY_EINVAL, "map_fraction",
+			STRAY_MSG("fractions must sum to 1"), sum);
+	return STRAY_OK;
+}
+
+int stray_fdr_model_check(const struct stray_fdr_model *m,
+			  struct stray_error *err)
+{
+	if (!non_negative(m->f_src_ph_s_m2))
+		return stray_error_set_value(err, STRAY_EINVAL, "f_src",
+			STRAY_MSG("must be finite and >= 0"), m->f_src_ph_s_m2);
+	if (!positive(m->f_drs_ph_s_m2))
+		return stray_error_set_value(err, STRAY_EINVAL, "f_drs",
+			STRAY_MSG("must be finite and > 0"), m->f_drs_ph_s_m2);
+	if (!positive(m->t_exp_s))
+		return stray_error_set_value(err, STRAY_EINVAL, "t_exp_s",
+			STRAY_MSG("must be finite and > 0"), m->t_exp_s);
+	if (!positive(m->a_px_m2))
+		return stray_error_set_value(err, STRAY_EINVAL, "a_px",
+			STRAY_MSG("must be finite and > 0"), m->a_px_m2);
+	if (!positive(m->a_cs_m2))
+		return stray_error_set_value(err, STRAY_EINVAL, "a_cs",
+			STRAY_MSG("must be finite and > 0"), m->a_cs_m2);
+	if (!(isfinite(m->n_pps) && m->n_pps >= 1.0))
+		return stray_error_set_value(err, STRAY_EINVAL, "n_pps",
+			STRAY_MSG("must be >= 1 pixel"), m->n_pps);
+	if (!(isfinite(m->n_tot) && m->n_tot >= m->n_pps))
+		return stray_error_set_value(err, STRAY_EINVAL, "n_tot",
+			STRAY_MSG("must be >= n_pps"), m->n_tot);
+	if (!(m->pr_drs > 0.0 && m->pr_drs < 1.0))
+		return stray_error_set_value(err, STRAY_EINVAL, "pr_drs",
+			STRAY_MSG("must lie strictly between 0 and 1"),
+			m->pr_drs);
+	if (!non_negative(m->read_noise_e))
+		return stray_error_set_value(err, STRAY_EINVAL, "read_noise_e",
+			STRAY_MSG("must be finite and >= 0"), m->read_noise_e);
+	if (!non_negative(m->dark_current_e_s))
+		return stray_error_set_value(err, STRAY_EINVAL,
+			"dark_current_e_s", STRAY_MSG("must be finite and >= 0"),
+			m->dark_current_e_s);
+	if (m->noise != STRAY_NOISE_GAUSS && m->noise != STRAY_NOISE_POISSON)
+		return stray_error_set_value(err, STRAY_EINVAL, "noise_model",
+			STRAY_MSG("must be gauss or poisson"), (double)m->noise);
+	return m->map ? map_check(m->map, err) : STRAY_OK;
+}
+
+double stray_fdr_pixel_photons(const struct stray_fdr_model *m, double alpha)
+{
+	/* eq. 2.3: I_px = alpha_sys F_src t_exp A_px */
+	return alpha * m->f_src_ph_s_m2 * m->t_exp_s * m->a_px_m2;
+}
+
+double stray_fdr_drs_photons(const struct stray_fdr_model *m)
+{
+	/* eq. 2.12: I_drs = F_drs t_exp A_cs */
+	return m->f_drs_ph_s_m2 * m->t_exp_s * m->a_cs_m2;
+}
+
+/* Detector-noise variance of one window, b (zero in the thesis model). */
+static double window_noise_var(const struct stray_fdr_model *m)
+{
+	return m->n_pps * (m->read_noise_e * m->read_noise_e +
+			   m->dark_current_e_s * m->t_exp_s);
+}
+
+/* ln Pr(X >= mean + t) for a window of Poisson mean mu (shifted Poisson). */
+static int log_poisson_excess(double mu, double t, double *log_pr,
+			      struct stray_error *err)
+{
+	if (mu <= 0.0) {
+		*log_pr = t > 0.0 ? -INFINITY : 0.0;
+		return STRAY_OK;
+	}
+	if (mu > POISSON_GAUSS_MEAN) {
+		*log_pr = stray_log_gauss_q(t / sqrt(mu));
+		return STRAY_OK;
+	}
+	if (mu + t <= 0.0) {
+		*log_pr = 0.0;
+		return STRAY_OK;
+	}
+	return stray_log_gamma_p(mu + t, mu, log_pr, err);
+}
+
+struct drs_ctx {
+	const struct stray_fdr_model *m;
+	double mu;		/* Poisson mean of star + noise counts */
+	double b;
+	double log_target;
+};
+
+/* Residual of eq. 2.16 in the Poisson model: ln Pr(X >= I) - ln Pr_drs. */
+static int drs_residual(double i, void *ctx, double *y)
+{
+	const struct drs_ctx *c = ctx;
+	double log_pr;
+	int rc = log_poisson_excess(c->mu, i - (c->mu - c->b), &log_pr, 0);
+
+	*y = log_pr - c->log_target;
+	return rc;
+}
+
+int stray_fdr_threshold(const struct stray_fdr_model *m, double *i_sdt,
+			struct stray_error *err)
+{
+	double i_drs, b, z;
+	int rc = stray_fdr_model_check(m, err);
+
+	if (rc != STRAY_OK)
+		return rc;
+	i_drs = stray_fdr_drs_photons(m);
+	b = window_noise_var(m);
+	if (m->noise == STRAY_NOISE_GAUSS) {
+		/* eq. 2.13-2.16: Pr_drs = Q((I_sdt - mu) / sigma) */
+		rc = stray_gauss_q_inv(m->pr_drs, &z, err);
+		if (rc == STRAY_OK)
+			*i_sdt = i_drs + z * sqrt(i_drs + b);
+		return rc;
+	} else {
+		struct drs_ctx c = { m, i_drs + b, b, log(m->pr_drs) };
+		struct stray_root_result res;
+		double span = i_drs + 40.0 * sqrt(i_drs + b) + 40.0;
+
+		rc = stray_root_brent(drs_residual, &c, -span, span, 1e-9 * span,
+				      &res, err);
+		if (rc == STRAY_OK)
+			*i_sdt = res.x;
+		return rc;
+	}
+}
+
+/* ln Pr_fd of one window whose pixels see attenuation alpha (eq. 2.17). */
+int stray_fdr_log_pr_fd(const struct stray_fdr_model *m, double alpha,
+			double i_sdt, double *log_pr_fd,
+			struct stray_error *err)
+{
+	/* eq. 2.9-2.11: re-centred window, sigma^2 = n_pps I_px (+ b) */
+	double var = m->n_pps * stray_fdr_pixel_photons(m, alpha) +
+		     window_noise_var(m);
+
+	if (!non_negative(alpha))
+		return stray_error_set_value(err, STRAY_EINVAL, "alpha",
+			STRAY_MSG("must be finite and >= 0"), alpha);
+	if (m->noise == STRAY_NOISE_POISSON)
+		return log_poisson_excess(var, i_sdt, log_pr_fd, err);
+	if (var <= 0.0)
+		*log_pr_fd = i_sdt > 0.0 ? -INFINITY : 0.0;
+	else
+		*log_pr_fd = stray_log_gauss_q(i_sdt / sqrt(var));
+	return STRAY_OK;
+}
+
+int stray_fdr_log_rate(const struct stray_fdr_model *m, double alpha,
+		       double i_sdt, double *log_fdr, struct stray_error *err)
+{
+	/* eq. 2.18: FDR = n_tot / n_pps * Pr_fd, summed over map regions */
+	double log_windows = log(m->n_tot / m->n_pps), acc = -INFINITY;
+	double norm = 0.0, lp;
+	const struct stray_region_map *map = m->map;
+	unsigned r;
+	int rc;
+
+	if (!map) {
+		rc = stray_fdr_log_pr_fd(m, alpha, i_sdt, &lp, err);
+		*log_fdr = log_windows + lp;
+		return rc;
+	}
+	for (r = 0; r < map->n; r++)
+		norm += map->fraction[r] * map->rel_alpha[r];
+	if (!(norm > 0.0))
+		return stray_error_set(err, STRAY_EINVAL, "map_rel_alpha",
+			STRAY_MSG("map carries no light"));
+	for (r = 0; r < map->n; r++) {
+		if (map->fraction[r] == 0.0)
+			continue;
+		rc = stray_fdr_log_pr_fd(m, alpha * map->rel_alpha[r] / norm,
+					 i_sdt, &lp, err);
+		if (rc != STRAY_OK)
+			return rc;
+		acc = stray_log_add(acc, log(map->fraction[r]) + lp);
+	}
+	*log_fdr = log_windows + acc;
+	return STRAY_OK;
+}
+
+int stray_fdr_rate(const struct stray_fdr_model *m, double alpha,
+		   double *fdr, struct stray_error *err)
+{
+	double i_sdt, log_fdr;
+	int rc = stray_fdr_threshold(m, &i_sdt, err);
+
+	if (rc == STRAY_OK)
+		rc = stray_fdr_log_rate(m, alpha, i_sdt, &log_fdr, err);
+	if (rc == STRAY_OK)
+		*fdr = exp(log_fdr);
+	return rc;
+}
+
+struct req_ctx {
+	const struct stray_fdr_model *m;
+	double i_sdt;
+	double log_rate;
+};
+
+/* ln FDR(e^u) - ln rate: increasing in u, so it brackets one root. */
+static int req_residual(double u, void *ctx, double *y)
+{
+	const struct req_ctx *c = ctx;
+	double log_fdr;
+	int rc = stray_fdr_log_rate(c->m, exp(u), c->i_sdt, &log_fdr, 0);
+
+	/* The far end can give -inf (no light, no noise): keep it finite. */
+	*y = (log_fdr < -DBL_MAX ? -DBL_MAX : log_fdr) - c->log_rate;
+	return rc;
+}
+
+int stray_fdr_alpha_required(const struct stray_fdr_model *m, double rate,
+			     double *alpha_req, struct stray_error *err)
+{
+	struct req_ctx c;
+	struct stray_root_result res;
+	double lo = log(ALPHA_SEARCH_MIN), hi = log(ALPHA_SEARCH_MAX), y;
+	int rc;
+
+	if (!positive(rate))
+		return stray_error_set_value(err, STRAY_EINVAL, "rate",
+			STRAY_MSG("must be finite and > 0"), rate);
+	c.m = m;
+	c.log_rate = log(rate);
+	rc = stray_fdr_threshold(m, &c.i_sdt, err);
+	if (rc != STRAY_OK)
+		return rc;
+	if ((rc = req_residual(lo, &c, &y)) != STRAY_OK)
+		return rc;
+	if (y > 0.0)
+		return stray_error_set_value(err, STRAY_ERANGE, "rate",
+			STRAY_MSG("exceeded by detector noise alone"), rate);
+	if ((rc = req_residual(hi, &c, &y)) != STRAY_OK)
+		return rc;
+	if (y < 0.0)
+		return stray_error_set_value(err, STRAY_ERANGE, "rate",
+			STRAY_MSG("not reached even at alpha 1e12"), rate);
+	rc = stray_root_brent(req_residual, &c, lo, hi, 1e-12, &res, err);
+	if (rc == STRAY_OK)
+		*alpha_req = exp(res.x);
+	return rc;
+}

@@ -1,0 +1,110 @@
+/*
+ * sensor.c - the built-in reference sensor and the bridge from a sensor to
+ * the FDR model (thesis §2.2-2.3).  Freestanding.
+ */
+#include <math.h>
+
+#include "stray/config.h"
+#include "stray/sensor.h"
+
+#define PI 3.14159265358979323846
+
+/* shared/reference/ref4-baffle.md, "Reference sensor st16-like". */
+static const struct stray_sensor st16_like = {
+	.name = "st16-like",
+	.pixels_x = 2592.0,
+	.pixels_y = 1944.0,
+	.pixel_pitch_um = 2.2,
+	.t_exp_s = 0.1,
+	.aperture_diameter_mm = 13.0,
+	.star_window_px = 113.0,	/* a 12 px diameter disc */
+	.drs_mag = 5.75,
+	.pr_drs = 0.95,
+	.fdr_tolerated = 5.0,
+	.fov_half_deg = 10.0,
+	.read_noise_e = 3.0,
+	.dark_current_e_s = 4.0,
+	.vega_mag = 0.03,
+	.moon_mag = -12.6,
+	.qe = "builtin:qe_mt9p031_approx",
+	.sun = "builtin:sun_am0_astm_e490",
+	.vega = "builtin:vega_calspec_alpha_lyr_stis_011",
+};
+
+const struct stray_sensor *stray_sensor_st16_like(void)
+{
+	return &st16_like;
+}
+
+static int check_positive(double v, const char *field,
+			  struct stray_error *err)
+{
+	if (!(isfinite(v) && v > 0.0))
+		return stray_error_set_value(err, STRAY_EINVAL, field,
+			STRAY_MSG("must be finite and > 0"), v);
+	return STRAY_OK;
+}
+
+static int check_finite(double v, const char *field, struct stray_error *err)
+{
+	if (!isfinite(v))
+		return stray_error_set_value(err, STRAY_EINVAL, field,
+			STRAY_MSG("must be finite"), v);
+	return STRAY_OK;
+}
+
+int stray_sensor_check(const struct stray_sensor *s, struct stray_error *err)
+{
+	int rc;
+
+	if ((rc = check_positive(s->pixels_x, "pixels_x", err)) ||
+	    (rc = check_positive(s->pixels_y, "pixels_y", err)) ||
+	    (rc = check_positive(s->pixel_pitch_um, "pixel_pitch_um", err)) ||
+	    (rc = check_positive(s->t_exp_s, "t_exp_s", err)) ||
+	    (rc = check_positive(s->aperture_diameter_mm,
+				 "aperture_diameter_mm", err)) ||
+	    (rc = check_positive(s->fdr_tolerated, "fdr_tolerated", err)) ||
+	    (rc = check_finite(s->drs_mag, "drs_mag", err)) ||
+	    (rc = check_finite(s->vega_mag, "vega_mag", err)) ||
+	    (rc = check_finite(s->moon_mag, "moon_mag", err)))
+		return rc;
+	if (!(s->star_window_px >= 1.0 &&
+	      s->star_window_px <= s->pixels_x * s->pixels_y))
+		return stray_error_set_value(err, STRAY_EINVAL, "star_window_px",
+			STRAY_MSG("must be >= 1 and <= the detector's pixels"),
+			s->star_window_px);
+	if (!(s->pr_drs > 0.0 && s->pr_drs < 1.0))
+		return stray_error_set_value(err, STRAY_EINVAL, "pr_drs",
+			STRAY_MSG("must lie strictly between 0 and 1"), s->pr_drs);
+	if (!(s->fov_half_deg > 0.0 && s->fov_half_deg < 90.0))
+		return stray_error_set_value(err, STRAY_EINVAL, "fov_half_deg",
+			STRAY_MSG("must lie in (0, 90)"), s->fov_half_deg);
+	if (!(isfinite(s->read_noise_e) && s->read_noise_e >= 0.0))
+		return stray_error_set_value(err, STRAY_EINVAL, "read_noise_e",
+			STRAY_MSG("must be finite and >= 0"), s->read_noise_e);
+	if (!(isfinite(s->dark_current_e_s) && s->dark_current_e_s >= 0.0))
+		return stray_error_set_value(err, STRAY_EINVAL,
+			"dark_current_e_s", STRAY_MSG("must be finite and >= 0"),
+			s->dark_current_e_s);
+	return STRAY_OK;
+}
+
+void stray_sensor_fdr_model(const struct stray_sensor *s, double f_src,
+			    double f_drs, struct stray_fdr_model *m)
+{
+	double pitch_m = s->pixel_pitch_um * 1e-6;
+	double radius_m = 0.5 * s->aperture_diameter_mm * 1e-3;
+
+	m->f_src_ph_s_m2 = f_src;
+	m->f_drs_ph_s_m2 = f_drs;
+	m->t_exp_s = s->t_exp_s;
+	m->a_px_m2 = pitch_m * pitch_m;
+	m->a_cs_m2 = PI * radius_m * radius_m;
+	m->n_pps = s->star_window_px;
+	m->n_tot = s->pixels_x * s->pixels_y;
+	m->pr_drs = s->pr_drs;
+	m->read_noise_e = 0.0;	/* thesis model: detector noise neglected */
+	m->dark_current_e_s = 0.0;
+	m->noise = STRAY_NOISE_GAUSS;
+	m->map = 0;
+}

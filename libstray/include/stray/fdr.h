@@ -1,0 +1,89 @@
+/*
+ * fdr.h - the false-detection-rate model (thesis §2.3, eq. 2.3-2.18).
+ *
+ * Freestanding C99, no heap: the flight module links this file.  The model
+ * turns a system attenuation alpha_sys into the expected number of false
+ * stars per image, and inverts it into the attenuation required for a
+ * tolerated rate.  The defaults reproduce the thesis exactly (Gaussian shot
+ * noise, uniform stray light, no detector noise); the extensions are
+ * switched on by fields that default to zero.
+ */
+#ifndef STRAY_FDR_H
+#define STRAY_FDR_H
+
+#include "stray/config.h"
+#include "stray/error.h"
+
+enum stray_noise_model {
+	STRAY_NOISE_GAUSS = 0,	/* eq. 2.4-2.10: Poisson ~ Gaussian */
+	STRAY_NOISE_POISSON = 1	/* exact Poisson tails (low counts) */
+};
+
+/*
+ * A non-uniform stray-light map: the detector split into regions, region r
+ * covering fraction[r] of the pixels at rel_alpha[r] times the mean
+ * attenuation.  The thesis assumes one region (uniform light, §2.3); a map
+ * replaces that simplification.  rel_alpha is normalised internally so
+ * that sum(fraction * rel_alpha) = 1, i.e. alpha stays the mean.
+ */
+struct stray_region_map {
+	unsigned n;
+	double fraction[STRAY_MAP_REGIONS_MAX];
+	double rel_alpha[STRAY_MAP_REGIONS_MAX];
+};
+
+struct stray_fdr_model {
+	double f_src_ph_s_m2;	/* F_src: stray source photon flux (eq. 2.3) */
+	double f_drs_ph_s_m2;	/* F_drs: reference-star flux (eq. 2.12) */
+	double t_exp_s;		/* exposure time t_exp */
+	double a_px_m2;		/* pixel area A_px (eq. 2.3) */
+	double a_cs_m2;		/* light-collecting area A_cs (eq. 2.12) */
+	double n_pps;		/* pixels per star window (eq. 2.7) */
+	double n_tot;		/* pixels on the detector (eq. 2.18) */
+	double pr_drs;		/* DRS detection probability (eq. 2.16) */
+	/* Extensions beyond the thesis; zero/NULL reproduces it. */
+	double read_noise_e;	/* read noise, e- rms per pixel per frame */
+	double dark_current_e_s;	/* dark current, e- per pixel per s */
+	enum stray_noise_model noise;
+	const struct stray_region_map *map;	/* NULL: uniform light */
+};
+
+/* Check every field of a model; STRAY_EINVAL names the bad one. */
+int stray_fdr_model_check(const struct stray_fdr_model *m,
+			  struct stray_error *err);
+
+/* eq. 2.3: expected stray photons in one pixel at attenuation alpha. */
+double stray_fdr_pixel_photons(const struct stray_fdr_model *m, double alpha);
+
+/* eq. 2.12: expected photons of the designed reference star. */
+double stray_fdr_drs_photons(const struct stray_fdr_model *m);
+
+/* eq. 2.16: star-detection threshold I_sdt (photo-electrons per window). */
+int stray_fdr_threshold(const struct stray_fdr_model *m, double *i_sdt,
+			struct stray_error *err);
+
+/*
+ * eq. 2.17: ln Pr_fd, the probability that one uniformly lit window at
+ * attenuation alpha exceeds the threshold i_sdt (from stray_fdr_threshold).
+ */
+int stray_fdr_log_pr_fd(const struct stray_fdr_model *m, double alpha,
+			double i_sdt, double *log_pr_fd,
+			struct stray_error *err);
+
+/* eq. 2.18: ln FDR, false detections per image, summed over the map. */
+int stray_fdr_log_rate(const struct stray_fdr_model *m, double alpha,
+		       double i_sdt, double *log_fdr, struct stray_error *err);
+
+/* eq. 2.18: FDR itself (0 where it underflows, see stray_fdr_log_rate). */
+int stray_fdr_rate(const struct stray_fdr_model *m, double alpha,
+		   double *fdr, struct stray_error *err);
+
+/*
+ * The attenuation alpha_req at which FDR = rate (fig. 2.7), by a bracketed
+ * root search on ln FDR(ln alpha) over alpha in [1e-30, 1e12].  STRAY_ERANGE
+ * when the rate is not reached in that span.
+ */
+int stray_fdr_alpha_required(const struct stray_fdr_model *m, double rate,
+			     double *alpha_req, struct stray_error *err);
+
+#endif /* STRAY_FDR_H */

@@ -1,0 +1,50 @@
+/*
+ * sensor.h - the numbers that describe a star-tracker sensor for the FDR
+ * model (thesis §2.2-2.3).  Freestanding; the built-in `st16-like` sensor
+ * is shared/reference/ref4-baffle.md's table, JSON loading is in
+ * sensor_io.h.
+ */
+#ifndef STRAY_SENSOR_H
+#define STRAY_SENSOR_H
+
+#include "stray/error.h"
+#include "stray/fdr.h"
+
+#define STRAY_NAME_MAX 64
+#define STRAY_PATH_MAX 512
+
+struct stray_sensor {
+	char name[STRAY_NAME_MAX];
+	double pixels_x, pixels_y;	/* n_tot = pixels_x * pixels_y */
+	double pixel_pitch_um;		/* A_px = pitch^2 */
+	double t_exp_s;			/* nominal exposure */
+	double aperture_diameter_mm;	/* A_cs = pi d^2 / 4 */
+	double star_window_px;		/* n_pps */
+	double drs_mag;			/* designed reference star magnitude */
+	double pr_drs;			/* DRS detection probability */
+	double fdr_tolerated;		/* tolerated false stars per image */
+	double fov_half_deg;		/* field-of-view half-angle */
+	double read_noise_e;		/* extended model: e- rms */
+	double dark_current_e_s;	/* extended model: e-/s */
+	double vega_mag;		/* Vega's magnitude (0.03, §2.1) */
+	double moon_mag;		/* full-Moon magnitude (-12.6, §5.1) */
+	/* Spectra: "builtin:NAME" or a CSV path (resolved by the loader). */
+	char qe[STRAY_PATH_MAX];
+	char sun[STRAY_PATH_MAX];
+	char vega[STRAY_PATH_MAX];
+};
+
+/* The built-in reference sensor `st16-like`. */
+const struct stray_sensor *stray_sensor_st16_like(void);
+
+/* Every number finite and in its domain; STRAY_EINVAL names the field. */
+int stray_sensor_check(const struct stray_sensor *s, struct stray_error *err);
+
+/*
+ * Fill an FDR model (thesis defaults: Gaussian, uniform, no detector
+ * noise) from a sensor and the photon fluxes of source and DRS.
+ */
+void stray_sensor_fdr_model(const struct stray_sensor *s, double f_src,
+			    double f_drs, struct stray_fdr_model *m);
+
+#endif /* STRAY_SENSOR_H */

@@ -1,0 +1,40 @@
+# libstray: the freestanding core (linked by firmware_fdr too) and the
+# hosted layer (CSV/JSON I/O, built-in spectra).
+
+STRAY_CORE_SRC := $(wildcard libstray/core/*.c)
+STRAY_HOST_SRC := $(wildcard libstray/host/*.c)
+STRAY_CORE_OBJ := $(STRAY_CORE_SRC:%.c=$(B)/obj/%.o)
+STRAY_HOST_OBJ := $(STRAY_HOST_SRC:%.c=$(B)/obj/%.o) \
+	$(B)/obj/libstray/host/builtin_data.o
+STRAY_LIB := $(B)/lib/libstray.a
+STRAY_CORE_LIB := $(B)/lib/libstray_core.a
+STRAY_LDLIBS := -lcsv -lcjson -lm
+STRAY_DATA := $(wildcard libstray/data/*.csv)
+
+# The core must build freestanding: no hosted headers, no builtins assumed.
+$(STRAY_CORE_OBJ): EXTRA_CFLAGS += -ffreestanding
+$(STRAY_HOST_OBJ): EXTRA_CFLAGS += -I/usr/include/cjson
+# The built-in spectra are the shipped CSV files, assembled in verbatim.
+$(B)/obj/libstray/host/builtin_data.o: EXTRA_CFLAGS += -DSTRAY_DATA_DIR=\"libstray/data\"
+$(B)/obj/libstray/host/builtin_data.o: $(STRAY_DATA)
+
+$(STRAY_CORE_LIB): $(STRAY_CORE_OBJ)
+	@mkdir -p $(dir $@)
+	rm -f $@ && ar rcs $@ $^
+
+$(STRAY_LIB): $(STRAY_CORE_OBJ) $(STRAY_HOST_OBJ)
+	@mkdir -p $(dir $@)
+	rm -f $@ && ar rcs $@ $^
+
+$(B)/lib/pkgconfig/stray.pc: libstray/stray.pc.in
+	@mkdir -p $(dir $@)
+	sed -e 's|@PREFIX@|$(PREFIX)|' $< > $@
+
+all: $(STRAY_LIB) $(STRAY_CORE_LIB)
+
+install-libstray: $(STRAY_LIB) $(STRAY_CORE_LIB) $(B)/lib/pkgconfig/stray.pc
+	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/stray
+	install -m 644 $(STRAY_LIB) $(STRAY_CORE_LIB) $(DESTDIR)$(PREFIX)/lib/
+	install -m 644 libstray/include/stray/*.h $(DESTDIR)$(PREFIX)/include/stray/
+	install -m 644 $(B)/lib/pkgconfig/stray.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/
+install: install-libstray

@@ -1,0 +1,63 @@
+/*
+ * cli.c - shared plumbing of the subcommands: errors, numbers, JSON.
+ */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "cli.h"
+#include "stray/errfmt.h"
+
+struct cli_global cli;
+
+int cli_fail(const char *cmd, const struct stray_error *err)
+{
+	char line[1024];
+
+	fprintf(stderr, "%s %s: %s\n", cli.prog, cmd,
+		stray_error_format(err, line, sizeof(line)));
+	return stray_status_is_bad_input(err->code) ? CLI_USAGE : CLI_FAIL;
+}
+
+int cli_usage_error(const char *cmd, const char *fmt, ...)
+{
+	va_list ap;
+
+	fprintf(stderr, "%s %s: ", cli.prog, cmd);
+	va_start(ap, fmt);
+	vfprintf(stderr, fmt, ap);
+	va_end(ap);
+	fprintf(stderr, " (see '%s %s --help')\n", cli.prog, cmd);
+	return CLI_USAGE;
+}
+
+int cli_parse_double(const char *cmd, const char *opt, const char *text,
+		     double *out)
+{
+	char *end;
+	double v = strtod(text, &end);
+
+	if (end == text || *end != '\0' || !isfinite(v))
+		return cli_usage_error(cmd, "option '--%s': '%s' is not a finite number",
+				       opt, text);
+	*out = v;
+	return CLI_OK;
+}
+
+int cli_json_emit(cJSON *obj)
+{
+	char *text = cJSON_Print(obj);
+	int rc = CLI_OK;
+
+	if (!text || puts(text) == EOF)
+		rc = CLI_FAIL;
+	free(text);
+	cJSON_Delete(obj);
+	return rc;
+}
+
+cJSON *cli_json_number(double v)
+{
+	return isfinite(v) ? cJSON_CreateNumber(v) : cJSON_CreateNull();
+}

@@ -1,0 +1,39 @@
+/*
+ * cli.h - what every `stray` subcommand shares: the global options, the
+ * one-line error path, exit codes (docs/cli.md: 0 ok, 1 failure, 2 bad
+ * input) and --json output through cJSON.
+ */
+#ifndef STRAY_TOOLS_CLI_H
+#define STRAY_TOOLS_CLI_H
+
+#include <cJSON.h>
+
+#include "stray/error.h"
+
+enum cli_exit { CLI_OK = 0, CLI_FAIL = 1, CLI_USAGE = 2 };
+
+struct cli_global {
+	int json;		/* --json: machine-readable stdout */
+	const char *prog;	/* "stray" */
+};
+
+extern struct cli_global cli;
+
+/* Print err as one line on stderr, "stray <cmd>: ...", and return 1 or 2. */
+int cli_fail(const char *cmd, const struct stray_error *err);
+
+/* A usage error: print "stray <cmd>: <msg>" and a hint; return 2. */
+int cli_usage_error(const char *cmd, const char *fmt, ...)
+	__attribute__((format(printf, 2, 3)));
+
+/* Parse a finite double option value; on failure print and return 2. */
+int cli_parse_double(const char *cmd, const char *opt, const char *text,
+		     double *out);
+
+/* Print a JSON object to stdout (pretty) and free it; returns 0 or 1. */
+int cli_json_emit(cJSON *obj);
+
+/* A JSON number, or null where v is not finite (JSON has no inf/nan). */
+cJSON *cli_json_number(double v);
+
+#endif /* STRAY_TOOLS_CLI_H */

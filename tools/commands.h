@@ -1,0 +1,18 @@
+/*
+ * commands.h - the subcommands of `stray`, one file each (cmd_<name>.c).
+ * To add one: declare it here and add a row to the table in stray.c.
+ */
+#ifndef STRAY_TOOLS_COMMANDS_H
+#define STRAY_TOOLS_COMMANDS_H
+
+struct cmd {
+	const char *name;
+	int (*run)(int argc, char **argv);	/* argv[0] is the name */
+	const char *summary;
+};
+
+int cmd_photometry(int argc, char **argv);
+int cmd_fdr(int argc, char **argv);
+int cmd_exclusion(int argc, char **argv);
+
+#endif /* STRAY_TOOLS_COMMANDS_H */

@@ -1,0 +1,101 @@
+/*
+ * stray.c - the `stray` command: global options, then a git-style
+ * dispatch to one subcommand (git.c's table of builtins, bpftool's
+ * getopt_long front end).
+ */
+#include <getopt.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+#include "commands.h"
+
+#define STRAY_VERSION "0.1.0"
+
+static const struct cmd commands[] = {
+	{ "photometry", cmd_photometry,
+	  "reference photon fluxes in a sensor's passband" },
+	{ "fdr", cmd_fdr,
+	  "false-detection rate and the attenuation it requires" },
+	{ "exclusion", cmd_exclusion,
+	  "Sun, Moon and Earth exclusion angles of a curve" },
+};
+
+#define N_COMMANDS (sizeof(commands) / sizeof(commands[0]))
+
+static void usage(FILE *out)
+{
+	size_t i;
+
+	fprintf(out, "usage: stray [--json] [--version] [--help] <command> [<args>]\n\n"
+		"commands:\n");
+	for (i = 0; i < N_COMMANDS; i++)
+		fprintf(out, "  %-12s %s\n", commands[i].name,
+			commands[i].summary);
+	fprintf(out, "\n'stray <command> --help' describes each command.\n");
+}
+
+static const struct cmd *find_command(const char *name)
+{
+	size_t i;
+
+	for (i = 0; i < N_COMMANDS; i++)
+		if (strcmp(commands[i].name, name) == 0)
+			return &commands[i];
+	return NULL;
+}
+
+/* Flush stdout and report a failed write (a full disk must not be silent). */
+static int finish(int rc)
+{
+	if (fflush(stdout) != 0 || ferror(stdout)) {
+		fprintf(stderr, "stray: error writing to standard output\n");
+		return rc ? rc : CLI_FAIL;
+	}
+	return rc;
+}
+
+int main(int argc, char **argv)
+{
+	static const struct option opts[] = {
+		{ "json", no_argument, NULL, 'j' },
+		{ "help", no_argument, NULL, 'h' },
+		{ "version", no_argument, NULL, 'V' },
+		{ NULL, 0, NULL, 0 }
+	};
+	const struct cmd *c;
+	int opt;
+
+	cli.prog = "stray";
+	/* '+': stop at the first non-option, the subcommand. */
+	while ((opt = getopt_long(argc, argv, "+h", opts, NULL)) != -1) {
+		switch (opt) {
+		case 'j':
+			cli.json = 1;
+			break;
+		case 'h':
+			usage(stdout);
+			return finish(CLI_OK);
+		case 'V':
+			printf("stray %s\n", STRAY_VERSION);
+			return finish(CLI_OK);
+		default:
+			usage(stderr);
+			return CLI_USAGE;
+		}
+	}
+	if (optind >= argc) {
+		usage(stderr);
+		return CLI_USAGE;
+	}
+	c = find_command(argv[optind]);
+	if (!c) {
+		fprintf(stderr, "stray: '%s' is not a stray command; see 'stray --help'\n",
+			argv[optind]);
+		return CLI_USAGE;
+	}
+	argc -= optind;
+	argv += optind;
+	optind = 0;		/* glibc: full re-initialisation for the command */
+	return finish(c->run(argc, argv));
+}
