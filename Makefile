@@ -45,13 +45,16 @@ $(B)/obj/%.o: %.S
 deps:
 	@scripts/install-deps.sh
 
-# The README's test command.  Installs what is missing, runs every test
-# binary, then repeats the suite under AddressSanitizer and UBSan.
+# The README's test command.  Installs what is missing, replays each
+# parser's fuzz target for a fixed number of runs, runs every test binary,
+# then repeats the suite under AddressSanitizer and UBSan.
 test: deps
+	@$(MAKE) --no-print-directory fuzz-smoke
 	@$(MAKE) --no-print-directory check
 	@$(MAKE) --no-print-directory check B=build/asan SAN=1
 
 check: all $(TESTS)
+	@scripts/check-core.sh $(STRAY_CORE_LIB)
 	@tests/run-tests.sh $(B) $(TESTS)
 
 demo: deps all

@@ -38,3 +38,9 @@ install-libstray: $(STRAY_LIB) $(STRAY_CORE_LIB) $(B)/lib/pkgconfig/stray.pc
 	install -m 644 libstray/include/stray/*.h $(DESTDIR)$(PREFIX)/include/stray/
 	install -m 644 $(B)/lib/pkgconfig/stray.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/
 install: install-libstray
+
+# Benchmarks of the physics core (make bench).
+BENCHES += $(B)/bench/bench_fdr
+$(B)/bench/bench_fdr: $(B)/obj/bench/bench_fdr.o $(STRAY_LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_BASE) -o $@ $< $(STRAY_LIB) $(STRAY_LDLIBS)

@@ -11,6 +11,10 @@ PKGS=(
 	libcjson-dev
 	libplplot-dev plplot-driver-cairo
 	clang libclang-rt-14-dev
+	libcfitsio-dev libssl-dev
+	libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
+	libembree-dev
+	libusb-1.0-0-dev libhidapi-dev libgpiod-dev zlib1g-dev
 )
 
 missing=()

@@ -15,7 +15,7 @@ $(B)/tests/libstray/%: $(B)/obj/tests/libstray/%.o $(STRAY_LIB)
 # CLI tests run build/bin/stray as a user would; they need it built first.
 $(B)/tests/tools/%: $(B)/obj/tests/tools/%.o tests/tools/run_cli.h $(STRAY_BIN)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_BASE) -o $@ $< $(CMOCKA_LIBS) -lcjson
+	$(CC) $(CFLAGS_BASE) -o $@ $< $(CMOCKA_LIBS) -lcjson -lm
 
 $(B)/obj/tests/tools/%.o: EXTRA_CFLAGS += -I/usr/include/cjson
 

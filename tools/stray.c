@@ -67,6 +67,7 @@ int main(int argc, char **argv)
 	int opt;
 
 	cli.prog = "stray";
+	opterr = 0;	/* unknown options get our own one-line message */
 	/* '+': stop at the first non-option, the subcommand. */
 	while ((opt = getopt_long(argc, argv, "+h", opts, NULL)) != -1) {
 		switch (opt) {

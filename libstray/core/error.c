@@ -26,6 +26,7 @@ void stray_error_clear(struct stray_error *err)
 	err->has_value = 0;
 	err->line = 0;
 	err->file[0] = '\0';
+	err->column[0] = '\0';
 	err->text[0] = '\0';
 }
 

@@ -15,6 +15,9 @@ void stray_error_locate(struct stray_error *err, const char *file, long line);
 /* Attach the offending text (truncated to fit). */
 void stray_error_text(struct stray_error *err, const char *text);
 
+/* Name the field by a run-time string (a column or key), copied. */
+void stray_error_column(struct stray_error *err, const char *name);
+
 /* Record an error with a file and line; returns code. */
 int stray_error_at(struct stray_error *err, int code, const char *file,
 		   long line, const char *field, const char *reason);

@@ -28,6 +28,7 @@ enum stray_status {
 
 #define STRAY_ERROR_FILE_MAX 256
 #define STRAY_ERROR_TEXT_MAX 96
+#define STRAY_ERROR_COLUMN_MAX 64
 
 struct stray_error {
 	int code;		/* enum stray_status */
@@ -38,6 +39,7 @@ struct stray_error {
 	/* Filled by the hosted layer only. */
 	long line;		/* 1-based line in file, 0 when none */
 	char file[STRAY_ERROR_FILE_MAX];
+	char column[STRAY_ERROR_COLUMN_MAX];	/* a field named at run time */
 	char text[STRAY_ERROR_TEXT_MAX];	/* offending text, may be "" */
 };
 

@@ -1,0 +1,37 @@
+/*
+ * file.h - whole-file reads and atomic writes (hosted).
+ *
+ * Output files are written to a temporary sibling, flushed, fsynced and
+ * renamed over the target, so a crash or a full disk never leaves a
+ * half-written curve where a good one was.
+ */
+#ifndef STRAY_FILE_H
+#define STRAY_FILE_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "stray/error.h"
+
+/* Read a whole file into a new NUL-terminated buffer (caller frees). */
+int stray_file_read(const char *path, char **buf, size_t *len,
+		    struct stray_error *err);
+
+struct stray_file_out {
+	FILE *f;
+	char tmp[4096];
+	const char *path;
+};
+
+/* Open a temporary sibling of path for writing. */
+int stray_file_open_atomic(struct stray_file_out *out, const char *path,
+			   struct stray_error *err);
+
+/* Flush, fsync and rename into place; on any earlier write error, remove
+ * the temporary and report. */
+int stray_file_commit(struct stray_file_out *out, struct stray_error *err);
+
+/* Abandon: close and remove the temporary. */
+void stray_file_abort(struct stray_file_out *out);
+
+#endif /* STRAY_FILE_H */

@@ -1,0 +1,294 @@
+/*
+ * cmd_exclusion.c - `stray exclusion`: Sun, Moon and Earth-limb exclusion
+ * angles of a system attenuation curve (thesis §1, §5.1, fig. 5.1).
+ *
+ * Each body's alpha_required comes from the FDR model at its photon flux;
+ * its exclusion angle is where the curve falls below that for good.  The
+ * Moon is also excluded while it is in the field of view, where it
+ * saturates the detector (§5.1): its angle is the larger of the two.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+#include "commands.h"
+#include "fdr_setup.h"
+#include "plot.h"
+#include "stray/curve_io.h"
+#include "stray/errfmt.h"
+#include "stray/photometry.h"
+
+static const char usage[] =
+	"usage: stray exclusion --curve C.csv [--rate R] [--k-sigma K]\n"
+	"                       [--earth-albedo A [--altitude-km H]]\n"
+	"                       [--plot F.png] [--json] [options]\n"
+	"\n"
+	"Exclusion angles of a system attenuation curve (docs/formats.md):\n"
+	"the smallest angle beyond which alpha stays below alpha_required.\n"
+	"With a sigma column, the angles for alpha -/+ K sigma bracket it.\n"
+	"\n"
+	"  --curve C.csv       system attenuation curve (required)\n"
+	"  --rate R            tolerated false detections per image\n"
+	"  --k-sigma K         width of the interval in sigmas (default 1)\n"
+	"  --earth-albedo A    add the sunlit Earth limb (albedo A, e.g. 0.3)\n"
+	"  --altitude-km H     spacecraft altitude for the Earth (default 550)\n"
+	"  --plot F.png        the curve with alpha_required and the angles\n"
+	"  --json              machine-readable output\n"
+	FDR_SETUP_USAGE;
+
+struct body {
+	const char *name;
+	double flux, alpha_req;
+	struct stray_exclusion ex;
+	int excluded;		/* 0: curve ends above alpha_req */
+	double angle_deg;	/* reported angle (Moon: with the field) */
+};
+
+struct excl_args {
+	const char *curve, *plot;
+	double rate, k_sigma, albedo, altitude_km;
+	int earth;
+};
+
+static int solve_body(const struct fdr_setup *s, const struct excl_args *a,
+		      const struct stray_curve_view *v, struct body *b,
+		      struct stray_error *err)
+{
+	struct stray_fdr_model m;
+	int rc;
+
+	fdr_setup_model(s, b->flux, &m);
+	rc = stray_fdr_alpha_required(&m, a->rate, &b->alpha_req, err);
+	if (rc != STRAY_OK)
+		return rc;
+	rc = stray_exclusion_interval(v, b->alpha_req, a->k_sigma, &b->ex, err);
+	b->excluded = rc == STRAY_OK;
+	if (rc == STRAY_ERANGE) {	/* a result: not excluded in range */
+		stray_error_clear(err);
+		b->ex.theta_deg = NAN;
+		b->ex.has_interval = 0;
+		rc = STRAY_OK;
+	}
+	b->angle_deg = b->ex.theta_deg;
+	return rc;
+}
+
+static cJSON *body_json(const struct body *b)
+{
+	cJSON *o = cJSON_CreateObject();
+
+	cJSON_AddItemToObject(o, "alpha_required", cli_json_number(b->alpha_req));
+	cJSON_AddItemToObject(o, "flux", cli_json_number(b->flux));
+	cJSON_AddBoolToObject(o, "excluded_within_curve", b->excluded);
+	cJSON_AddItemToObject(o, "curve_deg", cli_json_number(b->ex.theta_deg));
+	if (b->ex.has_interval) {
+		cJSON_AddItemToObject(o, "deg_lo", cli_json_number(b->ex.theta_lo_deg));
+		cJSON_AddItemToObject(o, "deg_hi", cli_json_number(
+			b->ex.hi_reached ? b->ex.theta_hi_deg : NAN));
+	}
+	return o;
+}
+
+static int print_json(const struct fdr_setup *s, const struct excl_args *a,
+		      const struct body *b, int nb)
+{
+	cJSON *o = cJSON_CreateObject();
+	int i;
+
+	cJSON_AddStringToObject(o, "curve", a->curve);
+	cJSON_AddStringToObject(o, "sensor", s->sensor.name);
+	cJSON_AddItemToObject(o, "rate", cli_json_number(a->rate));
+	cJSON_AddItemToObject(o, "fov_half_deg", cli_json_number(s->sensor.fov_half_deg));
+	cJSON_AddItemToObject(o, "sun_deg", cli_json_number(b[0].angle_deg));
+	cJSON_AddItemToObject(o, "moon_deg", cli_json_number(b[1].angle_deg));
+	if (nb > 2)
+		cJSON_AddItemToObject(o, "earth_limb_deg",
+				      cli_json_number(b[2].angle_deg));
+	for (i = 0; i < nb; i++)
+		cJSON_AddItemToObject(o, b[i].name, body_json(&b[i]));
+	return cli_json_emit(o);
+}
+
+static void print_text(const struct fdr_setup *s, const struct excl_args *a,
+		       const struct body *b, int nb)
+{
+	int i;
+
+	printf("Exclusion angles of %s for %s at %g false stars per image\n",
+	       a->curve, s->sensor.name, a->rate);
+	for (i = 0; i < nb; i++) {
+		printf("  %-6s alpha_required %.3e  ", b[i].name, b[i].alpha_req);
+		if (!b[i].excluded && isnan(b[i].angle_deg)) {
+			printf("not excluded: curve still above at its last angle\n");
+			continue;
+		}
+		printf("exclusion %6.2f deg", b[i].angle_deg);
+		if (b[i].ex.has_interval && b[i].excluded)
+			printf("  [%.2f, %s%.2f] at %g sigma", b[i].ex.theta_lo_deg,
+			       b[i].ex.hi_reached ? "" : ">",
+			       b[i].ex.theta_hi_deg, a->k_sigma);
+		if (i == 1 && b[i].angle_deg == s->sensor.fov_half_deg)
+			printf("  (field-of-view edge: the Moon saturates in the field)");
+		if (i == 2)
+			printf("  (from the limb)");
+		putchar('\n');
+	}
+}
+
+static int plot_exclusion(const struct fdr_setup *s, const struct excl_args *a,
+			  const struct stray_curve *c, const struct body *b,
+			  int nb, struct stray_error *err);
+
+static int parse_args(int argc, char **argv, struct fdr_setup *s,
+		      struct excl_args *a)
+{
+	static const struct option opts[] = {
+		FDR_SETUP_LONG_OPTIONS,
+		{ "curve", required_argument, NULL, 'c' },
+		{ "rate", required_argument, NULL, 'r' },
+		{ "k-sigma", required_argument, NULL, 'K' },
+		{ "earth-albedo", required_argument, NULL, 'e' },
+		{ "altitude-km", required_argument, NULL, 'k' },
+		{ "plot", required_argument, NULL, 'p' },
+		{ "json", no_argument, &cli.json, 1 },
+		{ "help", no_argument, NULL, 'h' },
+		{ NULL, 0, NULL, 0 }
+	};
+	int opt, rc = CLI_OK;
+
+	while (rc == CLI_OK && (opt = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+		switch (opt) {
+		case 0: break;
+		case 'h': fputs(usage, stdout); return -1;
+		case 'c': a->curve = optarg; break;
+		case 'p': a->plot = optarg; break;
+		case 'r': rc = cli_parse_double("exclusion", "rate", optarg, &a->rate); break;
+		case 'K': rc = cli_parse_double("exclusion", "k-sigma", optarg, &a->k_sigma); break;
+		case 'e':
+			rc = cli_parse_double("exclusion", "earth-albedo", optarg, &a->albedo);
+			a->earth = 1;
+			break;
+		case 'k': rc = cli_parse_double("exclusion", "altitude-km", optarg, &a->altitude_km); break;
+		case '?':
+			return cli_usage_error("exclusion", "unknown option '%s'",
+					       argv[optind - 1]);
+		default:
+			rc = fdr_setup_option(s, "exclusion", opt, optarg);
+			rc = rc == 1 ? CLI_OK : rc ? rc : CLI_USAGE;
+		}
+	}
+	if (rc != CLI_OK)
+		return rc;
+	if (optind < argc)
+		return cli_usage_error("exclusion", "unexpected argument '%s'",
+				       argv[optind]);
+	if (!a->curve)
+		return cli_usage_error("exclusion", "--curve is required");
+	if (!(a->k_sigma >= 0.0))
+		return cli_usage_error("exclusion", "option '--k-sigma': must be >= 0");
+	return CLI_OK;
+}
+
+int cmd_exclusion(int argc, char **argv)
+{
+	struct fdr_setup s;
+	struct excl_args a = { NULL, NULL, NAN, 1.0, 0.3, 550.0, 0 };
+	struct body b[3] = { { .name = "sun" }, { .name = "moon" },
+			     { .name = "earth" } };
+	struct stray_curve c;
+	struct stray_curve_view v;
+	struct stray_error err;
+	int rc, i, nb;
+
+	fdr_setup_init(&s);
+	stray_error_clear(&err);
+	rc = parse_args(argc, argv, &s, &a);
+	if (rc != CLI_OK)
+		return rc < 0 ? CLI_OK : rc;
+	if (fdr_setup_load(&s, &err) != STRAY_OK)
+		return cli_fail("exclusion", &err);
+	if (isnan(a.rate))
+		a.rate = s.sensor.fdr_tolerated;
+	b[0].flux = s.flux.sun;
+	b[1].flux = fdr_setup_moon_flux(&s);
+	nb = a.earth ? 3 : 2;
+	if (a.earth && stray_earth_flux(s.flux.sun, a.albedo,
+				       a.altitude_km * 1e3, &b[2].flux, &err))
+		return cli_fail("exclusion", &err);
+	if (stray_curve_load(a.curve, &c, &err) != STRAY_OK)
+		return cli_fail("exclusion", &err);
+	v = stray_curve_view_of(&c);
+	for (i = 0, rc = STRAY_OK; i < nb && rc == STRAY_OK; i++)
+		rc = solve_body(&s, &a, &v, &b[i], &err);
+	if (rc == STRAY_OK) {	/* §5.1: the Moon saturates in the field */
+		if (!(b[1].angle_deg > s.sensor.fov_half_deg))
+			b[1].angle_deg = s.sensor.fov_half_deg;
+		if (a.plot)
+			rc = plot_exclusion(&s, &a, &c, b, nb, &err);
+	}
+	stray_curve_free(&c);
+	if (rc != STRAY_OK)
+		return cli_fail("exclusion", &err);
+	rc = CLI_OK;
+	if (cli.json)
+		rc = print_json(&s, &a, b, nb);
+	else
+		print_text(&s, &a, b, nb);
+	fflush(stdout);
+	for (i = 0; i < nb; i++)	/* a result, not an error: exit 0 */
+		if (!b[i].excluded)
+			fprintf(stderr, "stray exclusion: %s: %s not excluded within the curve (it ends above alpha_required %.3g)\n",
+				a.curve, b[i].name, b[i].alpha_req);
+	return rc;
+}
+
+static int plot_exclusion(const struct fdr_setup *s, const struct excl_args *a,
+			  const struct stray_curve *c, const struct body *b,
+			  int nb, struct stray_error *err)
+{
+	static const enum plot_color color[3] = { PLOT_RED, PLOT_GREY, PLOT_GREEN };
+	struct plot_series series[1 + 2 * 3];
+	double hx[3][2], hy[3][2], vx[3][2], vy[3][2];
+	double lo[c->n ? c->n : 1], hi[c->n ? c->n : 1], amin = INFINITY;
+	char label[3][2][64], title[200];
+	size_t i, ns = 0;
+	int k;
+
+	for (i = 0; i < c->n; i++) {
+		lo[i] = c->sigma ? c->alpha[i] - c->sigma[i] : c->alpha[i];
+		hi[i] = c->sigma ? c->alpha[i] + c->sigma[i] : c->alpha[i];
+		if (c->alpha[i] > 0.0)
+			amin = fmin(amin, c->alpha[i]);
+	}
+	series[ns++] = (struct plot_series){ c->theta_deg, c->alpha, c->n,
+		c->sigma ? lo : NULL, c->sigma ? hi : NULL, PLOT_BLUE,
+		PLOT_LINE, "system attenuation #ga#dsys#u" };
+	for (k = 0; k < nb; k++) {
+		amin = fmin(amin, b[k].alpha_req);
+		hx[k][0] = c->theta_deg[0];
+		hx[k][1] = c->theta_deg[c->n - 1];
+		hy[k][0] = hy[k][1] = b[k].alpha_req;
+		snprintf(label[k][0], 64, "#ga#dreq#u %s", b[k].name);
+		series[ns++] = (struct plot_series){ hx[k], hy[k], 2, NULL,
+			NULL, color[k], PLOT_DASHED, label[k][0] };
+		if (isnan(b[k].angle_deg))
+			continue;
+		vx[k][0] = vx[k][1] = b[k].angle_deg;
+		vy[k][0] = 1e-300;
+		vy[k][1] = 10.0;
+		snprintf(label[k][1], 64, "%s exclusion %.1f#uo#d", b[k].name,
+			 b[k].angle_deg);
+		series[ns++] = (struct plot_series){ vx[k], vy[k], 2, NULL,
+			NULL, color[k], PLOT_DOTTED, label[k][1] };
+	}
+	snprintf(title, sizeof(title), "%s: exclusion angles at %g false stars/image",
+		 s->sensor.name, a->rate);
+	{
+		struct plot_spec p = { a->plot, title,
+			"off-axis angle #gh [deg]", "attenuation #ga", 0, 1,
+			NAN, NAN, amin / 10.0, 3.0, series, ns };
+
+		return plot_render(&p, err);
+	}
+}

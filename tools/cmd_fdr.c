@@ -1,0 +1,241 @@
+/*
+ * cmd_fdr.c - `stray fdr`: the false-detection rate of a sensor as a
+ * function of system attenuation, and the attenuation that a tolerated
+ * rate requires (thesis §2.3, eq. 2.3-2.18, fig. 2.7).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+#include "commands.h"
+#include "fdr_setup.h"
+#include "plot.h"
+#include "stray/photometry.h"
+
+static const char usage[] =
+	"usage: stray fdr [--source sun|moon|earth] [--rate R] [--alpha A]\n"
+	"                 [--plot F.png] [--json] [options]\n"
+	"\n"
+	"The attenuation alpha_required at which the sensor sees R false stars\n"
+	"per image (default: the sensor's fdr_tolerated), and with --alpha the\n"
+	"false-detection rate at that attenuation.\n"
+	"\n"
+	"  --source B          stray-light source: sun (default), moon, earth\n"
+	"  --rate R            tolerated false detections per image\n"
+	"  --alpha A           also give FDR at system attenuation A\n"
+	"  --earth-albedo A    Earth's albedo (earth source; default 0.3)\n"
+	"  --altitude-km H     spacecraft altitude (earth source; default 550)\n"
+	"  --plot F.png        FDR vs alpha with the tolerated rate (fig. 2.7)\n"
+	"  --json              machine-readable output\n"
+	FDR_SETUP_USAGE;
+
+struct fdr_args {
+	const char *source;
+	double rate, alpha, albedo, altitude_km;
+	int has_alpha;
+	const char *plot;
+};
+
+struct fdr_result {
+	double f_src, i_drs, i_sdt, alpha_req, log10_fdr;
+};
+
+/* Photon flux of the chosen source. */
+static int source_flux(const struct fdr_setup *s, const struct fdr_args *a,
+		       double *f, struct stray_error *err)
+{
+	if (strcmp(a->source, "sun") == 0) {
+		*f = s->flux.sun;
+		return STRAY_OK;
+	}
+	if (strcmp(a->source, "moon") == 0) {
+		*f = fdr_setup_moon_flux(s);
+		return STRAY_OK;
+	}
+	return stray_earth_flux(s->flux.sun, a->albedo,
+				a->altitude_km * 1e3, f, err);
+}
+
+static int plot_fdr(const struct fdr_setup *s, const struct fdr_args *a,
+		    const struct stray_fdr_model *m, const struct fdr_result *r,
+		    struct stray_error *err)
+{
+	enum { N = 241 };
+	double al[N], fdr[N], hx[2], hy[2], vx[2], vy[2], ymax;
+	char title[160];
+	int i, rc;
+
+	for (i = 0; i < N; i++) {	/* a decade below to 2.5 above */
+		double lf;
+
+		al[i] = r->alpha_req * pow(10.0, -1.0 + 3.5 * i / (N - 1));
+		rc = stray_fdr_log_rate(m, al[i], r->i_sdt, &lf, err);
+		if (rc != STRAY_OK)
+			return rc;
+		fdr[i] = exp(lf);
+	}
+	ymax = m->n_tot / m->n_pps;
+	hx[0] = al[0]; hx[1] = al[N - 1]; hy[0] = hy[1] = a->rate;
+	vx[0] = vx[1] = r->alpha_req; vy[0] = 1e-6; vy[1] = ymax;
+	{
+		const struct plot_series series[] = {
+			{ al, fdr, N, NULL, NULL, PLOT_BLUE, PLOT_LINE,
+			  "false detection rate" },
+			{ hx, hy, 2, NULL, NULL, PLOT_RED, PLOT_DASHED,
+			  "tolerated rate" },
+			{ vx, vy, 2, NULL, NULL, PLOT_GREY, PLOT_DOTTED,
+			  "alpha required" },
+		};
+		struct plot_spec p = {
+			a->plot, title, "system attenuation #ga#dsys#u",
+			"false detections per image", 1, 1, al[0], al[N - 1],
+			1e-6, ymax * 3.0, series, 3
+		};
+
+		snprintf(title, sizeof(title),
+			 "%s, %s: #ga#dreq#u = %.3g at %g per image",
+			 s->sensor.name, a->source, r->alpha_req, a->rate);
+		return plot_render(&p, err);
+	}
+}
+
+static int print_result(const struct fdr_setup *s, const struct fdr_args *a,
+			const struct fdr_result *r)
+{
+	if (cli.json) {
+		cJSON *o = cJSON_CreateObject();
+
+		cJSON_AddStringToObject(o, "sensor", s->sensor.name);
+		cJSON_AddStringToObject(o, "source", a->source);
+		cJSON_AddStringToObject(o, "noise", s->poisson ? "poisson" : "gauss");
+		cJSON_AddBoolToObject(o, "detector_noise", s->detector_noise);
+		cJSON_AddItemToObject(o, "source_flux", cli_json_number(r->f_src));
+		cJSON_AddItemToObject(o, "rate", cli_json_number(a->rate));
+		cJSON_AddItemToObject(o, "drs_e", cli_json_number(r->i_drs));
+		cJSON_AddItemToObject(o, "threshold_e", cli_json_number(r->i_sdt));
+		cJSON_AddItemToObject(o, "alpha_required",
+				      cli_json_number(r->alpha_req));
+		if (a->has_alpha) {
+			cJSON_AddItemToObject(o, "alpha", cli_json_number(a->alpha));
+			cJSON_AddItemToObject(o, "fdr",
+				cli_json_number(pow(10.0, r->log10_fdr)));
+			cJSON_AddItemToObject(o, "log10_fdr",
+				cli_json_number(r->log10_fdr));
+		}
+		return cli_json_emit(o);
+	}
+	printf("False-detection model (thesis §2.3) for %s, source %s\n",
+	       s->sensor.name, a->source);
+	printf("  source photon flux      %.4e ph/s/m^2\n", r->f_src);
+	printf("  DRS photons I_drs       %.2f e-   (m = %.2f, eq. 2.12)\n",
+	       r->i_drs, s->sensor.drs_mag);
+	printf("  threshold I_sdt         %.2f e-   (Pr_drs = %.2f, eq. 2.16)\n",
+	       r->i_sdt, s->sensor.pr_drs);
+	printf("  noise model             %s%s\n",
+	       s->poisson ? "exact Poisson" : "Gaussian (thesis)",
+	       s->detector_noise ? " + read noise and dark current" : "");
+	printf("  alpha_required          %.4e   (FDR = %g per image)\n",
+	       r->alpha_req, a->rate);
+	if (a->has_alpha)
+		printf("  FDR at alpha %-10.4g %.4e per image (log10 %.3f)\n",
+		       a->alpha, pow(10.0, r->log10_fdr), r->log10_fdr);
+	return CLI_OK;
+}
+
+static int parse_args(int argc, char **argv, struct fdr_setup *s,
+		      struct fdr_args *a)
+{
+	static const struct option opts[] = {
+		FDR_SETUP_LONG_OPTIONS,
+		{ "source", required_argument, NULL, 's' },
+		{ "rate", required_argument, NULL, 'r' },
+		{ "alpha", required_argument, NULL, 'a' },
+		{ "earth-albedo", required_argument, NULL, 'e' },
+		{ "altitude-km", required_argument, NULL, 'k' },
+		{ "plot", required_argument, NULL, 'p' },
+		{ "json", no_argument, &cli.json, 1 },
+		{ "help", no_argument, NULL, 'h' },
+		{ NULL, 0, NULL, 0 }
+	};
+	int opt, rc;
+
+	while ((opt = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+		switch (opt) {
+		case 0: break;
+		case 'h': fputs(usage, stdout); return -1;
+		case 's': a->source = optarg; break;
+		case 'p': a->plot = optarg; break;
+		case 'r':
+			if (cli_parse_double("fdr", "rate", optarg, &a->rate))
+				return CLI_USAGE;
+			break;
+		case 'a':
+			if (cli_parse_double("fdr", "alpha", optarg, &a->alpha))
+				return CLI_USAGE;
+			a->has_alpha = 1;
+			break;
+		case 'e':
+			if (cli_parse_double("fdr", "earth-albedo", optarg, &a->albedo))
+				return CLI_USAGE;
+			break;
+		case 'k':
+			if (cli_parse_double("fdr", "altitude-km", optarg,
+					     &a->altitude_km))
+				return CLI_USAGE;
+			break;
+		case '?':
+			return cli_usage_error("fdr", "unknown option '%s'",
+					       argv[optind - 1]);
+		default:
+			rc = fdr_setup_option(s, "fdr", opt, optarg);
+			if (rc != 1)
+				return rc ? rc : CLI_USAGE;
+		}
+	}
+	if (optind < argc)
+		return cli_usage_error("fdr", "unexpected argument '%s'",
+				       argv[optind]);
+	if (strcmp(a->source, "sun") && strcmp(a->source, "moon") &&
+	    strcmp(a->source, "earth"))
+		return cli_usage_error("fdr", "option '--source': '%s' is not sun, moon or earth",
+				       a->source);
+	return CLI_OK;
+}
+
+int cmd_fdr(int argc, char **argv)
+{
+	struct fdr_setup s;
+	struct fdr_args a = { "sun", NAN, NAN, 0.3, 550.0, 0, NULL };
+	struct fdr_result r;
+	struct stray_fdr_model m;
+	struct stray_error err;
+	int rc;
+
+	fdr_setup_init(&s);
+	stray_error_clear(&err);
+	rc = parse_args(argc, argv, &s, &a);
+	if (rc != CLI_OK)
+		return rc < 0 ? CLI_OK : rc;
+	if (fdr_setup_load(&s, &err) != STRAY_OK ||
+	    source_flux(&s, &a, &r.f_src, &err) != STRAY_OK)
+		return cli_fail("fdr", &err);
+	if (isnan(a.rate))
+		a.rate = s.sensor.fdr_tolerated;
+	fdr_setup_model(&s, r.f_src, &m);
+	r.i_drs = stray_fdr_drs_photons(&m);
+	r.log10_fdr = NAN;
+	if (stray_fdr_threshold(&m, &r.i_sdt, &err) != STRAY_OK ||
+	    stray_fdr_alpha_required(&m, a.rate, &r.alpha_req, &err) != STRAY_OK)
+		return cli_fail("fdr", &err);
+	if (a.has_alpha) {
+		double lf;
+
+		if (stray_fdr_log_rate(&m, a.alpha, r.i_sdt, &lf, &err) != STRAY_OK)
+			return cli_fail("fdr", &err);
+		r.log10_fdr = lf / log(10.0);
+	}
+	if (a.plot && plot_fdr(&s, &a, &m, &r, &err) != STRAY_OK)
+		return cli_fail("fdr", &err);
+	return print_result(&s, &a, &r);
+}

@@ -1,0 +1,120 @@
+/*
+ * fdr_setup.c - shared sensor/model options of `stray fdr` and
+ * `stray exclusion`.
+ */
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "fdr_setup.h"
+#include "stray/errfmt.h"
+#include "stray/photometry.h"
+#include "stray/sensor_io.h"
+#include "stray/table.h"
+
+void fdr_setup_init(struct fdr_setup *s)
+{
+	memset(s, 0, sizeof(*s));
+	s->sensor_spec = "st16-like";
+}
+
+int fdr_setup_option(struct fdr_setup *s, const char *cmd, int opt,
+		     const char *arg)
+{
+	switch (opt) {
+	case 1000: s->sensor_spec = arg; return 1;
+	case 1001: s->sun = arg; return 1;
+	case 1002: s->vega = arg; return 1;
+	case 1003: s->qe = arg; return 1;
+	case 1004:
+		if (strcmp(arg, "gauss") != 0 && strcmp(arg, "poisson") != 0)
+			return cli_usage_error(cmd,
+				"option '--noise': '%s' is not gauss or poisson", arg);
+		s->poisson = strcmp(arg, "poisson") == 0;
+		return 1;
+	case 1005: s->detector_noise = 1; return 1;
+	case 1006: s->map_path = arg; return 1;
+	case 1007:
+		if (cli_parse_double(cmd, "moon-phase", arg, &s->moon_phase_deg))
+			return CLI_USAGE;
+		if (s->moon_phase_deg < 0.0 || s->moon_phase_deg > 180.0)
+			return cli_usage_error(cmd,
+				"option '--moon-phase': %g is outside 0..180 deg",
+				s->moon_phase_deg);
+		return 1;
+	default:
+		return 0;
+	}
+}
+
+/* A region map from a CSV with columns fraction,rel_alpha. */
+static int load_map(const char *path, struct stray_region_map *map,
+		    struct stray_error *err)
+{
+	struct stray_table t;
+	int cf, ca, rc = stray_table_read(path, &t, err);
+	size_t i;
+
+	if (rc != STRAY_OK)
+		return rc;
+	cf = stray_table_find(&t, "fraction");
+	ca = stray_table_find(&t, "rel_alpha");
+	if (cf < 0 || ca < 0)
+		rc = stray_error_at(err, STRAY_EPARSE, path, 0,
+				    cf < 0 ? "fraction" : "rel_alpha",
+				    "required column is missing");
+	else if (t.n_rows < 1 || t.n_rows > STRAY_MAP_REGIONS_MAX)
+		rc = stray_error_at(err, STRAY_EPARSE, path, 0, "rows",
+				    "a map needs 1 to 64 regions");
+	for (i = 0; rc == STRAY_OK && i < t.n_rows; i++) {
+		map->fraction[i] = t.cell[i * t.n_cols + (size_t)cf];
+		map->rel_alpha[i] = t.cell[i * t.n_cols + (size_t)ca];
+	}
+	map->n = (unsigned)t.n_rows;
+	stray_table_free(&t);
+	return rc;
+}
+
+int fdr_setup_load(struct fdr_setup *s, struct stray_error *err)
+{
+	struct stray_fdr_model m;
+	int rc = stray_sensor_load(s->sensor_spec, &s->sensor, err);
+
+	if (rc != STRAY_OK)
+		return rc;
+	if (s->sun)
+		snprintf(s->sensor.sun, sizeof(s->sensor.sun), "%s", s->sun);
+	if (s->vega)
+		snprintf(s->sensor.vega, sizeof(s->sensor.vega), "%s", s->vega);
+	if (s->qe)
+		snprintf(s->sensor.qe, sizeof(s->sensor.qe), "%s", s->qe);
+	rc = stray_reference_fluxes(&s->sensor, &s->flux, err);
+	if (rc == STRAY_OK && s->map_path)
+		rc = load_map(s->map_path, &s->map, err);
+	if (rc != STRAY_OK)
+		return rc;
+	/* Validate the whole model once, so errors name the bad field. */
+	fdr_setup_model(s, s->flux.sun, &m);
+	rc = stray_fdr_model_check(&m, err);
+	if (rc != STRAY_OK && s->map_path)
+		stray_error_locate(err, s->map_path, 0);
+	return rc;
+}
+
+void fdr_setup_model(const struct fdr_setup *s, double f_src,
+		     struct stray_fdr_model *m)
+{
+	stray_sensor_fdr_model(&s->sensor, f_src, s->flux.drs, m);
+	if (s->detector_noise) {
+		m->read_noise_e = s->sensor.read_noise_e;
+		m->dark_current_e_s = s->sensor.dark_current_e_s;
+	}
+	m->noise = s->poisson ? STRAY_NOISE_POISSON : STRAY_NOISE_GAUSS;
+	m->map = s->map_path ? &s->map : NULL;
+}
+
+double fdr_setup_moon_flux(const struct fdr_setup *s)
+{
+	return stray_mag_to_flux(s->flux.zero_mag,
+		stray_moon_mag_at_phase(s->sensor.moon_mag, s->moon_phase_deg));
+}

@@ -1,0 +1,71 @@
+/*
+ * fdr_setup.h - the options that `stray fdr` and `stray exclusion` share:
+ * which sensor, which spectra, which FDR model extensions; and the step
+ * that turns them into fluxes and an FDR model.
+ */
+#ifndef STRAY_TOOLS_FDR_SETUP_H
+#define STRAY_TOOLS_FDR_SETUP_H
+
+#include <getopt.h>
+
+#include "stray/fdr.h"
+#include "stray/photometry_io.h"
+#include "stray/sensor.h"
+
+struct fdr_setup {
+	const char *sensor_spec;	/* --sensor, default st16-like */
+	const char *sun, *vega, *qe;	/* spectrum overrides, or NULL */
+	int poisson;			/* --noise poisson */
+	int detector_noise;		/* --detector-noise */
+	const char *map_path;		/* --map: non-uniform stray light */
+	double moon_phase_deg;		/* --moon-phase, 0 = full */
+	/* Filled by fdr_setup_load. */
+	struct stray_sensor sensor;
+	struct stray_fluxes flux;
+	struct stray_region_map map;
+};
+
+/* Long options shared by the commands, values 1000+ (see fdr_setup.c). */
+#define SENSOR_LONG_OPTIONS \
+	{ "sensor", required_argument, NULL, 1000 }, \
+	{ "sun", required_argument, NULL, 1001 }, \
+	{ "vega", required_argument, NULL, 1002 }, \
+	{ "qe", required_argument, NULL, 1003 }
+
+#define FDR_SETUP_LONG_OPTIONS \
+	SENSOR_LONG_OPTIONS, \
+	{ "noise", required_argument, NULL, 1004 }, \
+	{ "detector-noise", no_argument, NULL, 1005 }, \
+	{ "map", required_argument, NULL, 1006 }, \
+	{ "moon-phase", required_argument, NULL, 1007 }
+
+#define SENSOR_USAGE \
+	"  --sensor S          built-in sensor name or JSON file (st16-like)\n" \
+	"  --sun F, --vega F, --qe F\n" \
+	"                      spectrum CSVs or builtin:NAME, replacing the sensor's\n"
+
+#define FDR_SETUP_USAGE SENSOR_USAGE \
+	"  --noise gauss|poisson\n" \
+	"                      shot-noise model: the thesis's Gaussian (default)\n" \
+	"                      or exact Poisson tails\n" \
+	"  --detector-noise    add the sensor's read noise and dark current\n" \
+	"  --map F.csv         non-uniform stray light: columns fraction,rel_alpha\n" \
+	"  --moon-phase DEG    lunar phase angle (0 = full Moon)\n"
+
+void fdr_setup_init(struct fdr_setup *s);
+
+/* Handle a shared option: 1 handled, 0 not ours, or CLI_USAGE on error. */
+int fdr_setup_option(struct fdr_setup *s, const char *cmd, int opt,
+		     const char *arg);
+
+/* Load sensor, spectra and map; compute the reference fluxes. */
+int fdr_setup_load(struct fdr_setup *s, struct stray_error *err);
+
+/* The FDR model for a source of photon flux f_src. */
+void fdr_setup_model(const struct fdr_setup *s, double f_src,
+		     struct stray_fdr_model *m);
+
+/* The Moon's photon flux at the chosen phase. */
+double fdr_setup_moon_flux(const struct fdr_setup *s);
+
+#endif /* STRAY_TOOLS_FDR_SETUP_H */
