@@ -29,6 +29,8 @@ CPPFLAGS_HOST := -D_POSIX_C_SOURCE=200809L -Ilibstray/include
 LDLIBS_BASE := -lm
 
 .PHONY: all test check demo bench deps install fuzz clean
+# Keep intermediate objects (incremental builds, no "rm" noise).
+.SECONDARY:
 all:
 
 include $(foreach m,$(MODULES),$(m)/module.mk)
@@ -55,6 +57,9 @@ test: deps
 
 check: all $(TESTS)
 	@scripts/check-core.sh $(STRAY_CORE_LIB)
+ifneq ($(SAN),1)	# an instrumented library is not for installing
+	@scripts/check-install.sh $(B)
+endif
 	@tests/run-tests.sh $(B) $(TESTS)
 
 demo: deps all
