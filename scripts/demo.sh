@@ -7,7 +7,7 @@ build=${1:-build}
 out=${2:-$build/demo}
 stray="$build/bin/stray"
 mkdir -p "$out"
-step=0; steps=3
+step=0; steps=4
 say() { step=$((step + 1)); printf '[%d/%d] %s\n' "$step" "$steps" "$*"; }
 start=$(date +%s)
 
@@ -27,26 +27,9 @@ say "exclusion: Sun and Moon angles of $curve (fig. 5.1)"
 "$stray" exclusion --curve "$curve" --earth-albedo 0.3 --json \
 	> "$out/exclusion.json" 2>/dev/null
 
-cat > "$out/report.md" <<MD
-# straylight demo: st16-like sensor, ref4 baffle
-
-## Reference fluxes (thesis table 2.1)
-\`\`\`
-$(cat "$out/photometry.txt")
-\`\`\`
-
-## False-detection rate (thesis §2.3, fig. 2.7)
-\`\`\`
-$(cat "$out/fdr_sun.txt")
-\`\`\`
-![FDR vs alpha](fdr_sun.png)
-
-## Exclusion angles (thesis §5.1, fig. 5.1)
-Curve: \`$curve\` (the ref4 baffle alone, traced by the Mitsuba 3 peer; the
-lens attenuation that makes the system curve comes from \`stray reduce\`).
-\`\`\`
-$(cat "$out/exclusion.txt")
-\`\`\`
-![exclusion](exclusion.png)
-MD
+say "report: $out/report.html (and report.md)"
+"$stray" report "$out"
+if command -v chromium >/dev/null; then
+	scripts/check-report.sh "$out"
+fi
 echo "demo: done in $(( $(date +%s) - start )) s; report: $out/report.md"

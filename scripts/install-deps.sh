@@ -11,6 +11,7 @@ PKGS=(
 	libcjson-dev
 	libplplot-dev plplot-driver-cairo
 	clang libclang-rt-14-dev
+	chromium
 	libcfitsio-dev libssl-dev
 	libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
 	libembree-dev

@@ -14,5 +14,6 @@ struct cmd {
 int cmd_photometry(int argc, char **argv);
 int cmd_fdr(int argc, char **argv);
 int cmd_exclusion(int argc, char **argv);
+int cmd_report(int argc, char **argv);
 
 #endif /* STRAY_TOOLS_COMMANDS_H */

@@ -19,6 +19,8 @@ static const struct cmd commands[] = {
 	  "false-detection rate and the attenuation it requires" },
 	{ "exclusion", cmd_exclusion,
 	  "Sun, Moon and Earth exclusion angles of a curve" },
+	{ "report", cmd_report,
+	  "design-review report (HTML and Markdown) of a results folder" },
 };
 
 #define N_COMMANDS (sizeof(commands) / sizeof(commands[0]))
