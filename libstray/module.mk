@@ -26,17 +26,15 @@ $(STRAY_LIB): $(STRAY_CORE_OBJ) $(STRAY_HOST_OBJ)
 	@mkdir -p $(dir $@)
 	rm -f $@ && ar rcs $@ $^
 
-$(B)/lib/pkgconfig/stray.pc: libstray/stray.pc.in
-	@mkdir -p $(dir $@)
-	sed -e 's|@PREFIX@|$(PREFIX)|' $< > $@
-
 all: $(STRAY_LIB) $(STRAY_CORE_LIB)
 
-install-libstray: $(STRAY_LIB) $(STRAY_CORE_LIB) $(B)/lib/pkgconfig/stray.pc
+# The pkg-config file names the prefix it is installed under.
+install-libstray: $(STRAY_LIB) $(STRAY_CORE_LIB) libstray/stray.pc.in
 	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/stray
 	install -m 644 $(STRAY_LIB) $(STRAY_CORE_LIB) $(DESTDIR)$(PREFIX)/lib/
 	install -m 644 libstray/include/stray/*.h $(DESTDIR)$(PREFIX)/include/stray/
-	install -m 644 $(B)/lib/pkgconfig/stray.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/
+	sed -e 's|@PREFIX@|$(PREFIX)|' libstray/stray.pc.in \
+		> $(DESTDIR)$(PREFIX)/lib/pkgconfig/stray.pc
 install: install-libstray
 
 # Benchmarks of the physics core (make bench).
