@@ -6,7 +6,7 @@ set -eu
 build=$1
 prefix=$(mktemp -d)
 trap 'rm -rf "$prefix"' EXIT
-make --no-print-directory -s install B="$build" PREFIX="$prefix" >/dev/null
+env -u MAKEFLAGS -u MFLAGS make --no-print-directory -s install B="$build" PREFIX="$prefix" >/dev/null
 cat > "$prefix/use.c" <<'C'
 #include <stdio.h>
 #include <stray/photometry_io.h>

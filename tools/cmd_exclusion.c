@@ -21,18 +21,15 @@
 
 static const char usage[] =
 	"usage: stray exclusion --curve C.csv [--rate R] [--k-sigma K]\n"
-	"                       [--earth-albedo A [--altitude-km H]]\n"
-	"                       [--plot F.png] [--json] [options]\n"
+	"                       [--earth-albedo A] [--plot F.png] [--json] [options]\n"
 	"\n"
 	"Exclusion angles of a system attenuation curve (docs/formats.md):\n"
 	"the smallest angle beyond which alpha stays below alpha_required.\n"
 	"With a sigma column, the angles for alpha -/+ K sigma bracket it.\n"
 	"\n"
 	"  --curve C.csv       system attenuation curve (required)\n"
-	"  --rate R            tolerated false detections per image\n"
 	"  --k-sigma K         width of the interval in sigmas (default 1)\n"
-	"  --earth-albedo A    add the sunlit Earth limb (albedo A, e.g. 0.3)\n"
-	"  --altitude-km H     spacecraft altitude for the Earth (default 550)\n"
+	"  (--earth-albedo adds the sunlit Earth limb)\n"
 	"  --plot F.png        the curve with alpha_required and the angles\n"
 	"  --json              machine-readable output\n"
 	FDR_SETUP_USAGE;
@@ -47,8 +44,7 @@ struct body {
 
 struct excl_args {
 	const char *curve, *plot;
-	double rate, k_sigma, albedo, altitude_km;
-	int earth;
+	double k_sigma;
 };
 
 static int solve_body(const struct fdr_setup *s, const struct excl_args *a,
@@ -59,7 +55,7 @@ static int solve_body(const struct fdr_setup *s, const struct excl_args *a,
 	int rc;
 
 	fdr_setup_model(s, b->flux, &m);
-	rc = stray_fdr_alpha_required(&m, a->rate, &b->alpha_req, err);
+	rc = stray_fdr_alpha_required(&m, s->rate, &b->alpha_req, err);
 	if (rc != STRAY_OK)
 		return rc;
 	rc = stray_exclusion_interval(v, b->alpha_req, a->k_sigma, &b->ex, err);
@@ -98,7 +94,7 @@ static int print_json(const struct fdr_setup *s, const struct excl_args *a,
 
 	cJSON_AddStringToObject(o, "curve", a->curve);
 	cJSON_AddStringToObject(o, "sensor", s->sensor.name);
-	cJSON_AddItemToObject(o, "rate", cli_json_number(a->rate));
+	cJSON_AddItemToObject(o, "rate", cli_json_number(s->rate));
 	cJSON_AddItemToObject(o, "fov_half_deg", cli_json_number(s->sensor.fov_half_deg));
 	cJSON_AddItemToObject(o, "sun_deg", cli_json_number(b[0].angle_deg));
 	cJSON_AddItemToObject(o, "moon_deg", cli_json_number(b[1].angle_deg));
@@ -116,7 +112,7 @@ static void print_text(const struct fdr_setup *s, const struct excl_args *a,
 	int i;
 
 	printf("Exclusion angles of %s for %s at %g false stars per image\n",
-	       a->curve, s->sensor.name, a->rate);
+	       a->curve, s->sensor.name, s->rate);
 	for (i = 0; i < nb; i++) {
 		printf("  %-6s alpha_required %.3e  ", b[i].name, b[i].alpha_req);
 		if (!b[i].excluded && isnan(b[i].angle_deg)) {
@@ -146,10 +142,7 @@ static int parse_args(int argc, char **argv, struct fdr_setup *s,
 	static const struct option opts[] = {
 		FDR_SETUP_LONG_OPTIONS,
 		{ "curve", required_argument, NULL, 'c' },
-		{ "rate", required_argument, NULL, 'r' },
 		{ "k-sigma", required_argument, NULL, 'K' },
-		{ "earth-albedo", required_argument, NULL, 'e' },
-		{ "altitude-km", required_argument, NULL, 'k' },
 		{ "plot", required_argument, NULL, 'p' },
 		{ "json", no_argument, &cli.json, 1 },
 		{ "help", no_argument, NULL, 'h' },
@@ -163,13 +156,7 @@ static int parse_args(int argc, char **argv, struct fdr_setup *s,
 		case 'h': fputs(usage, stdout); return -1;
 		case 'c': a->curve = optarg; break;
 		case 'p': a->plot = optarg; break;
-		case 'r': rc = cli_parse_double("exclusion", "rate", optarg, &a->rate); break;
 		case 'K': rc = cli_parse_double("exclusion", "k-sigma", optarg, &a->k_sigma); break;
-		case 'e':
-			rc = cli_parse_double("exclusion", "earth-albedo", optarg, &a->albedo);
-			a->earth = 1;
-			break;
-		case 'k': rc = cli_parse_double("exclusion", "altitude-km", optarg, &a->altitude_km); break;
 		case '?':
 			return cli_usage_error("exclusion", "unknown option '%s'",
 					       argv[optind - 1]);
@@ -193,7 +180,7 @@ static int parse_args(int argc, char **argv, struct fdr_setup *s,
 int cmd_exclusion(int argc, char **argv)
 {
 	struct fdr_setup s;
-	struct excl_args a = { NULL, NULL, NAN, 1.0, 0.3, 550.0, 0 };
+	struct excl_args a = { NULL, NULL, 1.0 };
 	struct body b[3] = { { .name = "sun" }, { .name = "moon" },
 			     { .name = "earth" } };
 	struct stray_curve c;
@@ -208,13 +195,10 @@ int cmd_exclusion(int argc, char **argv)
 		return rc < 0 ? CLI_OK : rc;
 	if (fdr_setup_load(&s, &err) != STRAY_OK)
 		return cli_fail("exclusion", &err);
-	if (isnan(a.rate))
-		a.rate = s.sensor.fdr_tolerated;
 	b[0].flux = s.flux.sun;
 	b[1].flux = fdr_setup_moon_flux(&s);
-	nb = a.earth ? 3 : 2;
-	if (a.earth && stray_earth_flux(s.flux.sun, a.albedo,
-				       a.altitude_km * 1e3, &b[2].flux, &err))
+	nb = s.earth_given ? 3 : 2;
+	if (s.earth_given && fdr_setup_earth_flux(&s, &b[2].flux, &err))
 		return cli_fail("exclusion", &err);
 	if (stray_curve_load(a.curve, &c, &err) != STRAY_OK)
 		return cli_fail("exclusion", &err);
@@ -283,7 +267,7 @@ static int plot_exclusion(const struct fdr_setup *s, const struct excl_args *a,
 			NULL, color[k], PLOT_DOTTED, label[k][1] };
 	}
 	snprintf(title, sizeof(title), "%s: exclusion angles at %g false stars/image",
-		 s->sensor.name, a->rate);
+		 s->sensor.name, s->rate);
 	{
 		struct plot_spec p = { a->plot, title,
 			"off-axis angle #gh [deg]", "attenuation #ga", 0, 1,

@@ -22,17 +22,14 @@ static const char usage[] =
 	"false-detection rate at that attenuation.\n"
 	"\n"
 	"  --source B          stray-light source: sun (default), moon, earth\n"
-	"  --rate R            tolerated false detections per image\n"
 	"  --alpha A           also give FDR at system attenuation A\n"
-	"  --earth-albedo A    Earth's albedo (earth source; default 0.3)\n"
-	"  --altitude-km H     spacecraft altitude (earth source; default 550)\n"
 	"  --plot F.png        FDR vs alpha with the tolerated rate (fig. 2.7)\n"
 	"  --json              machine-readable output\n"
 	FDR_SETUP_USAGE;
 
 struct fdr_args {
 	const char *source;
-	double rate, alpha, albedo, altitude_km;
+	double alpha;
 	int has_alpha;
 	const char *plot;
 };
@@ -53,8 +50,7 @@ static int source_flux(const struct fdr_setup *s, const struct fdr_args *a,
 		*f = fdr_setup_moon_flux(s);
 		return STRAY_OK;
 	}
-	return stray_earth_flux(s->flux.sun, a->albedo,
-				a->altitude_km * 1e3, f, err);
+	return fdr_setup_earth_flux(s, f, err);
 }
 
 static int plot_fdr(const struct fdr_setup *s, const struct fdr_args *a,
@@ -76,7 +72,7 @@ static int plot_fdr(const struct fdr_setup *s, const struct fdr_args *a,
 		fdr[i] = exp(lf);
 	}
 	ymax = m->n_tot / m->n_pps;
-	hx[0] = al[0]; hx[1] = al[N - 1]; hy[0] = hy[1] = a->rate;
+	hx[0] = al[0]; hx[1] = al[N - 1]; hy[0] = hy[1] = s->rate;
 	vx[0] = vx[1] = r->alpha_req; vy[0] = 1e-6; vy[1] = ymax;
 	{
 		const struct plot_series series[] = {
@@ -95,7 +91,7 @@ static int plot_fdr(const struct fdr_setup *s, const struct fdr_args *a,
 
 		snprintf(title, sizeof(title),
 			 "%s, %s: #ga#dreq#u = %.3g at %g per image",
-			 s->sensor.name, a->source, r->alpha_req, a->rate);
+			 s->sensor.name, a->source, r->alpha_req, s->rate);
 		return plot_render(&p, err);
 	}
 }
@@ -111,7 +107,7 @@ static int print_result(const struct fdr_setup *s, const struct fdr_args *a,
 		cJSON_AddStringToObject(o, "noise", s->poisson ? "poisson" : "gauss");
 		cJSON_AddBoolToObject(o, "detector_noise", s->detector_noise);
 		cJSON_AddItemToObject(o, "source_flux", cli_json_number(r->f_src));
-		cJSON_AddItemToObject(o, "rate", cli_json_number(a->rate));
+		cJSON_AddItemToObject(o, "rate", cli_json_number(s->rate));
 		cJSON_AddItemToObject(o, "drs_e", cli_json_number(r->i_drs));
 		cJSON_AddItemToObject(o, "threshold_e", cli_json_number(r->i_sdt));
 		cJSON_AddItemToObject(o, "alpha_required",
@@ -136,7 +132,7 @@ static int print_result(const struct fdr_setup *s, const struct fdr_args *a,
 	       s->poisson ? "exact Poisson" : "Gaussian (thesis)",
 	       s->detector_noise ? " + read noise and dark current" : "");
 	printf("  alpha_required          %.4e   (FDR = %g per image)\n",
-	       r->alpha_req, a->rate);
+	       r->alpha_req, s->rate);
 	if (a->has_alpha)
 		printf("  FDR at alpha %-10.4g %.4e per image (log10 %.3f)\n",
 		       a->alpha, pow(10.0, r->log10_fdr), r->log10_fdr);
@@ -149,10 +145,7 @@ static int parse_args(int argc, char **argv, struct fdr_setup *s,
 	static const struct option opts[] = {
 		FDR_SETUP_LONG_OPTIONS,
 		{ "source", required_argument, NULL, 's' },
-		{ "rate", required_argument, NULL, 'r' },
 		{ "alpha", required_argument, NULL, 'a' },
-		{ "earth-albedo", required_argument, NULL, 'e' },
-		{ "altitude-km", required_argument, NULL, 'k' },
 		{ "plot", required_argument, NULL, 'p' },
 		{ "json", no_argument, &cli.json, 1 },
 		{ "help", no_argument, NULL, 'h' },
@@ -166,23 +159,10 @@ static int parse_args(int argc, char **argv, struct fdr_setup *s,
 		case 'h': fputs(usage, stdout); return -1;
 		case 's': a->source = optarg; break;
 		case 'p': a->plot = optarg; break;
-		case 'r':
-			if (cli_parse_double("fdr", "rate", optarg, &a->rate))
-				return CLI_USAGE;
-			break;
 		case 'a':
 			if (cli_parse_double("fdr", "alpha", optarg, &a->alpha))
 				return CLI_USAGE;
 			a->has_alpha = 1;
-			break;
-		case 'e':
-			if (cli_parse_double("fdr", "earth-albedo", optarg, &a->albedo))
-				return CLI_USAGE;
-			break;
-		case 'k':
-			if (cli_parse_double("fdr", "altitude-km", optarg,
-					     &a->altitude_km))
-				return CLI_USAGE;
 			break;
 		case '?':
 			return cli_usage_error("fdr", "unknown option '%s'",
@@ -206,7 +186,7 @@ static int parse_args(int argc, char **argv, struct fdr_setup *s,
 int cmd_fdr(int argc, char **argv)
 {
 	struct fdr_setup s;
-	struct fdr_args a = { "sun", NAN, NAN, 0.3, 550.0, 0, NULL };
+	struct fdr_args a = { "sun", NAN, 0, NULL };
 	struct fdr_result r;
 	struct stray_fdr_model m;
 	struct stray_error err;
@@ -220,13 +200,11 @@ int cmd_fdr(int argc, char **argv)
 	if (fdr_setup_load(&s, &err) != STRAY_OK ||
 	    source_flux(&s, &a, &r.f_src, &err) != STRAY_OK)
 		return cli_fail("fdr", &err);
-	if (isnan(a.rate))
-		a.rate = s.sensor.fdr_tolerated;
 	fdr_setup_model(&s, r.f_src, &m);
 	r.i_drs = stray_fdr_drs_photons(&m);
 	r.log10_fdr = NAN;
 	if (stray_fdr_threshold(&m, &r.i_sdt, &err) != STRAY_OK ||
-	    stray_fdr_alpha_required(&m, a.rate, &r.alpha_req, &err) != STRAY_OK)
+	    stray_fdr_alpha_required(&m, s.rate, &r.alpha_req, &err) != STRAY_OK)
 		return cli_fail("fdr", &err);
 	if (a.has_alpha) {
 		double lf;

@@ -2,6 +2,7 @@
  * fdr_setup.c - shared sensor/model options of `stray fdr` and
  * `stray exclusion`.
  */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -16,6 +17,9 @@ void fdr_setup_init(struct fdr_setup *s)
 {
 	memset(s, 0, sizeof(*s));
 	s->sensor_spec = "st16-like";
+	s->rate = NAN;
+	s->earth_albedo = 0.3;
+	s->altitude_km = 550.0;
 }
 
 int fdr_setup_option(struct fdr_setup *s, const char *cmd, int opt,
@@ -42,6 +46,15 @@ int fdr_setup_option(struct fdr_setup *s, const char *cmd, int opt,
 				"option '--moon-phase': %g is outside 0..180 deg",
 				s->moon_phase_deg);
 		return 1;
+	case 1008:
+		return cli_parse_double(cmd, "rate", arg, &s->rate) ? CLI_USAGE : 1;
+	case 1009:
+		s->earth_given = 1;
+		return cli_parse_double(cmd, "earth-albedo", arg,
+					&s->earth_albedo) ? CLI_USAGE : 1;
+	case 1010:
+		return cli_parse_double(cmd, "altitude-km", arg,
+					&s->altitude_km) ? CLI_USAGE : 1;
 	default:
 		return 0;
 	}
@@ -88,6 +101,8 @@ int fdr_setup_load(struct fdr_setup *s, struct stray_error *err)
 		snprintf(s->sensor.vega, sizeof(s->sensor.vega), "%s", s->vega);
 	if (s->qe)
 		snprintf(s->sensor.qe, sizeof(s->sensor.qe), "%s", s->qe);
+	if (isnan(s->rate))
+		s->rate = s->sensor.fdr_tolerated;
 	rc = stray_reference_fluxes(&s->sensor, &s->flux, err);
 	if (rc == STRAY_OK && s->map_path)
 		rc = load_map(s->map_path, &s->map, err);
@@ -117,4 +132,11 @@ double fdr_setup_moon_flux(const struct fdr_setup *s)
 {
 	return stray_mag_to_flux(s->flux.zero_mag,
 		stray_moon_mag_at_phase(s->sensor.moon_mag, s->moon_phase_deg));
+}
+
+int fdr_setup_earth_flux(const struct fdr_setup *s, double *flux,
+			 struct stray_error *err)
+{
+	return stray_earth_flux(s->flux.sun, s->earth_albedo,
+				s->altitude_km * 1e3, flux, err);
 }

@@ -19,6 +19,10 @@ struct fdr_setup {
 	int detector_noise;		/* --detector-noise */
 	const char *map_path;		/* --map: non-uniform stray light */
 	double moon_phase_deg;		/* --moon-phase, 0 = full */
+	double rate;			/* --rate; NaN: the sensor's */
+	double earth_albedo;		/* --earth-albedo (0.3) */
+	double altitude_km;		/* --altitude-km (550) */
+	int earth_given;		/* --earth-albedo was given */
 	/* Filled by fdr_setup_load. */
 	struct stray_sensor sensor;
 	struct stray_fluxes flux;
@@ -37,7 +41,10 @@ struct fdr_setup {
 	{ "noise", required_argument, NULL, 1004 }, \
 	{ "detector-noise", no_argument, NULL, 1005 }, \
 	{ "map", required_argument, NULL, 1006 }, \
-	{ "moon-phase", required_argument, NULL, 1007 }
+	{ "moon-phase", required_argument, NULL, 1007 }, \
+	{ "rate", required_argument, NULL, 1008 }, \
+	{ "earth-albedo", required_argument, NULL, 1009 }, \
+	{ "altitude-km", required_argument, NULL, 1010 }
 
 #define SENSOR_USAGE \
 	"  --sensor S          built-in sensor name or JSON file (st16-like)\n" \
@@ -50,7 +57,11 @@ struct fdr_setup {
 	"                      or exact Poisson tails\n" \
 	"  --detector-noise    add the sensor's read noise and dark current\n" \
 	"  --map F.csv         non-uniform stray light: columns fraction,rel_alpha\n" \
-	"  --moon-phase DEG    lunar phase angle (0 = full Moon)\n"
+	"  --moon-phase DEG    lunar phase angle (0 = full Moon)\n" \
+	"  --rate R            tolerated false detections per image\n" \
+	"                      (default: the sensor's fdr_tolerated)\n" \
+	"  --earth-albedo A    the sunlit Earth's albedo (0.3)\n" \
+	"  --altitude-km H     spacecraft altitude for the Earth (550)\n"
 
 void fdr_setup_init(struct fdr_setup *s);
 
@@ -67,5 +78,9 @@ void fdr_setup_model(const struct fdr_setup *s, double f_src,
 
 /* The Moon's photon flux at the chosen phase. */
 double fdr_setup_moon_flux(const struct fdr_setup *s);
+
+/* The sunlit Earth's photon flux at the chosen albedo and altitude. */
+int fdr_setup_earth_flux(const struct fdr_setup *s, double *flux,
+			 struct stray_error *err);
 
 #endif /* STRAY_TOOLS_FDR_SETUP_H */
