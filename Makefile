@@ -14,7 +14,7 @@ CC ?= cc
 CLANG ?= clang
 PYTHON ?= python3
 
-MODULES := libstray tools tests
+MODULES := libstray tools libstray/reduce tests tracer firmware_fdr
 
 WARN := -Wall -Wextra -Werror
 OPT ?= -O2 -g
@@ -55,12 +55,13 @@ test: deps
 	@$(MAKE) --no-print-directory check
 	@$(MAKE) --no-print-directory check B=build/asan SAN=1
 
-check: all $(TESTS)
+# TESTS_SLOW: tests too slow under the sanitizers, run in the normal pass only.
+check: all $(TESTS) $(if $(filter 1,$(SAN)),,$(TESTS_SLOW))
 	@scripts/check-core.sh $(STRAY_CORE_LIB)
 ifneq ($(SAN),1)	# an instrumented library is not for installing
 	@scripts/check-install.sh $(B)
 endif
-	@tests/run-tests.sh $(B) $(TESTS)
+	@tests/run-tests.sh $(B) $(TESTS) $(if $(filter 1,$(SAN)),,$(TESTS_SLOW))
 
 demo: deps all
 	@scripts/demo.sh $(B)

@@ -3,7 +3,6 @@
 # Idempotent: installs only what is missing, and says nothing when all is
 # there.  Run as root or with sudo available.
 set -eu
-
 PKGS=(
 	build-essential pkg-config python3
 	libcmocka-dev
@@ -15,10 +14,8 @@ PKGS=(
 	libcfitsio-dev libssl-dev
 	libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
 	libembree-dev libassimp-dev
-	libusb-1.0-0-dev libhidapi-dev libgpiod-dev zlib1g-dev
 	gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm liberfa-dev cppcheck
 )
-
 missing=()
 for p in "${PKGS[@]}"; do
 	case "$p" in \#*) continue ;; esac
@@ -26,7 +23,6 @@ for p in "${PKGS[@]}"; do
 		missing+=("$p")
 done
 [ ${#missing[@]} -eq 0 ] && exit 0
-
 echo "install-deps: installing ${missing[*]}"
 SUDO=""
 [ "$(id -u)" -ne 0 ] && SUDO="sudo"

@@ -41,10 +41,12 @@ fuzz: $(FUZZ_TARGETS)
 			| grep -E 'stat::number_of_executed_units|ERROR|SUMMARY' ; \
 	done
 
+# New inputs go to a scratch corpus (the first folder), never the seeds.
 fuzz-smoke: $(FUZZ_TARGETS)
 	@for f in $(FUZZ_TARGETS); do \
 		n=$$(basename $$f); echo "== $$n ($(FUZZ_RUNS) runs, seed 1)"; \
-		$$f -runs=$(FUZZ_RUNS) -seed=1 tests/fuzz/seeds/$${n#fuzz_} \
+		rm -rf build/fuzz/smoke-$$n; mkdir -p build/fuzz/smoke-$$n; \
+		$$f -runs=$(FUZZ_RUNS) -seed=1 build/fuzz/smoke-$$n tests/fuzz/seeds/$${n#fuzz_} \
 			>build/fuzz/$$n.log 2>&1 || { cat build/fuzz/$$n.log; exit 1; }; \
 		grep -E '^#[0-9]+.*DONE' build/fuzz/$$n.log | tail -n 1; \
 	done

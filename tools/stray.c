@@ -21,6 +21,10 @@ static const struct cmd commands[] = {
 	  "Sun, Moon and Earth exclusion angles of a curve" },
 	{ "report", cmd_report,
 	  "design-review report (HTML and Markdown) of a results folder" },
+	{ "firmware-table", cmd_firmware_table, "flight table of firmware_fdr (C source and CRC-sealed blob)" },
+	{ "orbit", cmd_orbit, "the flight module along a day of a sun-synchronous orbit" },
+	{ "trace", cmd_trace, "attenuation curve of a baffle by Monte Carlo ray tracing" },
+	{ "reduce", cmd_reduce, "lens attenuation curve, noise floor and ghosts from a lab sweep" },
 };
 
 #define N_COMMANDS (sizeof(commands) / sizeof(commands[0]))

@@ -100,9 +100,11 @@ int stray_fdr_model_check(const struct stray_fdr_model *m,
 		return stray_error_set_value(err, STRAY_EINVAL,
 			"dark_current_e_s", STRAY_MSG("must be finite and >= 0"),
 			m->dark_current_e_s);
-	if (m->noise != STRAY_NOISE_GAUSS && m->noise != STRAY_NOISE_POISSON)
+	if (m->noise != STRAY_NOISE_GAUSS &&
+	    !(STRAY_WITH_POISSON && m->noise == STRAY_NOISE_POISSON))
 		return stray_error_set_value(err, STRAY_EINVAL, "noise_model",
-			STRAY_MSG("must be gauss or poisson"), (double)m->noise);
+			STRAY_MSG("must be gauss, or poisson where built in"),
+			(double)m->noise);
 	return m->map ? map_check(m->map, err) : STRAY_OK;
 }
 
@@ -130,7 +132,7 @@ static int log_poisson_excess(double mu, double t, double *log_pr,
 			      struct stray_error *err)
 {
 	if (mu <= 0.0) {
-		*log_pr = t > 0.0 ? -INFINITY : 0.0;
+		*log_pr = t > 0.0 ? -HUGE_VAL : 0.0;
 		return STRAY_OK;
 	}
 	if (mu > POISSON_GAUSS_MEAN) {
@@ -172,7 +174,7 @@ int stray_fdr_threshold(const struct stray_fdr_model *m, double *i_sdt,
 		return rc;
 	i_drs = stray_fdr_drs_photons(m);
 	b = window_noise_var(m);
-	if (m->noise == STRAY_NOISE_GAUSS) {
+	if (!STRAY_WITH_POISSON || m->noise == STRAY_NOISE_GAUSS) {
 		/* eq. 2.13-2.16: Pr_drs = Q((I_sdt - mu) / sigma) */
 		rc = stray_gauss_q_inv(m->pr_drs, &z, err);
 		if (rc == STRAY_OK)
@@ -203,10 +205,10 @@ int stray_fdr_log_pr_fd(const struct stray_fdr_model *m, double alpha,
 	if (!non_negative(alpha))
 		return stray_error_set_value(err, STRAY_EINVAL, "alpha",
 			STRAY_MSG("must be finite and >= 0"), alpha);
-	if (m->noise == STRAY_NOISE_POISSON)
+	if (STRAY_WITH_POISSON && m->noise == STRAY_NOISE_POISSON)
 		return log_poisson_excess(var, i_sdt, log_pr_fd, err);
 	if (var <= 0.0)
-		*log_pr_fd = i_sdt > 0.0 ? -INFINITY : 0.0;
+		*log_pr_fd = i_sdt > 0.0 ? -HUGE_VAL : 0.0;
 	else
 		*log_pr_fd = stray_log_gauss_q(i_sdt / sqrt(var));
 	return STRAY_OK;
@@ -216,7 +218,7 @@ int stray_fdr_log_rate(const struct stray_fdr_model *m, double alpha,
 		       double i_sdt, double *log_fdr, struct stray_error *err)
 {
 	/* eq. 2.18: FDR = n_tot / n_pps * Pr_fd, summed over map regions */
-	double log_windows = log(m->n_tot / m->n_pps), acc = -INFINITY;
+	double log_windows = log(m->n_tot / m->n_pps), acc = -HUGE_VAL;
 	double norm = 0.0, lp;
 	const struct stray_region_map *map = m->map;
 	unsigned r;

@@ -26,7 +26,7 @@ double stray_log_add(double a, double b)
 	double hi = a > b ? a : b;
 	double lo = a > b ? b : a;
 
-	if (lo == -INFINITY)
+	if (lo == -HUGE_VAL)
 		return hi;
 	return hi + log1p(exp(lo - hi));
 }
@@ -175,7 +175,7 @@ int stray_log_gamma_p(double a, double x, double *log_p,
 	if (rc != STRAY_OK)
 		return rc;
 	if (x == 0.0) {
-		*log_p = -INFINITY;
+		*log_p = -HUGE_VAL;
 		return STRAY_OK;
 	}
 	if (x < a + 1.0)

@@ -7,6 +7,10 @@
  *
  *   STRAY_NO_ERRMSG   compile the static error texts out (flight builds keep
  *                     the codes only, as nanopb's PB_NO_ERRMSG does).
+ *   STRAY_WITH_POISSON=0
+ *                     leave the exact-Poisson FDR model out (flight builds
+ *                     use the thesis's Gaussian model; this drops lgamma
+ *                     and the incomplete-gamma fractions from the image).
  */
 #ifndef STRAY_CONFIG_H
 #define STRAY_CONFIG_H
@@ -26,6 +30,11 @@
 #define STRAY_MSG(text) ((const char *)0)
 #else
 #define STRAY_MSG(text) (text)
+#endif
+
+/* 1: the exact-Poisson noise model is built in (the default). */
+#ifndef STRAY_WITH_POISSON
+#define STRAY_WITH_POISSON 1
 #endif
 
 /* Upper bound on the regions of a non-uniform stray-light map (fdr.h). */

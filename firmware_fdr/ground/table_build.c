@@ -1,0 +1,170 @@
+/*
+ * table_build.c - the flight table from libstray's ground results.
+ *
+ * What can be computed once is computed here, in double precision, by the
+ * same libstray functions the ground tools use: the detection threshold
+ * I_sdt (eq. 2.16) and, for telemetry, the Sun's alpha_req (fig. 2.7) and
+ * exclusion angle (fig. 5.1).  Per frame the module only evaluates eq.
+ * 2.18 at the frame's own attenuation, exposure and flux.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "fdrfw/table_build.h"
+#include "stray/config.h"
+#include "stray/fdr.h"
+
+static int params_check(const struct fdrfw_build_params *p,
+			struct stray_error *err)
+{
+	if (!(isfinite(p->f_sun_ph_s_m2) && p->f_sun_ph_s_m2 > 0.0))
+		return stray_error_set_value(err, STRAY_EINVAL, "sun",
+			"flux must be finite and > 0", p->f_sun_ph_s_m2);
+	if (!(isfinite(p->f_moon_full_ph_s_m2) && p->f_moon_full_ph_s_m2 > 0.0))
+		return stray_error_set_value(err, STRAY_EINVAL, "moon",
+			"flux must be finite and > 0", p->f_moon_full_ph_s_m2);
+	if (!(isfinite(p->hysteresis_deg) && p->hysteresis_deg >= 0.0 &&
+	      p->hysteresis_deg <= 10.0))
+		return stray_error_set_value(err, STRAY_EINVAL,
+			"hysteresis_deg", "must lie in [0, 10]",
+			p->hysteresis_deg);
+	if (!(isfinite(p->earth_albedo) && p->earth_albedo >= 0.0 &&
+	      p->earth_albedo <= 1.0))
+		return stray_error_set_value(err, STRAY_EINVAL, "albedo",
+			"must lie in [0, 1]", p->earth_albedo);
+	if (!isfinite(p->rate))
+		return stray_error_set_value(err, STRAY_EINVAL, "rate",
+			"must be finite", p->rate);
+	return STRAY_OK;
+}
+
+/* The curve as float log10 alpha and its envelope (max to the right). */
+static int curve_fill(const struct stray_curve_view *c, struct fdrfw_table *t,
+		      struct stray_error *err)
+{
+	size_t i;
+
+	if (c->n < 2 || c->n > FDRFW_CURVE_MAX)
+		return stray_error_set_value(err, STRAY_EINVAL, "theta_deg",
+			"curve must have 2..128 rows for the flight table",
+			(double)c->n);
+	if (!(c->theta_deg[0] >= 0.0 && c->theta_deg[c->n - 1] <= 180.0))
+		return stray_error_set_value(err, STRAY_EINVAL, "theta_deg",
+			"must lie in [0, 180]", c->theta_deg[0]);
+	t->n_curve = (uint32_t)c->n;
+	for (i = 0; i < c->n; i++) {
+		double l = c->alpha[i] > 0.0 ? log10(c->alpha[i])
+					     : (double)FDRFW_LOG10_ALPHA_FLOOR;
+
+		if (l > 6.0)
+			return stray_error_set_value(err, STRAY_EINVAL, "alpha",
+				"must be <= 1e6", c->alpha[i]);
+		t->theta_deg[i] = (float)c->theta_deg[i];
+		t->log10_alpha[i] = (float)fmax(l,
+					(double)FDRFW_LOG10_ALPHA_FLOOR);
+		if (i > 0 && !(t->theta_deg[i] > t->theta_deg[i - 1]))
+			return stray_error_set_value(err, STRAY_EINVAL,
+				"theta_deg", "too close to the previous angle "
+				"for single precision", c->theta_deg[i]);
+	}
+	t->log10_alpha_tail[c->n - 1] = t->log10_alpha[c->n - 1];
+	for (i = c->n - 1; i > 0; i--)
+		t->log10_alpha_tail[i - 1] = fmaxf(t->log10_alpha[i - 1],
+						   t->log10_alpha_tail[i]);
+	return STRAY_OK;
+}
+
+/* The model constants, the threshold and the Sun's ground results. */
+static int model_fill(const struct stray_curve_view *c,
+		      const struct stray_sensor *s,
+		      const struct fdrfw_build_params *p, struct fdrfw_table *t,
+		      struct stray_error *err)
+{
+	struct stray_fdr_model m;
+	double i_sdt, alpha_req, theta_x;
+	double rate = p->rate > 0.0 ? p->rate : s->fdr_tolerated;
+	int rc;
+
+	stray_sensor_fdr_model(s, p->f_sun_ph_s_m2, p->f_drs_ph_s_m2, &m);
+	if ((rc = stray_fdr_threshold(&m, &i_sdt, err)) != STRAY_OK ||
+	    (rc = stray_fdr_alpha_required(&m, rate, &alpha_req, err)) ||
+	    (rc = stray_exclusion_angle(c, alpha_req, &theta_x, err)))
+		return rc;
+	t->t_exp_nominal_s = (float)m.t_exp_s;
+	t->a_px_m2 = (float)m.a_px_m2;
+	t->a_cs_m2 = (float)m.a_cs_m2;
+	t->n_pps = (float)m.n_pps;
+	t->n_tot = (float)m.n_tot;
+	t->pr_drs = (float)m.pr_drs;
+	t->f_drs_ph_s_m2 = (float)m.f_drs_ph_s_m2;
+	t->i_sdt_e = (float)i_sdt;
+	t->fdr_tolerated = (float)rate;
+	t->f_sun_ph_s_m2 = (float)p->f_sun_ph_s_m2;
+	t->f_moon_full_ph_s_m2 = (float)p->f_moon_full_ph_s_m2;
+	t->moon_full_mag = (float)s->moon_mag;
+	t->earth_albedo = (float)p->earth_albedo;
+	t->fov_half_deg = (float)s->fov_half_deg;
+	t->hysteresis_deg = (float)p->hysteresis_deg;
+	t->alpha_req_sun = (float)alpha_req;
+	t->exclusion_sun_deg = (float)theta_x;
+	return STRAY_OK;
+}
+
+int fdrfw_table_build(const struct stray_curve_view *curve,
+		      const struct stray_sensor *sensor,
+		      const struct fdrfw_build_params *p,
+		      struct fdrfw_table *t, struct stray_error *err)
+{
+	int rc;
+
+	memset(t, 0, sizeof(*t));
+	if ((rc = params_check(p, err)) != STRAY_OK ||
+	    (rc = stray_sensor_check(sensor, err)) != STRAY_OK ||
+	    (rc = stray_curve_check(curve, err)) != STRAY_OK ||
+	    (rc = curve_fill(curve, t, err)) != STRAY_OK ||
+	    (rc = model_fill(curve, sensor, p, t, err)) != STRAY_OK)
+		return rc;
+	t->magic = FDRFW_TABLE_MAGIC;
+	t->version = FDRFW_TABLE_VERSION;
+	fdrfw_table_seal(t);
+	if (fdrfw_table_check(t) != FDRFW_OK)
+		return stray_error_set(err, STRAY_EINVAL, "table",
+			"a value is outside the flight module's domain");
+	return STRAY_OK;
+}
+
+static void write_floats(FILE *out, const char *field, const float *v,
+			 uint32_t n)
+{
+	uint32_t i;
+
+	fprintf(out, "\t.%s = {", field);
+	for (i = 0; i < n; i++)
+		fprintf(out, "%s%af", i == 0 ? "\n\t\t" :
+			i % 4 ? ", " : ",\n\t\t", (double)v[i]);
+	fprintf(out, "\n\t},\n");
+}
+
+int fdrfw_table_write_c(FILE *out, const struct fdrfw_table *t,
+			const char *name)
+{
+	fprintf(out, "/* Generated by `stray firmware-table`: do not edit. */\n"
+		"#include \"fdrfw/table.h\"\n\n"
+		"const struct fdrfw_table %s = {\n"
+		"\t.magic = 0x%08lXu,\n\t.version = %luu,\n"
+		"\t.n_curve = %luu,\n", name, (unsigned long)t->magic,
+		(unsigned long)t->version, (unsigned long)t->n_curve);
+#define F(field) fprintf(out, "\t." #field " = %af, /* %.9g */\n", \
+			 (double)t->field, (double)t->field)
+	F(t_exp_nominal_s); F(a_px_m2); F(a_cs_m2); F(n_pps); F(n_tot);
+	F(pr_drs); F(f_drs_ph_s_m2); F(i_sdt_e); F(fdr_tolerated);
+	F(f_sun_ph_s_m2); F(f_moon_full_ph_s_m2); F(moon_full_mag);
+	F(earth_albedo); F(fov_half_deg); F(hysteresis_deg);
+	F(alpha_req_sun); F(exclusion_sun_deg);
+#undef F
+	write_floats(out, "theta_deg", t->theta_deg, t->n_curve);
+	write_floats(out, "log10_alpha", t->log10_alpha, t->n_curve);
+	write_floats(out, "log10_alpha_tail", t->log10_alpha_tail, t->n_curve);
+	fprintf(out, "\t.crc32 = 0x%08lXu,\n};\n", (unsigned long)t->crc32);
+	return ferror(out) ? STRAY_EIO : STRAY_OK;
+}

@@ -1,0 +1,101 @@
+/*
+ * table.h - the flight configuration table of firmware_fdr.
+ *
+ * Generated on the ground by `stray firmware-table` from an attenuation
+ * curve and a sensor (thesis §2.3, §5.1), and carried to the module two
+ * ways: as const C source (in flash) or as a binary blob (uploaded).  Both
+ * carry a CRC-32 that fdrfw_table_check verifies before the table is used.
+ *
+ * Every field is 32 bits (uint32_t or IEEE-754 float), so the table has no
+ * padding and its blob is the fields in order, each little-endian: the
+ * same bytes on the host and on the Cortex-M4.
+ */
+#ifndef FDRFW_TABLE_H
+#define FDRFW_TABLE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#define FDRFW_TABLE_MAGIC 0x52444646u	/* "FFDR" little-endian */
+#define FDRFW_TABLE_VERSION 1u
+#define FDRFW_CURVE_MAX 128		/* samples of the attenuation curve */
+
+/* alpha = 0 in a curve is stored as this log10 (a floor, not -inf). */
+#define FDRFW_LOG10_ALPHA_FLOOR (-40.0f)
+
+struct fdrfw_table {
+	uint32_t magic;
+	uint32_t version;
+	uint32_t n_curve;		/* samples used, 2..FDRFW_CURVE_MAX */
+	/* FDR model constants, thesis eq. 2.3-2.18 (stray_fdr_model). */
+	float t_exp_nominal_s;		/* exposure I_sdt was computed for */
+	float a_px_m2;			/* A_px, eq. 2.3 */
+	float a_cs_m2;			/* A_cs, eq. 2.12 */
+	float n_pps;			/* pixels per star window, eq. 2.7 */
+	float n_tot;			/* pixels on the detector, eq. 2.18 */
+	float pr_drs;			/* DRS detection prob., eq. 2.16 */
+	float f_drs_ph_s_m2;		/* F_drs, eq. 2.12 */
+	float i_sdt_e;			/* I_sdt at t_exp_nominal_s, eq. 2.16 */
+	float fdr_tolerated;		/* false stars per image allowed */
+	/* Sources (photon fluxes in the sensor passband, eq. 2.1). */
+	float f_sun_ph_s_m2;
+	float f_moon_full_ph_s_m2;
+	float moon_full_mag;		/* for the phase law */
+	float earth_albedo;		/* Lambertian, 0..1 */
+	/* Geometry. */
+	float fov_half_deg;
+	float hysteresis_deg;		/* flags clear this far past the edge */
+	/* Ground results kept for telemetry and checks (not used per frame). */
+	float alpha_req_sun;		/* fig. 2.7 at nominal exposure */
+	float exclusion_sun_deg;	/* fig. 5.1 */
+	/* The system attenuation curve alpha_sys(theta). */
+	float theta_deg[FDRFW_CURVE_MAX];
+	float log10_alpha[FDRFW_CURVE_MAX];
+	/* max over j >= i of log10_alpha[j]: the exclusion envelope. */
+	float log10_alpha_tail[FDRFW_CURVE_MAX];
+	uint32_t crc32;			/* CRC-32 of every byte before it */
+};
+
+#define FDRFW_TABLE_WORDS (sizeof(struct fdrfw_table) / 4u)
+#define FDRFW_BLOB_SIZE (FDRFW_TABLE_WORDS * 4u)
+
+enum fdrfw_status {
+	FDRFW_OK = 0,
+	FDRFW_EMAGIC,	/* not a table, or wrong version */
+	FDRFW_ESIZE,	/* blob of the wrong length */
+	FDRFW_ECRC,	/* CRC mismatch: corrupted */
+	FDRFW_ERANGE,	/* a field outside its domain */
+	FDRFW_EINPUT	/* a frame's inputs are invalid */
+};
+
+/* CRC-32 (IEEE 802.3, reflected, poly 0xEDB88320), continuing from crc. */
+uint32_t fdrfw_crc32(uint32_t crc, const uint8_t *buf, size_t len);
+
+/* The table's blob: every word little-endian, in field order. */
+void fdrfw_table_serialize(const struct fdrfw_table *t,
+			   uint8_t out[FDRFW_BLOB_SIZE]);
+
+/* Set t->crc32 from the other fields (ground side). */
+void fdrfw_table_seal(struct fdrfw_table *t);
+
+/* Decode a blob into *t (no check of its contents beyond the length). */
+int fdrfw_table_parse(const uint8_t *buf, size_t len, struct fdrfw_table *t);
+
+/*
+ * Magic, version, CRC, then every field in its domain; a table that fails
+ * is never used.  Returns an enum fdrfw_status.
+ */
+int fdrfw_table_check(const struct fdrfw_table *t);
+
+/* alpha_sys(theta) from the table: log-linear, clamped at both ends. */
+float fdrfw_alpha_at(const struct fdrfw_table *t, float theta_deg);
+
+/*
+ * The exclusion envelope at theta: max(alpha(theta), alpha of every sample
+ * beyond theta).  alpha_req <= envelope(theta) exactly when theta lies
+ * before stray_exclusion_angle(curve, alpha_req) (fig. 5.1's rule that
+ * all further off-axis attenuations lie beneath alpha_req).
+ */
+float fdrfw_envelope_at(const struct fdrfw_table *t, float theta_deg);
+
+#endif /* FDRFW_TABLE_H */

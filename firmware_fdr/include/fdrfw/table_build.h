@@ -1,0 +1,42 @@
+/*
+ * table_build.h - the ground side of the flight table (host only): build
+ * it from a curve, a sensor and the reference fluxes with libstray, and
+ * write it as C source.  `stray firmware-table` is the command for it.
+ */
+#ifndef FDRFW_TABLE_BUILD_H
+#define FDRFW_TABLE_BUILD_H
+
+#include <stdio.h>
+
+#include "fdrfw/table.h"
+#include "stray/curve.h"
+#include "stray/error.h"
+#include "stray/sensor.h"
+
+struct fdrfw_build_params {
+	double f_sun_ph_s_m2;		/* reference fluxes (photometry) */
+	double f_moon_full_ph_s_m2;
+	double f_drs_ph_s_m2;
+	double rate;			/* tolerated FDR; <= 0: the sensor's */
+	double hysteresis_deg;
+	double earth_albedo;
+};
+
+/* Defaults: hysteresis 0.5 deg, albedo 0.3, the sensor's rate. */
+#define FDRFW_BUILD_HYSTERESIS_DEG 0.5
+#define FDRFW_BUILD_ALBEDO 0.3
+
+/*
+ * Fill and seal a table: I_sdt (eq. 2.16), the Sun's alpha_req (fig. 2.7)
+ * and exclusion angle (fig. 5.1) by libstray; the curve as log10 alpha.
+ */
+int fdrfw_table_build(const struct stray_curve_view *curve,
+		      const struct stray_sensor *sensor,
+		      const struct fdrfw_build_params *p,
+		      struct fdrfw_table *t, struct stray_error *err);
+
+/* The table as C source: `const struct fdrfw_table NAME = {...};`. */
+int fdrfw_table_write_c(FILE *out, const struct fdrfw_table *t,
+			const char *name);
+
+#endif /* FDRFW_TABLE_BUILD_H */

@@ -1,0 +1,192 @@
+/*
+ * test_firmware_table.c - `stray firmware-table` as a user runs it: the
+ * blob and the C source it writes, its JSON summary, and one-line errors
+ * for bad input (docs/cli.md: exit 2 bad input, 1 other failures).
+ */
+#include <math.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <cJSON.h>
+
+#include "../tools/run_cli.h"
+#include "fdrfw/table_build.h"
+#include "fixture.h"
+#include "stray/curve_io.h"
+#include "stray/photometry_io.h"
+#include "stray/sensor.h"
+
+#define CURVE "tests/vectors/fdrfw_curve.csv"
+
+static char dir[] = "/tmp/fdrfw_cli_XXXXXX";
+
+static int setup(void **state)
+{
+	(void)state;
+	return mkdtemp(dir) ? 0 : -1;
+}
+
+static int teardown(void **state)
+{
+	char cmd[128];
+
+	(void)state;
+	snprintf(cmd, sizeof(cmd), "rm -rf %s", dir);
+	return system(cmd) == 0 ? 0 : -1;
+}
+
+static void test_help(void **state)
+{
+	static struct cli_run r;
+	char *argv[] = { "stray", "firmware-table", "--help", NULL };
+
+	(void)state;
+	assert_int_equal(run_stray(&r, argv), 0);
+	assert_non_null(strstr(r.out, "usage: stray firmware-table"));
+	assert_string_equal(r.err, "");
+}
+
+/* The blob is the table libstray builds in-process from the same file,
+ * byte for byte, and passes the module's own check. */
+static void test_blob_and_c_source(void **state)
+{
+	static struct cli_run r;
+	static uint8_t blob[FDRFW_BLOB_SIZE + 1], want[FDRFW_BLOB_SIZE];
+	static char csrc[1 << 16];
+	char bin[256], src[256];
+	char *argv[] = { "stray", "firmware-table", "--curve", CURVE,
+			 "--out-bin", bin, "--out-c", src, NULL };
+	struct fdrfw_build_params p = { 0, 0, 0, 0, FDRFW_BUILD_HYSTERESIS_DEG,
+					FDRFW_BUILD_ALBEDO };
+	struct fdrfw_table got, t;
+	struct stray_curve c;
+	struct stray_curve_view v;
+	char crc[32];
+	FILE *f;
+	size_t n;
+
+	(void)state;
+	snprintf(bin, sizeof(bin), "%s/t.bin", dir);
+	snprintf(src, sizeof(src), "%s/t.c", dir);
+	assert_int_equal(run_stray(&r, argv), 0);
+	f = fopen(bin, "rb");
+	assert_non_null(f);
+	n = fread(blob, 1, sizeof(blob), f);
+	fclose(f);
+	assert_int_equal(n, FDRFW_BLOB_SIZE);
+	assert_int_equal(fdrfw_table_parse(blob, n, &got), FDRFW_OK);
+	assert_int_equal(fdrfw_table_check(&got), FDRFW_OK);
+
+	assert_int_equal(stray_curve_load(CURVE, &c, NULL), 0);
+	v = stray_curve_view_of(&c);
+	p.f_sun_ph_s_m2 = fixture_fluxes()->sun;
+	p.f_moon_full_ph_s_m2 = fixture_fluxes()->moon;
+	p.f_drs_ph_s_m2 = fixture_fluxes()->drs;
+	assert_int_equal(fdrfw_table_build(&v, stray_sensor_st16_like(), &p,
+					   &t, NULL), 0);
+	stray_curve_free(&c);
+	fdrfw_table_serialize(&t, want);
+	assert_memory_equal(blob, want, FDRFW_BLOB_SIZE);
+
+	f = fopen(src, "r");
+	assert_non_null(f);
+	n = fread(csrc, 1, sizeof(csrc) - 1, f);
+	csrc[n] = '\0';
+	fclose(f);
+	assert_non_null(strstr(csrc, "const struct fdrfw_table "
+				     "fdrfw_flight_table = {"));
+	snprintf(crc, sizeof(crc), ".crc32 = 0x%08lXu", (unsigned long)t.crc32);
+	assert_non_null(strstr(csrc, crc));
+}
+
+static void test_json_summary(void **state)
+{
+	static struct cli_run r;
+	char *argv[] = { "stray", "firmware-table", "--curve", CURVE,
+			 "--json", NULL };
+	struct fdrfw_table t;
+	cJSON *o;
+
+	(void)state;
+	assert_int_equal(run_stray(&r, argv), 0);
+	o = cJSON_Parse(r.out);
+	assert_non_null(o);
+	fixture_table(&t);
+	assert_near(cJSON_GetObjectItem(o, "sun_deg")->valuedouble,
+		    (double)t.exclusion_sun_deg, 1e-3);
+	assert_near(cJSON_GetObjectItem(o, "n_curve")->valuedouble, 86, 0);
+	assert_near(cJSON_GetObjectItem(o, "blob_bytes")->valuedouble,
+		    FDRFW_BLOB_SIZE, 0);
+	assert_non_null(cJSON_GetObjectItem(o, "crc32"));
+	cJSON_Delete(o);
+}
+
+/* A bad input: the expected exit status, one stderr line with `what`. */
+static void expect_error(char *const argv[], int status, const char *what)
+{
+	static struct cli_run r;
+
+	assert_int_equal(run_stray(&r, argv), status);
+	assert_int_equal(r.err_lines, 1);
+	if (!strstr(r.err, what))
+		fail_msg("stderr '%s' does not name '%s'", r.err, what);
+}
+
+static void write_file(const char *path, const char *text)
+{
+	FILE *f = fopen(path, "w");
+
+	assert_non_null(f);
+	fputs(text, f);
+	fclose(f);
+}
+
+static void test_bad_input(void **state)
+{
+	char nan_curve[256], long_curve[256], out[256], text[8192];
+	char *no_curve[] = { "stray", "firmware-table", "--out-bin", "x", NULL };
+	char *missing[] = { "stray", "firmware-table", "--curve",
+			    "/nonexistent/c.csv", "--json", NULL };
+	char *nan_run[] = { "stray", "firmware-table", "--curve", nan_curve,
+			    "--json", NULL };
+	char *long_run[] = { "stray", "firmware-table", "--curve", long_curve,
+			     "--json", NULL };
+	char *hyst[] = { "stray", "firmware-table", "--curve", CURVE,
+			 "--hysteresis-deg", "20", "--json", NULL };
+	char *unwritable[] = { "stray", "firmware-table", "--curve", CURVE,
+			       "--out-bin", out, NULL };
+	int i, k = 0;
+
+	(void)state;
+	snprintf(nan_curve, sizeof(nan_curve), "%s/nan.csv", dir);
+	snprintf(long_curve, sizeof(long_curve), "%s/long.csv", dir);
+	snprintf(out, sizeof(out), "%s/no/such/dir/t.bin", dir);
+	write_file(nan_curve, "theta_deg,alpha\n0,1\n1,nan\n2,0.1\n");
+	k = snprintf(text, sizeof(text), "theta_deg,alpha\n");
+	for (i = 0; i < 200; i++)	/* more rows than the table holds */
+		k += snprintf(text + k, sizeof(text) - k, "%g,%g\n", i * 0.4,
+			      exp(-0.2 * i));
+	write_file(long_curve, text);
+
+	expect_error(no_curve, 2, "--curve is required");
+	expect_error(missing, 2, "/nonexistent/c.csv");
+	expect_error(nan_run, 2, "nan.csv");
+	expect_error(long_run, 2, "128");
+	expect_error(hyst, 2, "hysteresis_deg");
+	expect_error(unwritable, 1, "t.bin");
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_help),
+		cmocka_unit_test(test_blob_and_c_source),
+		cmocka_unit_test(test_json_summary),
+		cmocka_unit_test(test_bad_input),
+	};
+
+	return cmocka_run_group_tests(tests, setup, teardown);
+}

@@ -1,0 +1,65 @@
+/*
+ * fuzz_reduce_input.c - libFuzzer target for what `stray reduce` parses:
+ * the first byte picks the manifest.csv parser (libcsv) or a FITS frame
+ * header and pixels (cfitsio, from memory) with its ROWS list; either
+ * must fail cleanly or give values inside their documented ranges.
+ */
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sweep_fits.h"
+#include "sweep_manifest.h"
+
+static void manifest(const uint8_t *data, size_t size)
+{
+	struct sweep_manifest m;
+	struct stray_error err;
+	size_t i;
+
+	stray_error_clear(&err);
+	if (sweep_manifest_parse("fuzz.csv", (const char *)data, size, &m,
+				 &err) != STRAY_OK)
+		return;
+	for (i = 0; i < m.n; i++)
+		if (!(m.e[i].exptime_s > 0.0 && m.e[i].ndtrans > 0.0 &&
+		      m.e[i].ndtrans <= 1.0 && fabs(m.e[i].angle_deg) <= 180.0 &&
+		      strlen(m.e[i].sha256) == 64 && m.e[i].file[0] != '/'))
+			__builtin_trap();
+	sweep_manifest_free(&m);
+}
+
+static void frame(const uint8_t *data, size_t size)
+{
+	static struct sweep_fits f;
+	struct stray_error err;
+	uint16_t *pix;
+
+	stray_error_clear(&err);
+	if (sweep_fits_open_mem("fuzz.fits", data, size, &f, &err) == STRAY_OK) {
+		if (!(f.h.exptime_s > 0.0 && f.h.ndtrans > 0.0 &&
+		      f.h.ndtrans <= 1.0 && f.h.n_rows >= 1 &&
+		      f.h.n_rows <= SWEEP_ROWS_MAX))
+			__builtin_trap();
+		if (f.h.n_rows * f.h.n_cols <= (1u << 20)) {
+			pix = malloc(f.h.n_rows * f.h.n_cols * sizeof(*pix));
+			if (pix)
+				(void)sweep_fits_read(&f, pix, &err);
+			free(pix);
+		}
+		sweep_fits_close(&f);
+	}
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+	if (size == 0)
+		return 0;
+	if (data[0] & 1)
+		frame(data + 1, size - 1);
+	else
+		manifest(data + 1, size - 1);
+	return 0;
+}

@@ -1,0 +1,329 @@
+/*
+ * cmd_orbit.c - `stray orbit`: run the flight module (firmware_fdr) frame
+ * by frame along a day of a sun-synchronous orbit, the tracker pointing
+ * anti-nadir, and report how often each body excludes the sensor, the
+ * false stars it predicts and whether its flags chatter.
+ */
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "commands.h"
+#include "fdrfw/ephem.h"
+#include "fdrfw/fdrfw.h"
+#include "orbit.h"
+#include "plot.h"
+#include "stray/errfmt.h"
+#include "stray/file.h"
+
+static const char usage[] =
+	"usage: stray orbit --table F.bin [--epoch YYYY-MM-DD] [--hours H]\n"
+	"                   [--step-s S] [--altitude-km A] [--ltan-h L]\n"
+	"                   [--out F.csv] [--plot PREFIX] [--json]\n"
+	"\n"
+	"Evaluate the flight module frame by frame along a circular\n"
+	"sun-synchronous orbit (J2 nodal regression), tracker boresight at the\n"
+	"zenith (anti-nadir), with the module's own Sun and Moon ephemeris.\n"
+	"\n"
+	"  --table F.bin       flight table (stray firmware-table --out-bin)\n"
+	"  --epoch D           start, 00:00 TT of that date (2026-06-21)\n"
+	"  --hours H           duration (24)\n"
+	"  --step-s S          one frame every S seconds (10)\n"
+	"  --altitude-km A     circular altitude (550)\n"
+	"  --ltan-h L          local time of the ascending node (22.5)\n"
+	"  --out F.csv         the timeline, one row per frame\n"
+	"  --plot PREFIX       PREFIX.png (angles) and PREFIX_fdr.png (false stars)\n"
+	"  --json              machine-readable summary\n";
+
+struct orbit_args {
+	const char *table, *out, *plot;
+	int year, month, day;
+	double hours, step_s, altitude_km, ltan_h;
+};
+
+struct orbit_run {
+	size_t n;
+	double *t_h, *theta[FDRFW_BODIES], *stars;
+	uint32_t *flags;
+};
+
+static const uint32_t flag_bits[] = {
+	FDRFW_SUN_EXCLUDED, FDRFW_MOON_EXCLUDED, FDRFW_EARTH_EXCLUDED,
+	FDRFW_SUN_IN_FOV, FDRFW_MOON_IN_FOV, FDRFW_EARTH_IN_FOV,
+	FDRFW_SUN_ECLIPSED, FDRFW_INPUT_INVALID,
+};
+static const char *const flag_names[] = {
+	"sun_excluded", "moon_excluded", "earth_excluded", "sun_in_fov",
+	"moon_in_fov", "earth_in_fov", "sun_eclipsed", "input_invalid",
+};
+#define N_FLAGS (sizeof(flag_bits) / sizeof(flag_bits[0]))
+
+/* Days from 2000-01-01 to y-m-d (H. Hinnant's days_from_civil). */
+static long days_from_2000(int y, int m, int d)
+{
+	long era, yoe, doy, doe;
+
+	y -= m <= 2;
+	era = (y >= 0 ? y : y - 399) / 400;
+	yoe = y - era * 400;
+	doy = (153 * (m + (m > 2 ? -3 : 9)) + 2) / 5 + d - 1;
+	doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
+	return era * 146097 + doe - 719468 - 10957;
+}
+
+static int load_table(const char *path, struct fdrfw_table *t,
+		      struct stray_error *err)
+{
+	char *buf;
+	size_t len;
+	int rc = stray_file_read(path, &buf, &len, err);
+
+	if (rc != STRAY_OK)
+		return rc;
+	if (fdrfw_table_parse((const uint8_t *)buf, len, t) != FDRFW_OK ||
+	    fdrfw_table_check(t) != FDRFW_OK)
+		rc = stray_error_at(err, STRAY_EPARSE, path, 0, "table",
+			"not a valid flight table (size, magic, CRC or range)");
+	free(buf);
+	return rc;
+}
+
+static int run_alloc(struct orbit_run *r, size_t n)
+{
+	int b;
+
+	memset(r, 0, sizeof(*r));
+	r->n = n;
+	r->t_h = calloc(n, sizeof(double));
+	r->stars = calloc(n, sizeof(double));
+	r->flags = calloc(n, sizeof(uint32_t));
+	for (b = 0; b < FDRFW_BODIES; b++)
+		r->theta[b] = calloc(n, sizeof(double));
+	return r->t_h && r->stars && r->flags && r->theta[0] && r->theta[1] &&
+	       r->theta[2];
+}
+
+static void run_free(struct orbit_run *r)
+{
+	int b;
+
+	free(r->t_h);
+	free(r->stars);
+	free(r->flags);
+	for (b = 0; b < FDRFW_BODIES; b++)
+		free(r->theta[b]);
+}
+
+/* Fly the orbit: one fdrfw_frame call per step, as on board. */
+static void fly(const struct orbit_args *a, const struct fdrfw_table *t,
+		struct orbit_run *run)
+{
+	struct fdrfw_ctx ctx;
+	struct orbit orb;
+	float sun[3];
+	int32_t t0 = (int32_t)(days_from_2000(a->year, a->month, a->day) *
+			       86400L - 43200L);
+	size_t i;
+
+	fdrfw_init(&ctx, t);
+	fdrfw_sun_dir(t0, sun);
+	orbit_sso(&orb, a->altitude_km, a->ltan_h, atan2(sun[1], sun[0]));
+	for (i = 0; i < run->n; i++) {
+		struct fdrfw_input in = { .t_exp_s = t->t_exp_nominal_s };
+		struct fdrfw_output out;
+		double ts = i * a->step_s, r[3], v[3], q[4];
+		int k;
+
+		orbit_state(&orb, ts, r, v);
+		orbit_anti_nadir_q(r, v, q);
+		for (k = 0; k < 4; k++)
+			in.q[k] = (float)q[k];
+		for (k = 0; k < 3; k++)
+			in.pos_km[k] = (float)r[k];
+		in.t_tt_s = t0 + (int32_t)ts;
+		fdrfw_frame(&ctx, &in, &out);
+		run->t_h[i] = ts / 3600.0;
+		for (k = 0; k < FDRFW_BODIES; k++)
+			run->theta[k][i] = out.theta_deg[k];
+		run->stars[i] = out.false_stars_total;
+		run->flags[i] = out.flags;
+	}
+}
+
+static int write_csv(const char *path, const struct orbit_run *r,
+		     struct stray_error *err)
+{
+	struct stray_file_out out;
+	size_t i;
+	int rc = stray_file_open_atomic(&out, path, err);
+
+	if (rc != STRAY_OK)
+		return rc;
+	fprintf(out.f, "# stray orbit: firmware_fdr along a sun-synchronous orbit\n"
+		"t_h,sun_deg,moon_deg,earth_deg,false_stars,flags\n");
+	for (i = 0; i < r->n; i++)
+		fprintf(out.f, "%.6f,%.4f,%.4f,%.4f,%.6g,%u\n", r->t_h[i],
+			r->theta[0][i], r->theta[1][i], r->theta[2][i],
+			r->stars[i], (unsigned)r->flags[i]);
+	return stray_file_commit(&out, err);
+}
+
+static int plot_run(const char *prefix, const struct orbit_run *r,
+		    const struct fdrfw_table *t, struct stray_error *err)
+{
+	double hx[2] = { 0.0, r->t_h[r->n - 1] }, hy[2], ry[2];
+	char p1[4096], p2[4096];
+	int rc;
+
+	hy[0] = hy[1] = t->exclusion_sun_deg;
+	ry[0] = ry[1] = t->fdr_tolerated;
+	snprintf(p1, sizeof(p1), "%s.png", prefix);
+	snprintf(p2, sizeof(p2), "%s_fdr.png", prefix);
+	{
+		const struct plot_series s[] = {
+			{ r->t_h, r->theta[0], r->n, NULL, NULL, PLOT_RED, PLOT_LINE, "Sun" },
+			{ r->t_h, r->theta[1], r->n, NULL, NULL, PLOT_GREY, PLOT_LINE, "Moon" },
+			{ r->t_h, r->theta[2], r->n, NULL, NULL, PLOT_GREEN, PLOT_LINE, "Earth limb" },
+			{ hx, hy, 2, NULL, NULL, PLOT_RED, PLOT_DASHED, "Sun exclusion angle" },
+		};
+		struct plot_spec p = { p1, "Off-axis angles along the orbit (boresight at the zenith)",
+			"time [h]", "off-axis angle [deg]", 0, 0, 0.0, NAN, 0.0, 180.0, s, 4 };
+
+		if ((rc = plot_render(&p, err)) != STRAY_OK)
+			return rc;
+	}
+	{
+		const struct plot_series s[] = {
+			{ r->t_h, r->stars, r->n, NULL, NULL, PLOT_BLUE, PLOT_LINE,
+			  "predicted false stars per image" },
+			{ hx, ry, 2, NULL, NULL, PLOT_RED, PLOT_DASHED, "tolerated" },
+		};
+		struct plot_spec p = { p2, "False stars predicted on board",
+			"time [h]", "false stars per image", 0, 1, 0.0, NAN,
+			1e-6, 1e6, s, 2 };
+
+		return plot_render(&p, err);
+	}
+}
+
+static int summary(const struct orbit_args *a, const struct orbit_run *r)
+{
+	size_t i, k, count[N_FLAGS] = { 0 }, toggles = 0;
+	double max_stars = 0.0, frac;
+	cJSON *o = cJSON_CreateObject(), *fl = cJSON_CreateObject();
+
+	for (i = 0; i < r->n; i++) {
+		for (k = 0; k < N_FLAGS; k++)
+			count[k] += (r->flags[i] & flag_bits[k]) != 0;
+		if (i > 0 && ((r->flags[i] ^ r->flags[i - 1]) & FDRFW_SUN_EXCLUDED))
+			toggles++;
+		if (r->stars[i] > max_stars)
+			max_stars = r->stars[i];
+	}
+	cJSON_AddNumberToObject(o, "frames", (double)r->n);
+	cJSON_AddNumberToObject(o, "hours", a->hours);
+	cJSON_AddNumberToObject(o, "step_s", a->step_s);
+	cJSON_AddNumberToObject(o, "altitude_km", a->altitude_km);
+	cJSON_AddNumberToObject(o, "sun_exclusion_toggles", (double)toggles);
+	cJSON_AddNumberToObject(o, "max_false_stars", max_stars);
+	for (k = 0; k < N_FLAGS; k++)
+		cJSON_AddNumberToObject(fl, flag_names[k], (double)count[k] / r->n);
+	cJSON_AddItemToObject(o, "fraction_of_frames", fl);
+	if (cli.json)
+		return cli_json_emit(o);
+	printf("stray orbit: %zu frames over %.1f h at %.0f km\n", r->n,
+	       a->hours, a->altitude_km);
+	for (k = 0; k < N_FLAGS; k++) {
+		frac = (double)count[k] / r->n;
+		printf("  %-16s %6.2f %% of frames\n", flag_names[k], 100.0 * frac);
+	}
+	printf("  Sun exclusion switched %zu times; at most %.3g false stars per image\n",
+	       toggles, max_stars);
+	cJSON_Delete(o);
+	return CLI_OK;
+}
+
+static int parse_args(int argc, char **argv, struct orbit_args *a)
+{
+	static const struct option opts[] = {
+		{ "table", required_argument, NULL, 't' },
+		{ "epoch", required_argument, NULL, 'e' },
+		{ "hours", required_argument, NULL, 'H' },
+		{ "step-s", required_argument, NULL, 's' },
+		{ "altitude-km", required_argument, NULL, 'a' },
+		{ "ltan-h", required_argument, NULL, 'l' },
+		{ "out", required_argument, NULL, 'o' },
+		{ "plot", required_argument, NULL, 'p' },
+		{ "json", no_argument, &cli.json, 1 },
+		{ "help", no_argument, NULL, 'h' },
+		{ NULL, 0, NULL, 0 }
+	};
+	int opt, rc = CLI_OK;
+
+	while (rc == CLI_OK && (opt = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+		switch (opt) {
+		case 0: break;
+		case 'h': fputs(usage, stdout); return -1;
+		case 't': a->table = optarg; break;
+		case 'o': a->out = optarg; break;
+		case 'p': a->plot = optarg; break;
+		case 'e':
+			if (sscanf(optarg, "%d-%d-%d", &a->year, &a->month, &a->day) != 3 ||
+			    a->year < 1935 || a->year > 2065 || a->month < 1 ||
+			    a->month > 12 || a->day < 1 || a->day > 31)
+				return cli_usage_error("orbit", "option '--epoch': '%s' is not a date YYYY-MM-DD in 1935..2065", optarg);
+			break;
+		case 'H': rc = cli_parse_double("orbit", "hours", optarg, &a->hours); break;
+		case 's': rc = cli_parse_double("orbit", "step-s", optarg, &a->step_s); break;
+		case 'a': rc = cli_parse_double("orbit", "altitude-km", optarg, &a->altitude_km); break;
+		case 'l': rc = cli_parse_double("orbit", "ltan-h", optarg, &a->ltan_h); break;
+		default:
+			return cli_usage_error("orbit", "unknown option '%s'", argv[optind - 1]);
+		}
+	}
+	if (rc != CLI_OK)
+		return rc;
+	if (!a->table)
+		return cli_usage_error("orbit", "--table is required");
+	if (!(a->hours > 0.0 && a->hours <= 24.0 * 30) || !(a->step_s >= 0.1) ||
+	    a->hours * 3600.0 / a->step_s > 1e7)
+		return cli_usage_error("orbit", "--hours must be in (0, 720] and --step-s >= 0.1, at most 1e7 frames");
+	if (!(a->altitude_km >= 200.0 && a->altitude_km <= 2000.0))
+		return cli_usage_error("orbit", "option '--altitude-km': %g is outside 200..2000", a->altitude_km);
+	if (!(a->ltan_h >= 0.0 && a->ltan_h < 24.0))
+		return cli_usage_error("orbit", "option '--ltan-h': %g is outside 0..24", a->ltan_h);
+	return CLI_OK;
+}
+
+int cmd_orbit(int argc, char **argv)
+{
+	struct orbit_args a = { NULL, NULL, NULL, 2026, 6, 21, 24.0, 10.0,
+				550.0, 22.5 };
+	struct fdrfw_table table;
+	struct orbit_run run;
+	struct stray_error err;
+	int rc = parse_args(argc, argv, &a);
+
+	if (rc != CLI_OK)
+		return rc < 0 ? CLI_OK : rc;
+	stray_error_clear(&err);
+	if (load_table(a.table, &table, &err) != STRAY_OK)
+		return cli_fail("orbit", &err);
+	if (!run_alloc(&run, (size_t)(a.hours * 3600.0 / a.step_s) + 1)) {
+		run_free(&run);
+		stray_error_set(&err, STRAY_ENOMEM, "frames", 0);
+		return cli_fail("orbit", &err);
+	}
+	fly(&a, &table, &run);
+	if ((a.out && write_csv(a.out, &run, &err) != STRAY_OK) ||
+	    (a.plot && plot_run(a.plot, &run, &table, &err) != STRAY_OK)) {
+		run_free(&run);
+		return cli_fail("orbit", &err);
+	}
+	rc = summary(&a, &run);
+	run_free(&run);
+	return rc;
+}

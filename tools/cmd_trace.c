@@ -1,0 +1,476 @@
+/*
+ * cmd_trace.c - `stray trace`: the attenuation curve of a baffle scene by
+ * Monte Carlo ray tracing (thesis §3.4), the scatter-order breakdown
+ * (fig. 5.5) and the top stray-light paths (§5.3).
+ */
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "commands.h"
+#include "plot.h"
+#include "stray/curve_io.h"
+#include "stray/errfmt.h"
+#include "tracer/angles.h"
+#include "tracer/dump_io.h"
+#include "tracer/integrator.h"
+#include "tracer/obj_export.h"
+#include "tracer/path_report.h"
+#include "tracer/scene_load.h"
+
+static const char usage[] =
+	"usage: stray trace --scene SCENE [--angles LIST] [--out C.csv]\n"
+	"                   [--rays N] [--seed K] [--threads T] [--lens L.csv]\n"
+	"                   [--set key=value]... [--export-obj M.obj]\n"
+	"                   [--paths-out P.csv] [--top N] [--plot F.png]\n"
+	"                   [--plot-orders F.png] [--dump-paths D.csv]\n"
+	"                   [--map M.csv --map-angle DEG] [--json]\n"
+	"\n"
+	"Attenuation curve alpha(theta) = P_det(theta) / P_det(0) of a scene\n"
+	"under a collimated beam, by adjoint Monte Carlo with next-event\n"
+	"connections to the source (one set of paths serves every angle).\n"
+	"\n"
+	"  --scene SCENE     'ref4' (built in) or a scene file (JSON)\n"
+	"  --angles LIST     e.g. 0,5,10:30:0.5 (default 0:30:5,30:90:0.5)\n"
+	"  --out C.csv       curve with sigma and direct/order1/order2/order3plus\n"
+	"  --rays N          detector-side paths (default 1500000)\n"
+	"  --seed K          random seed (default 1); same seed, same output\n"
+	"  --threads T       worker threads (default: online CPUs)\n"
+	"  --batches B       independent batches for sigma (default 64)\n"
+	"  --lens L.csv      lens transmission vs incidence (curve CSV)\n"
+	"  --set key=value   override a baffle parameter (repeatable)\n"
+	"  --export-obj M    write the scene mesh, one group per surface\n"
+	"  --paths-out P.csv per-angle power by surface-group sequence\n"
+	"  --top N           print the N strongest paths per angle\n"
+	"  --plot F.png      the curve with its error bars (log alpha)\n"
+	"  --plot-orders F   alpha by scatter order (thesis fig. 5.5)\n"
+	"  --dump-paths D    vertices of sample paths (fig. 5.6)\n"
+	"  --dump-count N    how many paths to dump (default 100)\n"
+	"  --map M.csv       detector irradiance map at --map-angle\n"
+	"  --map-size N      map pixels per side (default 64)\n"
+	"  --json            print a run summary (paths_per_s, ...)\n";
+
+#define SETS_MAX 64
+
+struct trace_args {
+	const char *scene, *angles, *out, *lens, *export_obj, *paths_out;
+	const char *plot, *plot_orders, *dump, *map;
+	double map_angle;
+	int dump_count, map_size;
+	const char *sets[SETS_MAX];
+	int n_sets, top;
+	struct tracer_trace_opts o;
+};
+
+static int parse_count(const char *opt, const char *text, double lo,
+		       double hi, double *v)
+{
+	int rc = cli_parse_double("trace", opt, text, v);
+
+	if (rc)
+		return rc;
+	if (*v < lo || *v > hi || *v != floor(*v))
+		return cli_usage_error("trace", "option '--%s': '%s' must be an "
+				       "integer in [%.0f, %.0f]", opt, text, lo, hi);
+	return CLI_OK;
+}
+
+static const struct option trace_opts[] = {
+	{ "scene", required_argument, NULL, 's' },
+	{ "angles", required_argument, NULL, 'a' },
+	{ "out", required_argument, NULL, 'o' },
+	{ "rays", required_argument, NULL, 'n' },
+	{ "seed", required_argument, NULL, 'k' },
+	{ "threads", required_argument, NULL, 't' },
+	{ "batches", required_argument, NULL, 'b' },
+	{ "lens", required_argument, NULL, 'l' },
+	{ "set", required_argument, NULL, 'S' },
+	{ "export-obj", required_argument, NULL, 'x' },
+	{ "paths-out", required_argument, NULL, 'p' },
+	{ "top", required_argument, NULL, 'T' },
+	{ "plot", required_argument, NULL, 'P' },
+	{ "plot-orders", required_argument, NULL, 'O' },
+	{ "dump-paths", required_argument, NULL, 'D' },
+	{ "dump-count", required_argument, NULL, 'C' },
+	{ "map", required_argument, NULL, 'M' },
+	{ "map-angle", required_argument, NULL, 'A' },
+	{ "map-size", required_argument, NULL, 'Z' },
+	{ "json", no_argument, NULL, 'j' },
+	{ "help", no_argument, NULL, 'h' },
+	{ NULL, 0, NULL, 0 }
+};
+
+/* The numeric options; 1 when opt is not one of them. */
+static int parse_number(int opt, const char *text, struct trace_args *a,
+			int *rc)
+{
+	double v = 0.0;
+
+	switch (opt) {
+	case 'A':
+		*rc = cli_parse_double("trace", "map-angle", text,
+				       &a->map_angle);
+		return 0;
+	case 'C': *rc = parse_count("dump-count", text, 1, 1e6, &v);
+		a->dump_count = (int)v; return 0;
+	case 'Z': *rc = parse_count("map-size", text, 1, 4096, &v);
+		a->map_size = (int)v; return 0;
+	case 'n': *rc = parse_count("rays", text, 2, 1e12, &v);
+		a->o.n_paths = (uint64_t)v; return 0;
+	case 'k': *rc = parse_count("seed", text, 0, 9e15, &v);
+		a->o.seed = (uint64_t)v; return 0;
+	case 't': *rc = parse_count("threads", text, 1, 256, &v);
+		a->o.threads = (int)v; return 0;
+	case 'b': *rc = parse_count("batches", text, 2, 4096, &v);
+		a->o.n_batches = (int)v; return 0;
+	case 'T': *rc = parse_count("top", text, 1, 1000, &v);
+		a->top = (int)v; return 0;
+	default:
+		return 1;
+	}
+}
+
+/* The file options; 1 when opt is not one of them. */
+static int parse_file(int opt, char *text, struct trace_args *a)
+{
+	switch (opt) {
+	case 's': a->scene = text; return 0;
+	case 'a': a->angles = text; return 0;
+	case 'o': a->out = text; return 0;
+	case 'l': a->lens = text; return 0;
+	case 'x': a->export_obj = text; return 0;
+	case 'p': a->paths_out = text; return 0;
+	case 'P': a->plot = text; return 0;
+	case 'O': a->plot_orders = text; return 0;
+	case 'D': a->dump = text; return 0;
+	case 'M': a->map = text; return 0;
+	default: return 1;
+	}
+}
+
+static int parse_args(int argc, char **argv, struct trace_args *a)
+{
+	int opt, rc = CLI_OK;
+
+	opterr = 0;	/* one line of our own instead of getopt's */
+	while (!rc && (opt = getopt_long(argc, argv, "h", trace_opts,
+					 NULL)) != -1) {
+		if (!parse_file(opt, optarg, a) ||
+		    !parse_number(opt, optarg, a, &rc))
+			continue;
+		if (opt == 'j') {
+			cli.json = 1;
+		} else if (opt == 'S' && a->n_sets < SETS_MAX) {
+			a->sets[a->n_sets++] = optarg;
+		} else if (opt == 'S') {
+			return cli_usage_error("trace", "too many --set");
+		} else if (opt == 'h') {
+			fputs(usage, stdout);
+			return -1;
+		} else {
+			return cli_usage_error("trace", "unknown option '%s'",
+					       argv[optind - 1]);
+		}
+	}
+	if (!rc && optind < argc)
+		rc = cli_usage_error("trace", "unexpected argument '%s'",
+				     argv[optind]);
+	if (!rc && !a->scene)
+		rc = cli_usage_error("trace", "--scene is required");
+	if (!rc && !a->out && !a->export_obj && !cli.json && !a->plot &&
+	    !a->plot_orders && !a->paths_out && !a->top && !a->dump && !a->map)
+		rc = cli_usage_error("trace", "nothing to do: give --out, "
+				     "--export-obj or --json");
+	return rc;
+}
+
+static void progress(void *user, double fraction)
+{
+	int *last = user, pct = (int)(100.0 * fraction);
+
+	if (pct / 10 != *last / 10 || pct == 100) {
+		fprintf(stderr, "\rstray trace: %3d%%", pct);
+		if (pct == 100)
+			fputc('\n', stderr);
+		*last = pct;
+	}
+}
+
+/* Angles to trace: the requested ones, with 0 added as the reference. */
+static int make_angles(const char *list, double **theta, size_t *n,
+		       size_t *first_out, struct stray_error *err)
+{
+	double *a;
+	int rc = tracer_angles_parse(list ? list : TRACER_ANGLES_DEFAULT,
+				     theta, n, err);
+
+	if (rc)
+		return rc;
+	*first_out = 0;
+	if ((*theta)[0] == 0.0)
+		return STRAY_OK;
+	a = realloc(*theta, (*n + 1) * sizeof(double));
+	if (!a)
+		return stray_error_set(err, STRAY_ENOMEM, "--angles",
+				       "out of memory");
+	memmove(a + 1, a, *n * sizeof(double));
+	a[0] = 0.0;	/* alpha is normalised to P(0) (ref4-baffle.md) */
+	*theta = a;
+	(*n)++;
+	*first_out = 1;
+	return STRAY_OK;
+}
+
+/* The map's angle must be one of the traced ones. */
+static int map_index(const struct trace_args *a, const double *theta,
+		     size_t n, size_t *j, struct stray_error *err)
+{
+	for (*j = 0; *j < n; (*j)++)
+		if (fabs(theta[*j] - a->map_angle) < 1e-9)
+			return STRAY_OK;
+	return stray_error_set_value(err, STRAY_EINVAL, "--map-angle",
+				     "is not one of --angles", a->map_angle);
+}
+
+static const char *const order_names[TRACER_ORDERS] = {
+	"direct", "order1", "order2", "order3plus"
+};
+
+static int add_meta(struct stray_curve *c, const struct trace_args *a,
+		    struct stray_error *err)
+{
+	char buf[160];
+	int rc = stray_curve_add_meta(c, "kind", "baffle", err);
+
+	snprintf(buf, sizeof(buf), "%s%s", a->scene,
+		 a->n_sets ? " with --set overrides" : "");
+	if (!rc)
+		rc = stray_curve_add_meta(c, "scene", buf, err);
+	snprintf(buf, sizeof(buf), "stray trace, adjoint Monte Carlo with "
+		 "next-event connections; %llu paths, seed %llu",
+		 (unsigned long long)a->o.n_paths,
+		 (unsigned long long)a->o.seed);
+	if (!rc)
+		rc = stray_curve_add_meta(c, "source", buf, err);
+	snprintf(buf, sizeof(buf), "one standard error from %d batches",
+		 a->o.n_batches);
+	if (!rc)
+		rc = stray_curve_add_meta(c, "sigma", buf, err);
+	return rc;
+}
+
+static int write_curve(const struct trace_args *a,
+		       const struct tracer_result *r, size_t first,
+		       struct stray_error *err)
+{
+	struct stray_curve c;
+	double *col = NULL;
+	size_t n = r->n_theta - first, j;
+	int rc = stray_curve_alloc(&c, n, 1, err), k;
+
+	if (rc)
+		return rc;
+	col = malloc(n * sizeof(double));
+	if (!col) {
+		rc = stray_error_set(err, STRAY_ENOMEM, "--out", "out of memory");
+		goto out_free;
+	}
+	for (j = 0; j < n; j++) {
+		c.theta_deg[j] = a->o.theta_deg[first + j];
+		tracer_result_alpha(r, first + j, 0, -1, &c.alpha[j],
+				    &c.sigma[j]);
+	}
+	for (k = 0; k < TRACER_ORDERS && !rc; k++) {
+		for (j = 0; j < n; j++) {
+			double s;
+
+			tracer_result_alpha(r, first + j, 0, k, &col[j], &s);
+		}
+		rc = stray_curve_add_column(&c, order_names[k], col, err);
+	}
+	if (!rc)
+		rc = add_meta(&c, a, err);
+	if (!rc)
+		rc = stray_curve_save(a->out, &c, err);
+out_free:
+	free(col);
+	stray_curve_free(&c);
+	return rc;
+}
+
+static cJSON *summary_json(const struct trace_args *a,
+			   const struct tracer_result *r, size_t first)
+{
+	cJSON *o = cJSON_CreateObject();
+	double worst = 0.0, al, sg;
+	size_t j;
+
+	for (j = first; j < r->n_theta; j++) {
+		tracer_result_alpha(r, j, 0, -1, &al, &sg);
+		if (al > 0.0 && sg / al > worst)
+			worst = sg / al;
+	}
+	cJSON_AddStringToObject(o, "scene", a->scene);
+	cJSON_AddNumberToObject(o, "angles", (double)(r->n_theta - first));
+	cJSON_AddNumberToObject(o, "paths", (double)r->n_paths);
+	cJSON_AddNumberToObject(o, "threads", a->o.threads);
+	cJSON_AddItemToObject(o, "seconds", cli_json_number(r->seconds));
+	cJSON_AddItemToObject(o, "paths_per_s",
+			      cli_json_number(r->n_paths / r->seconds));
+	cJSON_AddItemToObject(o, "casts_per_s",
+			      cli_json_number(r->casts / r->seconds));
+	cJSON_AddNumberToObject(o, "casts", (double)r->casts);
+	cJSON_AddNumberToObject(o, "connections", (double)r->connections);
+	cJSON_AddItemToObject(o, "worst_rel_sigma", cli_json_number(worst));
+	if (a->out)
+		cJSON_AddStringToObject(o, "out", a->out);
+	return o;
+}
+
+/* Error bars of alpha +- sigma, or the orders, as PNG (log alpha). */
+static int plot_curve(const struct trace_args *a,
+		      const struct tracer_result *r, size_t first,
+		      struct stray_error *err)
+{
+	static const enum plot_color col[TRACER_ORDERS] = {
+		PLOT_BLACK, PLOT_BLUE, PLOT_RED, PLOT_GREEN
+	};
+	size_t n = r->n_theta - first, j;
+	double *buf = malloc(7 * n * sizeof(double)), s;
+	double *al = buf + n, *lo = buf + 2 * n, *hi = buf + 3 * n;
+	struct plot_series ser[TRACER_ORDERS];
+	struct plot_spec sp = { a->plot, "stray trace: attenuation curve",
+				"theta (deg)", "alpha", 0, 1, NAN, NAN, NAN,
+				NAN, ser, 1 };
+	int k, rc = STRAY_OK;
+
+	if (!buf)
+		return stray_error_set(err, STRAY_ENOMEM, "--plot",
+				       "out of memory");
+	memset(ser, 0, sizeof(ser));
+	for (j = 0; j < n; j++) {
+		buf[j] = r->theta_deg[first + j];
+		tracer_result_alpha(r, first + j, 0, -1, &al[j], &s);
+		lo[j] = al[j] - s;
+		hi[j] = al[j] + s;
+	}
+	ser[0] = (struct plot_series){ buf, al, n, lo, hi, PLOT_BLACK,
+				       PLOT_LINE, "alpha +- sigma" };
+	if (a->plot)
+		rc = plot_render(&sp, err);
+	for (k = 0; k < TRACER_ORDERS && !rc && a->plot_orders; k++) {
+		double *y = k == 0 ? lo : k == 1 ? hi : k == 2 ? buf + 4 * n :
+			    buf + 5 * n;
+
+		for (j = 0; j < n; j++)
+			tracer_result_alpha(r, first + j, 0, k, &y[j], &s);
+		ser[k] = (struct plot_series){ buf, y, n, NULL, NULL, col[k],
+			PLOT_LINE, order_names[k] };
+	}
+	if (!rc && a->plot_orders) {
+		sp.path = a->plot_orders;
+		sp.title = "stray trace: alpha by scatter order";
+		sp.n_series = TRACER_ORDERS;
+		rc = plot_render(&sp, err);
+	}
+	free(buf);
+	return rc;
+}
+
+static int load_scene(const struct trace_args *a, struct tracer_scene *s,
+		      struct stray_error *err)
+{
+	int rc = tracer_scene_load(a->scene, a->sets, a->n_sets, s, err);
+
+	if (!rc && a->export_obj)
+		rc = tracer_obj_export(&s->mesh, a->export_obj, err);
+	return rc;
+}
+
+static int run_trace(struct trace_args *a, struct tracer_scene *s,
+		     struct stray_error *err)
+{
+	struct tracer_result r;
+	struct tracer_lens lens = { 0, NULL, NULL };
+	double *theta = NULL;
+	size_t n, first;
+	int rc, last = -1;
+
+	rc = make_angles(a->angles, &theta, &n, &first, err);
+	if (!rc && a->lens)
+		rc = tracer_lens_load(a->lens, &lens, err);
+	if (!rc)
+		rc = tracer_scene_commit(s, err);
+	if (rc)
+		goto out_free;
+	a->o.theta_deg = theta;
+	a->o.n_theta = n;
+	a->o.lens = a->lens ? &lens : NULL;
+	a->o.record_paths = a->paths_out || a->top;
+	if (a->dump)
+		a->o.dump_paths = (uint64_t)a->dump_count <= a->o.n_paths ?
+				  (uint64_t)a->dump_count : a->o.n_paths;
+	if (a->map) {
+		rc = map_index(a, theta, n, &a->o.map_theta_index, err);
+		a->o.map_n = a->map_size;
+		if (rc)
+			goto out_free;
+	}
+	if (isatty(STDERR_FILENO)) {
+		a->o.progress = progress;
+		a->o.progress_user = &last;
+	}
+	rc = tracer_trace(s, &a->o, &r, err);
+	if (rc)
+		goto out_free;
+	if (a->out)
+		rc = write_curve(a, &r, first, err);
+	if (!rc && (a->plot || a->plot_orders))
+		rc = plot_curve(a, &r, first, err);
+	if (!rc && a->paths_out)
+		rc = tracer_paths_write_csv(&r, s, a->paths_out, err);
+	if (!rc && a->dump)
+		rc = tracer_dump_write_csv(&r, s, a->dump, err);
+	if (!rc && a->map)
+		rc = tracer_map_write_csv(&r, a->map, err);
+	if (!rc && a->top && !cli.json)
+		tracer_paths_print_top(&r, s, first, a->top, stdout);
+	if (!rc && cli.json)
+		rc = cli_json_emit(summary_json(a, &r, first));
+	tracer_result_free(&r);
+out_free:
+	tracer_lens_free(&lens);
+	free(theta);
+	return rc;
+}
+
+int cmd_trace(int argc, char **argv)
+{
+	struct trace_args a;
+	struct tracer_scene s;
+	struct stray_error err;
+	long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+	int rc;
+
+	memset(&a, 0, sizeof(a));
+	tracer_trace_defaults(&a.o);
+	a.o.n_paths = 1500000;	/* about 1 % at every default angle */
+	a.o.threads = ncpu > 0 && ncpu <= 256 ? (int)ncpu : 1;
+	a.dump_count = 100;
+	a.map_size = 64;
+	rc = parse_args(argc, argv, &a);
+	if (rc)
+		return rc < 0 ? CLI_OK : rc;
+	stray_error_clear(&err);
+	tracer_scene_init(&s);
+	rc = load_scene(&a, &s, &err);
+	if (!rc && (a.out || cli.json || a.paths_out || a.top || a.plot ||
+		    a.plot_orders || a.dump || a.map))
+		rc = run_trace(&a, &s, &err);
+	tracer_scene_free(&s);
+	return rc ? cli_fail("trace", &err) : CLI_OK;
+}

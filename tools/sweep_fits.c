@@ -1,0 +1,309 @@
+/*
+ * sweep_fits.c - lab frames through cfitsio: header keywords FRAMETYP,
+ * ANGLE, EXPTIME, NDTRANS, SEQNUM, ROWS, COL0, ROW0, SATLEVEL (and the
+ * optional MONITOR), then the 16-bit image.
+ */
+#include <errno.h>
+#include <fitsio.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "stray/errfmt.h"
+#include "sweep_fits.h"
+#include "sweep_manifest.h"
+
+/* A cfitsio failure: keyword (or part) and cfitsio's own words. */
+static int fits_fail(const char *path, const char *field, const char *why,
+		     int status, struct stray_error *err)
+{
+	char text[FLEN_STATUS] = "";
+
+	if (status && status != KEY_NO_EXIST)	/* else says it twice */
+		fits_get_errstatus(status, text);
+	fits_clear_errmsg();
+	stray_error_at(err, status == KEY_NO_EXIST ? STRAY_ENOTFOUND
+						    : STRAY_EPARSE,
+		       path, 0, field, why);
+	stray_error_text(err, text);
+	return err ? err->code : STRAY_EPARSE;
+}
+
+/*
+ * The raw value text of a keyword (cfitsio's ffgkey), converted here with
+ * strtod: cfitsio 4.2's own numeric conversion (ffc2j) aborts on some
+ * malformed values (found by fuzz_reduce_input).  status KEY_NO_EXIST
+ * when the keyword is absent.
+ */
+static int key_number(struct sweep_fits *f, const char *key, double *v,
+		      int *status)
+{
+	char text[FLEN_VALUE], *end;
+
+	if (fits_read_keyword(f->fptr, key, text, NULL, status))
+		return *status;
+	errno = 0;
+	*v = strtod(text, &end);
+	while (*end == ' ')
+		end++;
+	if (end == text || *end != '\0' || errno)
+		*status = BAD_C2D;
+	return *status;
+}
+
+static int key_double(struct sweep_fits *f, const char *key, double *v,
+		      struct stray_error *err)
+{
+	int status = 0;
+
+	if (key_number(f, key, v, &status))
+		return fits_fail(f->path, key, status == KEY_NO_EXIST ?
+			"required keyword missing" : "is not a number",
+			status, err);
+	if (!isfinite(*v))
+		return stray_error_at(err, STRAY_EPARSE, f->path, 0, key,
+				      "is not finite");
+	return STRAY_OK;
+}
+
+static int key_long(struct sweep_fits *f, const char *key, long *v,
+		    int required, struct stray_error *err)
+{
+	double x;
+	int status = 0;
+
+	if (key_number(f, key, &x, &status)) {
+		if (status == KEY_NO_EXIST && !required) {
+			fits_clear_errmsg();
+			return STRAY_OK;
+		}
+		return fits_fail(f->path, key, status == KEY_NO_EXIST ?
+			"required keyword missing" : "is not an integer",
+			status, err);
+	}
+	if (!(x == floor(x) && fabs(x) <= 1e9))
+		return stray_error_at(err, STRAY_EPARSE, f->path, 0, key,
+				      "is not an integer within +/-1e9");
+	*v = (long)x;
+	return STRAY_OK;
+}
+
+int sweep_rows_parse(const char *path, const char *text, long *rows,
+		     size_t n, struct stray_error *err)
+{
+	const char *s = text;
+	size_t k;
+
+	for (k = 0; k < n; k++) {
+		char *end;
+		long v;
+
+		errno = 0;
+		v = strtol(s, &end, 10);
+		if (end == s || errno || v < 0)
+			break;
+		rows[k] = v;
+		s = end;
+		if (k + 1 < n) {
+			if (*s != ',')
+				break;
+			s++;
+		}
+	}
+	if (k != n || *s != '\0') {
+		stray_error_at(err, STRAY_EPARSE, path, 0, "ROWS",
+			"must list one detector row per stored row (NAXIS2)");
+		stray_error_text(err, text);
+		return STRAY_EPARSE;
+	}
+	return STRAY_OK;
+}
+
+static int read_rows(struct sweep_fits *f, struct stray_error *err)
+{
+	char *text = NULL;
+	size_t k;
+	int status = 0, rc;
+
+	f->h.has_rows = 0;
+	if (fits_read_key_longstr(f->fptr, "ROWS", &text, NULL, &status)) {
+		if (status != KEY_NO_EXIST)
+			return fits_fail(f->path, "ROWS", "cannot be read",
+					 status, err);
+		fits_clear_errmsg();
+		for (k = 0; k < f->h.n_rows; k++)	/* full frame */
+			f->h.det_row[k] = f->h.row0 + (long)k;
+		return STRAY_OK;
+	}
+	f->h.has_rows = 1;
+	rc = sweep_rows_parse(f->path, text, f->h.det_row, f->h.n_rows, err);
+	fits_free_memory(text, &status);
+	return rc;
+}
+
+static int read_type(struct sweep_fits *f, struct stray_error *err)
+{
+	char text[FLEN_VALUE];
+	int status = 0;
+
+	if (fits_read_key(f->fptr, TSTRING, "FRAMETYP", text, NULL, &status))
+		return fits_fail(f->path, "FRAMETYP", status == KEY_NO_EXIST ?
+			"required keyword missing" : "cannot be read",
+			status, err);
+	f->h.type = sweep_frametyp_parse(text);
+	if (f->h.type < 0) {
+		stray_error_at(err, STRAY_EPARSE, f->path, 0, "FRAMETYP",
+			       "must be DARK, AMBIENT or FULL");
+		stray_error_text(err, text);
+		return STRAY_EPARSE;
+	}
+	return STRAY_OK;
+}
+
+static int read_geometry(struct sweep_fits *f, struct stray_error *err)
+{
+	long naxes[2];
+	int status = 0, bitpix = 0, naxis = 0;
+
+	if (fits_get_img_equivtype(f->fptr, &bitpix, &status) ||
+	    fits_get_img_dim(f->fptr, &naxis, &status))
+		return fits_fail(f->path, "BITPIX", "cannot be read", status,
+				 err);
+	if (bitpix != USHORT_IMG && bitpix != SHORT_IMG)
+		return stray_error_at(err, STRAY_EPARSE, f->path, 0, "BITPIX",
+			"must be 16 (with BZERO 32768 for unsigned counts)");
+	if (naxis != 2)
+		return stray_error_at(err, STRAY_EPARSE, f->path, 0, "NAXIS",
+				      "must be 2 (rows x columns)");
+	if (fits_get_img_size(f->fptr, 2, naxes, &status))
+		return fits_fail(f->path, "NAXIS1", "cannot be read", status,
+				 err);
+	if (naxes[0] < 1 || naxes[1] < 1 || naxes[1] > SWEEP_ROWS_MAX ||
+	    naxes[0] > 65536)
+		return stray_error_at(err, STRAY_EPARSE, f->path, 0, "NAXIS2",
+			"image size out of range (1..8192 rows, 1..65536 columns)");
+	f->h.n_cols = (size_t)naxes[0];
+	f->h.n_rows = (size_t)naxes[1];
+	return STRAY_OK;
+}
+
+static int read_header(struct sweep_fits *f, struct stray_error *err)
+{
+	struct sweep_header *h = &f->h;
+	int rc, status = 0;
+
+	h->col0 = h->row0 = 0;
+	if ((rc = read_geometry(f, err)) || (rc = read_type(f, err)) ||
+	    (rc = key_double(f, "ANGLE", &h->angle_deg, err)) ||
+	    (rc = key_double(f, "EXPTIME", &h->exptime_s, err)) ||
+	    (rc = key_double(f, "NDTRANS", &h->ndtrans, err)) ||
+	    (rc = key_long(f, "SEQNUM", &h->seqnum, 1, err)) ||
+	    (rc = key_long(f, "SATLEVEL", &h->satlevel, 1, err)) ||
+	    (rc = key_long(f, "COL0", &h->col0, 0, err)) ||
+	    (rc = key_long(f, "ROW0", &h->row0, 0, err)) ||
+	    (rc = read_rows(f, err)))
+		return rc;
+	h->has_monitor = 0;
+	h->monitor = 1.0;
+	if (key_number(f, "MONITOR", &h->monitor, &status) == 0)
+		h->has_monitor = 1;
+	else if (status != KEY_NO_EXIST)
+		return fits_fail(f->path, "MONITOR", "is not a number", status,
+				 err);
+	fits_clear_errmsg();
+	if (!(h->exptime_s > 0.0))
+		return stray_error_at(err, STRAY_EPARSE, f->path, 0, "EXPTIME",
+				      "must be > 0");
+	if (!(h->ndtrans > 0.0 && h->ndtrans <= 1.0))
+		return stray_error_at(err, STRAY_EPARSE, f->path, 0, "NDTRANS",
+				      "must be in (0, 1]");
+	if (!(isfinite(h->monitor) && h->monitor > 0.0))
+		return stray_error_at(err, STRAY_EPARSE, f->path, 0, "MONITOR",
+				      "must be finite and > 0");
+	if (h->satlevel < 1 || h->satlevel > 65536)
+		return stray_error_at(err, STRAY_EPARSE, f->path, 0, "SATLEVEL",
+				      "must be in 1..65536");
+	return STRAY_OK;
+}
+
+int sweep_fits_open(const char *path, struct sweep_fits *f,
+		    struct stray_error *err)
+{
+	int status = 0, rc;
+
+	f->path = path;
+	f->fptr = NULL;
+	f->mem = NULL;
+	if (fits_open_image((fitsfile **)&f->fptr, path, READONLY, &status))
+		return fits_fail(path, "file", "not a readable FITS image",
+				 status, err);
+	rc = read_header(f, err);
+	if (rc != STRAY_OK)
+		sweep_fits_close(f);
+	return rc;
+}
+
+int sweep_fits_open_mem(const char *name, const void *data, size_t len,
+			struct sweep_fits *f, struct stray_error *err)
+{
+	size_t padded = (len + 2879) / 2880 * 2880;
+	int status = 0, rc;
+
+	f->path = name;
+	f->fptr = NULL;
+	/* cfitsio's memory driver reads whole 2880-byte blocks: pad a copy
+	 * with zeros so a short buffer is never read past its end. */
+	f->mem = calloc(1, padded ? padded : 2880);
+	f->mem_size = padded;
+	if (!f->mem)
+		return stray_error_at(err, STRAY_ENOMEM, name, 0, "file",
+				      "no memory for the frame");
+	memcpy(f->mem, data, len);
+	if (fits_open_memfile((fitsfile **)&f->fptr, name, READONLY, &f->mem,
+			      &f->mem_size, 0, NULL, &status)) {
+		sweep_fits_close(f);
+		return fits_fail(name, "file", "not a readable FITS image",
+				 status, err);
+	}
+	rc = read_header(f, err);
+	if (rc != STRAY_OK)
+		sweep_fits_close(f);
+	return rc;
+}
+
+int sweep_fits_read(struct sweep_fits *f, uint16_t *pix,
+		    struct stray_error *err)
+{
+	long n = (long)(f->h.n_rows * f->h.n_cols);
+	int status = 0, anynul = 0;
+	unsigned short nul = 0;
+	LONGLONG head, data, end;
+
+	/* cfitsio's memory driver does not bound its reads: check first. */
+	if (f->mem && (fits_get_hduaddrll(f->fptr, &head, &data, &end, &status) ||
+		       (LONGLONG)f->mem_size < data + 2LL * n))
+		return fits_fail(f->path, "data",
+			"truncated: fewer pixels than NAXIS1 x NAXIS2", status,
+			err);
+
+	if (fits_read_img(f->fptr, TUSHORT, 1, n, &nul, pix, &anynul,
+			  &status))
+		return fits_fail(f->path, "data",
+			status == END_OF_FILE || status == READ_ERROR
+				? "truncated: fewer pixels than NAXIS1 x NAXIS2"
+				: "pixels cannot be read",
+			status, err);
+	return STRAY_OK;
+}
+
+void sweep_fits_close(struct sweep_fits *f)
+{
+	int status = 0;
+
+	if (f->fptr)
+		fits_close_file(f->fptr, &status);
+	fits_clear_errmsg();
+	f->fptr = NULL;
+	free(f->mem);
+	f->mem = NULL;
+}

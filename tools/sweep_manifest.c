@@ -1,0 +1,350 @@
+/*
+ * sweep_manifest.c - manifest.csv of a sweep folder through libcsv, and
+ * the frames' SHA-256 through OpenSSL's EVP digest interface.
+ */
+#include <csv.h>
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <openssl/evp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "stray/errfmt.h"
+#include "stray/file.h"
+#include "sweep_manifest.h"
+
+#define FIELDS_MAX 32
+#define FIELD_LEN_MAX 512
+
+static const char *const columns[] = {
+	"file", "frametyp", "angle_deg", "exptime_s", "ndtrans", "seqnum",
+	"sha256"
+};
+enum { COL_FILE, COL_TYPE, COL_ANGLE, COL_EXP, COL_ND, COL_SEQ, COL_SHA,
+       N_COLS };
+
+struct fields {
+	size_t n;
+	char f[FIELDS_MAX][FIELD_LEN_MAX];
+	int overflow;
+};
+
+static void on_field(void *data, size_t len, void *ctx)
+{
+	struct fields *r = ctx;
+
+	if (r->n >= FIELDS_MAX || len >= FIELD_LEN_MAX) {
+		r->overflow = 1;
+		return;
+	}
+	memcpy(r->f[r->n], data ? data : "", len);
+	r->f[r->n][len] = '\0';
+	r->n++;
+}
+
+static void on_row(int c, void *ctx)
+{
+	(void)c;
+	(void)ctx;
+}
+
+static int split(const char *name, long line, const char *s, size_t len,
+		 struct fields *r, struct stray_error *err)
+{
+	struct csv_parser p;
+	int bad;
+
+	r->n = 0;
+	r->overflow = 0;
+	if (csv_init(&p, CSV_STRICT | CSV_STRICT_FINI) != 0)
+		return stray_error_at(err, STRAY_ENOMEM, name, line, 0, 0);
+	bad = csv_parse(&p, s, len, on_field, on_row, r) != len ||
+	      csv_fini(&p, on_field, on_row, r) != 0;
+	if (bad)
+		stray_error_at(err, STRAY_EPARSE, name, line, "csv",
+			       csv_strerror(csv_error(&p)));
+	csv_free(&p);
+	if (bad)
+		return STRAY_EPARSE;
+	if (r->overflow)
+		return stray_error_at(err, STRAY_EPARSE, name, line, "csv",
+				      "too many or too long fields");
+	return STRAY_OK;
+}
+
+int sweep_frametyp_parse(const char *text)
+{
+	if (strcmp(text, "DARK") == 0)
+		return SWEEP_DARK;
+	if (strcmp(text, "AMBIENT") == 0)
+		return SWEEP_AMBIENT;
+	if (strcmp(text, "FULL") == 0)
+		return SWEEP_FULL;
+	return -1;
+}
+
+const char *sweep_frametyp_name(int type)
+{
+	static const char *const names[] = { "DARK", "AMBIENT", "FULL" };
+
+	return type >= 0 && type <= SWEEP_FULL ? names[type] : "?";
+}
+
+static int bad_cell(const char *name, long line, const char *col,
+		    const char *reason, const char *text,
+		    struct stray_error *err)
+{
+	stray_error_at(err, STRAY_EPARSE, name, line, col, reason);
+	stray_error_text(err, text);
+	return STRAY_EPARSE;
+}
+
+static int number(const char *name, long line, const char *col,
+		  const char *s, double *v, struct stray_error *err)
+{
+	char *end;
+
+	errno = 0;
+	*v = strtod(s, &end);
+	if (*s == '\0' || *end != '\0' || !isfinite(*v))
+		return bad_cell(name, line, col, "is not a finite number", s,
+				err);
+	return STRAY_OK;
+}
+
+static int check_sha(const char *name, long line, const char *s,
+		     struct stray_error *err)
+{
+	size_t i;
+
+	for (i = 0; i < 64; i++)
+		if (!isxdigit((unsigned char)s[i]))
+			break;
+	if (i != 64 || s[64] != '\0')
+		return bad_cell(name, line, "sha256",
+				"is not 64 hexadecimal digits", s, err);
+	return STRAY_OK;
+}
+
+/* Relative path inside the folder: no absolute path, no "..". */
+static int check_file(const char *name, long line, const char *s,
+		      struct stray_error *err)
+{
+	if (*s == '\0' || *s == '/' || strstr(s, "..") ||
+	    strlen(s) >= SWEEP_FILE_MAX)
+		return bad_cell(name, line, "file",
+				"must be a relative path inside the sweep folder",
+				s, err);
+	return STRAY_OK;
+}
+
+static int take_entry(const char *name, long line, const struct fields *r,
+		      const int *idx, struct sweep_entry *e,
+		      struct stray_error *err)
+{
+	double seq;
+	size_t i;
+	int rc;
+
+	if ((rc = check_file(name, line, r->f[idx[COL_FILE]], err)) ||
+	    (rc = check_sha(name, line, r->f[idx[COL_SHA]], err)))
+		return rc;
+	strcpy(e->file, r->f[idx[COL_FILE]]);
+	for (i = 0; i < 65; i++)
+		e->sha256[i] = (char)tolower((unsigned char)r->f[idx[COL_SHA]][i]);
+	e->type = sweep_frametyp_parse(r->f[idx[COL_TYPE]]);
+	if (e->type < 0)
+		return bad_cell(name, line, "frametyp",
+				"must be DARK, AMBIENT or FULL",
+				r->f[idx[COL_TYPE]], err);
+	if ((rc = number(name, line, "angle_deg", r->f[idx[COL_ANGLE]],
+			 &e->angle_deg, err)) ||
+	    (rc = number(name, line, "exptime_s", r->f[idx[COL_EXP]],
+			 &e->exptime_s, err)) ||
+	    (rc = number(name, line, "ndtrans", r->f[idx[COL_ND]],
+			 &e->ndtrans, err)) ||
+	    (rc = number(name, line, "seqnum", r->f[idx[COL_SEQ]], &seq,
+			 err)))
+		return rc;
+	if (fabs(e->angle_deg) > 180.0)
+		return bad_cell(name, line, "angle_deg",
+				"must be within -180..180", r->f[idx[COL_ANGLE]],
+				err);
+	if (!(e->exptime_s > 0.0))
+		return bad_cell(name, line, "exptime_s", "must be > 0",
+				r->f[idx[COL_EXP]], err);
+	if (!(e->ndtrans > 0.0 && e->ndtrans <= 1.0))
+		return bad_cell(name, line, "ndtrans", "must be in (0, 1]",
+				r->f[idx[COL_ND]], err);
+	if (seq < 0 || seq > 1e9 || seq != floor(seq))
+		return bad_cell(name, line, "seqnum",
+				"must be a whole number >= 0", r->f[idx[COL_SEQ]],
+				err);
+	e->seqnum = (long)seq;
+	e->line = line;
+	return STRAY_OK;
+}
+
+static int take_header(const char *name, long line, const struct fields *r,
+		       int *idx, struct stray_error *err)
+{
+	size_t c, k;
+
+	for (c = 0; c < N_COLS; c++) {
+		idx[c] = -1;
+		for (k = 0; k < r->n; k++)
+			if (strcmp(r->f[k], columns[c]) == 0)
+				idx[c] = (int)k;
+		if (idx[c] < 0)
+			return stray_error_at(err, STRAY_ENOTFOUND, name, line,
+					      columns[c],
+					      "column missing from the header");
+	}
+	return STRAY_OK;
+}
+
+static int push(struct sweep_manifest *m, size_t *cap, const char *name,
+		long line, struct stray_error *err)
+{
+	if (m->n == *cap) {
+		size_t nc = *cap ? 2 * *cap : 64;
+		struct sweep_entry *e = realloc(m->e, nc * sizeof(*e));
+
+		if (!e)
+			return stray_error_at(err, STRAY_ENOMEM, name, line, 0, 0);
+		m->e = e;
+		*cap = nc;
+	}
+	return STRAY_OK;
+}
+
+/* One line: blank, comment, header or entry. */
+static int take_line(const char *name, long line, const char *s, size_t len,
+		     struct sweep_manifest *m, int *idx, int *have_header,
+		     size_t *cap, struct fields *r, struct stray_error *err)
+{
+	size_t k = 0;
+	int rc;
+
+	if (len > 0 && s[len - 1] == '\r')
+		len--;
+	while (k < len && (s[k] == ' ' || s[k] == '\t'))
+		k++;
+	if (k == len || s[k] == '#')
+		return STRAY_OK;
+	if ((rc = split(name, line, s, len, r, err)) != STRAY_OK)
+		return rc;
+	if (!*have_header) {
+		*have_header = 1;
+		return take_header(name, line, r, idx, err);
+	}
+	if (r->n < N_COLS)
+		return stray_error_at(err, STRAY_EPARSE, name, line, "row",
+				      "fewer cells than the header");
+	if ((rc = push(m, cap, name, line, err)) != STRAY_OK)
+		return rc;
+	rc = take_entry(name, line, r, idx, &m->e[m->n], err);
+	if (rc == STRAY_OK)
+		m->n++;
+	return rc;
+}
+
+int sweep_manifest_parse(const char *name, const char *text, size_t len,
+			 struct sweep_manifest *m, struct stray_error *err)
+{
+	struct fields *r = malloc(sizeof(*r));
+	int idx[N_COLS], have_header = 0, rc = STRAY_OK;
+	size_t pos = 0, cap = 0;
+	long line = 0;
+
+	m->n = 0;
+	m->e = NULL;
+	if (!r)
+		return stray_error_at(err, STRAY_ENOMEM, name, 0, 0, 0);
+	while (pos < len && rc == STRAY_OK) {
+		const char *nl = memchr(text + pos, '\n', len - pos);
+		size_t end = nl ? (size_t)(nl - text) : len;
+
+		rc = take_line(name, ++line, text + pos, end - pos, m, idx,
+			       &have_header, &cap, r, err);
+		pos = end + 1;
+	}
+	free(r);
+	if (rc == STRAY_OK && m->n == 0)
+		rc = stray_error_at(err, STRAY_EPARSE, name, line ? line : 1,
+				    "file", "manifest lists no frames");
+	if (rc != STRAY_OK)
+		sweep_manifest_free(m);
+	return rc;
+}
+
+int sweep_manifest_load(const char *dir, struct sweep_manifest *m,
+			struct stray_error *err)
+{
+	char path[4096];
+	char *text = NULL;
+	size_t len = 0;
+	int rc;
+
+	m->n = 0;
+	m->e = NULL;
+	snprintf(path, sizeof(path), "%s/manifest.csv", dir);
+	if ((rc = stray_file_read(path, &text, &len, err)) != STRAY_OK)
+		return rc;
+	rc = sweep_manifest_parse(path, text, len, m, err);
+	free(text);
+	return rc;
+}
+
+void sweep_manifest_free(struct sweep_manifest *m)
+{
+	free(m->e);
+	m->e = NULL;
+	m->n = 0;
+}
+
+/* SHA-256 of a file, streamed in 64 KiB blocks. */
+static int sha256_file(const char *path, unsigned char *md,
+		       struct stray_error *err)
+{
+	static unsigned char buf[65536];
+	EVP_MD_CTX *ctx = EVP_MD_CTX_new();
+	FILE *f = fopen(path, "rb");
+	int ok = ctx && f && EVP_DigestInit_ex(ctx, EVP_sha256(), NULL);
+	size_t n;
+
+	while (ok && (n = fread(buf, 1, sizeof(buf), f)) > 0)
+		ok = EVP_DigestUpdate(ctx, buf, n);
+	ok = ok && !ferror(f) && EVP_DigestFinal_ex(ctx, md, NULL);
+	if (f)
+		fclose(f);
+	EVP_MD_CTX_free(ctx);
+	if (!ok)
+		return stray_error_at(err, STRAY_EIO, path, 0, "file",
+				      f ? "cannot read the frame file"
+					: "cannot open the frame file");
+	return STRAY_OK;
+}
+
+int sweep_sha256_check(const char *path, const char *hex,
+		       struct stray_error *err)
+{
+	unsigned char md[32];
+	char got[65];
+	size_t i;
+	int rc;
+
+	if ((rc = sha256_file(path, md, err)) != STRAY_OK)
+		return rc;
+	for (i = 0; i < 32; i++)
+		snprintf(got + 2 * i, 3, "%02x", md[i]);
+	if (strcmp(got, hex) != 0) {
+		stray_error_at(err, STRAY_EINVAL, path, 0, "sha256",
+			       "does not match manifest.csv (file changed or corrupt)");
+		stray_error_text(err, got);
+		return STRAY_EINVAL;
+	}
+	return STRAY_OK;
+}

@@ -1,0 +1,582 @@
+/*
+ * sweep_reduce.c - stream a sweep folder through the reduction of thesis
+ * §3.2: darks (levels per read channel, then hot/dead pixels), then every
+ * visit to an angle (FULL and AMBIENT groups -> J, eq. 3.6), then the
+ * curve (eq. 3.12-3.15) and the ghost tracks.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "stray/errfmt.h"
+#include "sweep_fits.h"
+#include "sweep_manifest.h"
+#include "sweep_reduce.h"
+
+struct visit_plan {
+	/* Manifest runs (darks skipped inside): the visit's own, and a run
+	 * of the other type at the same angle when the sweep took all FULL
+	 * frames in one pass and all AMBIENT frames in another. */
+	size_t first[2], last[2], n_runs;
+	size_t n_full, n_amb;
+	size_t n_peaks;
+	struct stray_ghost_peak peaks[STRAY_GHOST_PEAKS_MAX];
+};
+
+struct workspace {
+	const char *dir;
+	const struct sweep_opts *o;
+	struct sweep_manifest man;
+	struct sweep_fits fits;		/* the frame being read */
+	struct sweep_header geo;	/* the first frame: the geometry */
+	size_t n_pix;
+	uint16_t *pix;
+	struct stray_dark_model dark;
+	uint8_t *mask;
+	struct stray_accum full, amb;
+	void *acc_mem[2];
+	float *j, *var_j;
+	double *prof_var, *ghost_scratch;
+	struct visit_plan *plan;
+	int monitor;		/* -1 unknown, else whether light frames
+				 * carry MONITOR: all or none must */
+	size_t bytes, peak_bytes;
+};
+
+void sweep_opts_default(struct sweep_opts *o)
+{
+	memset(o, 0, sizeof(*o));
+	stray_bayer_default(&o->map);
+	stray_ghost_opts_default(&o->ghost);
+	o->hot_sigma = 6.0;
+	o->verify_sha256 = 1;
+}
+
+/* Per-pixel allocation, counted toward the workspace bound. */
+static void *ws_alloc(struct workspace *w, size_t bytes)
+{
+	void *p = calloc(1, bytes ? bytes : 1);
+
+	if (p) {
+		w->bytes += bytes;
+		if (w->bytes > w->peak_bytes)
+			w->peak_bytes = w->bytes;
+	}
+	return p;
+}
+
+static void ws_free(struct workspace *w, void *p, size_t bytes)
+{
+	if (p)
+		w->bytes -= bytes;
+	free(p);
+}
+
+static int same(double a, double b, double rel)
+{
+	return fabs(a - b) <= rel * fmax(1.0, fmax(fabs(a), fabs(b)));
+}
+
+/* The header must say what the manifest says, and match the geometry. */
+static int check_header(const struct workspace *w, const char *path,
+			const struct sweep_entry *e, const struct sweep_header *h,
+			struct stray_error *err)
+{
+	const char *key = NULL;
+
+	if (h->type != e->type)
+		key = "FRAMETYP";
+	else if (!same(h->angle_deg, e->angle_deg, 1e-6))
+		key = "ANGLE";
+	else if (!same(h->exptime_s, e->exptime_s, 1e-6))
+		key = "EXPTIME";
+	else if (!same(h->ndtrans, e->ndtrans, 1e-6))
+		key = "NDTRANS";
+	if (key)
+		return stray_error_at(err, STRAY_EINVAL, path, 0, key,
+				      "differs from manifest.csv");
+	if (h->n_cols != w->geo.n_cols)
+		key = "NAXIS1";
+	else if (h->n_rows != w->geo.n_rows)
+		key = "NAXIS2";
+	else if (h->col0 != w->geo.col0)
+		key = "COL0";
+	else if (memcmp(h->det_row, w->geo.det_row,
+			h->n_rows * sizeof(h->det_row[0])) != 0)
+		key = h->has_rows || w->geo.has_rows ? "ROWS" : "ROW0";
+	if (key)
+		return stray_error_at(err, STRAY_EINVAL, path, 0, key,
+				      "differs from the sweep's first frame");
+	return STRAY_OK;
+}
+
+static void frame_path(const struct workspace *w, const struct sweep_entry *e,
+		       char *path, size_t size)
+{
+	snprintf(path, size, "%s/%s", w->dir, e->file);
+}
+
+/* Verify, open, check and read one frame into w->pix; fill f. */
+static int load_frame(struct workspace *w, const struct sweep_entry *e,
+		      struct stray_frame *f, struct stray_error *err)
+{
+	char path[4096 + SWEEP_FILE_MAX];
+	int rc;
+
+	frame_path(w, e, path, sizeof(path));
+	if (w->o->verify_sha256 &&
+	    (rc = sweep_sha256_check(path, e->sha256, err)) != STRAY_OK)
+		return rc;
+	if ((rc = sweep_fits_open(path, &w->fits, err)) != STRAY_OK)
+		return rc;
+	rc = check_header(w, path, e, &w->fits.h, err);
+	if (rc == STRAY_OK && e->type != SWEEP_DARK) {
+		if (w->monitor < 0)
+			w->monitor = w->fits.h.has_monitor;
+		else if (w->monitor != w->fits.h.has_monitor)
+			rc = stray_error_at(err, STRAY_EINVAL, path, 0, "MONITOR",
+				"present in some light frames only");
+	}
+	if (rc == STRAY_OK)
+		rc = sweep_fits_read(&w->fits, w->pix, err);
+	sweep_fits_close(&w->fits);
+	if (rc != STRAY_OK)
+		return rc;
+	f->n_rows = w->geo.n_rows;
+	f->n_cols = w->geo.n_cols;
+	f->pix = w->pix;
+	f->det_row = w->geo.det_row;
+	f->col0 = w->geo.col0;
+	f->t_exp_s = w->fits.h.exptime_s;
+	f->nd_trans = w->fits.h.ndtrans;
+	f->monitor = w->fits.h.monitor;
+	f->sat_level = w->fits.h.satlevel;
+	return STRAY_OK;
+}
+
+/* Library errors carry no file: name the frame. */
+static int at_frame(struct workspace *w, const struct sweep_entry *e, int rc,
+		    struct stray_error *err)
+{
+	char path[4096 + SWEEP_FILE_MAX];
+
+	if (rc != STRAY_OK) {
+		frame_path(w, e, path, sizeof(path));
+		stray_error_locate(err, path, 0);
+	}
+	return rc;
+}
+
+/* Learn the geometry from the first frame and size the buffers. */
+static int setup(struct workspace *w, struct stray_error *err)
+{
+	char path[4096 + SWEEP_FILE_MAX];
+	int rc;
+
+	frame_path(w, &w->man.e[0], path, sizeof(path));
+	if ((rc = sweep_fits_open(path, &w->fits, err)) != STRAY_OK)
+		return rc;
+	w->geo = w->fits.h;
+	sweep_fits_close(&w->fits);
+	w->n_pix = w->geo.n_rows * w->geo.n_cols;
+	w->pix = ws_alloc(w, w->n_pix * sizeof(*w->pix));
+	w->mask = ws_alloc(w, w->n_pix);
+	if (!w->pix || !w->mask)
+		return stray_error_set(err, STRAY_ENOMEM, "frame",
+				       "no memory for the frame buffers");
+	stray_dark_init(&w->dark, &w->o->map);
+	return STRAY_OK;
+}
+
+/* Pass 1 over the darks: levels per channel and exposure time. */
+static int dark_levels(struct workspace *w, struct sweep_result *res,
+		       struct stray_error *err)
+{
+	uint32_t *hist = ws_alloc(w, STRAY_DARK_HIST_LEN * sizeof(*hist));
+	struct stray_frame f;
+	size_t i;
+	int rc = STRAY_OK;
+
+	if (!hist)
+		return stray_error_set(err, STRAY_ENOMEM, "DARK",
+				       "no memory for the histograms");
+	for (i = 0; i < w->man.n && rc == STRAY_OK; i++) {
+		if (w->man.e[i].type != SWEEP_DARK)
+			continue;
+		rc = load_frame(w, &w->man.e[i], &f, err);
+		if (rc == STRAY_OK)
+			rc = at_frame(w, &w->man.e[i],
+				      stray_dark_add(&w->dark, &f, hist, err),
+				      err);
+		res->n_darks++;
+	}
+	ws_free(w, hist, STRAY_DARK_HIST_LEN * sizeof(*hist));
+	stray_dark_finish(&w->dark);
+	return rc;
+}
+
+static void list_pixels(const struct workspace *w, struct sweep_result *res)
+{
+	size_t i;
+
+	res->n_pixlist = 0;
+	for (i = 0; i < w->n_pix && res->n_pixlist < SWEEP_PIXLIST_MAX; i++) {
+		struct sweep_pixel *p = &res->pixlist[res->n_pixlist];
+
+		if (w->mask[i] == STRAY_PIX_OK)
+			continue;
+		p->row = w->geo.det_row[i / w->geo.n_cols];
+		p->col = w->geo.col0 + (long)(i % w->geo.n_cols);
+		p->flag = w->mask[i];
+		res->n_pixlist++;
+	}
+}
+
+/* Pass 2 over the darks: hot and dead pixels. */
+static int dark_pixels(struct workspace *w, struct sweep_result *res,
+		       struct stray_error *err)
+{
+	size_t nb = w->n_pix * sizeof(double), i;
+	double *mean = ws_alloc(w, nb), *m2 = ws_alloc(w, nb);
+	double *scratch = ws_alloc(w, nb);
+	struct stray_pixstat s;
+	struct stray_frame f;
+	int rc = STRAY_OK;
+
+	if (!mean || !m2 || !scratch)
+		rc = stray_error_set(err, STRAY_ENOMEM, "DARK",
+				     "no memory for the pixel statistics");
+	else
+		stray_pixstat_init(&s, w->n_pix, mean, m2);
+	for (i = 0; i < w->man.n && rc == STRAY_OK; i++) {
+		if (w->man.e[i].type != SWEEP_DARK)
+			continue;
+		rc = load_frame(w, &w->man.e[i], &f, err);
+		if (rc == STRAY_OK)
+			rc = at_frame(w, &w->man.e[i],
+				      stray_pixstat_add(&s, &w->dark, &f, err),
+				      err);
+	}
+	if (rc == STRAY_OK) {
+		char path[4096 + 16];
+
+		snprintf(path, sizeof(path), "%s/manifest.csv", w->dir);
+		rc = stray_mask_build(&s, w->o->hot_sigma, w->mask, scratch,
+				      &res->mask, err);
+		if (rc != STRAY_OK)
+			stray_error_locate(err, path, 0);
+	}
+	if (rc == STRAY_OK)
+		list_pixels(w, res);
+	ws_free(w, scratch, nb);
+	ws_free(w, m2, nb);
+	ws_free(w, mean, nb);
+	return rc;
+}
+
+/* Runs of consecutive non-dark manifest rows at one angle. */
+static size_t find_runs(struct workspace *w)
+{
+	size_t i, n = 0;
+	double cur = 0.0;
+
+	for (i = 0; i < w->man.n; i++) {
+		const struct sweep_entry *e = &w->man.e[i];
+		struct visit_plan *p;
+
+		if (e->type == SWEEP_DARK)
+			continue;
+		if (n == 0 || fabs(e->angle_deg - cur) > STRAY_THETA_TOL_DEG) {
+			w->plan[n].first[0] = i;
+			w->plan[n].n_runs = 1;
+			cur = e->angle_deg;
+			n++;
+		}
+		p = &w->plan[n - 1];
+		p->last[0] = i;
+		p->n_full += e->type == SWEEP_FULL;
+		p->n_amb += e->type == SWEEP_AMBIENT;
+	}
+	return n;
+}
+
+/* Pair each FULL-only run with the next AMBIENT-only run at its angle
+ * (or the reverse), then drop the runs taken. */
+static size_t pair_runs(struct workspace *w, size_t n)
+{
+	size_t i, k, kept = 0;
+
+	for (i = 0; i < n; i++) {
+		struct visit_plan *p = &w->plan[i];
+
+		if (p->n_runs == 0 || (p->n_full && p->n_amb))
+			continue;
+		for (k = i + 1; k < n; k++) {
+			struct visit_plan *q = &w->plan[k];
+			double a = w->man.e[p->first[0]].angle_deg;
+			double b = w->man.e[q->first[0]].angle_deg;
+
+			if (q->n_runs == 1 && fabs(a - b) <= STRAY_THETA_TOL_DEG &&
+			    !(q->n_full && q->n_amb) &&
+			    !!q->n_full != !!p->n_full) {
+				p->first[1] = q->first[0];
+				p->last[1] = q->last[0];
+				p->n_full += q->n_full;
+				p->n_amb += q->n_amb;
+				p->n_runs = 2;
+				q->n_runs = 0;	/* taken */
+				break;
+			}
+		}
+	}
+	for (i = 0; i < n; i++)
+		if (w->plan[i].n_runs)
+			w->plan[kept++] = w->plan[i];
+	return kept;
+}
+
+/* Visits: a run of one angle's FULL and AMBIENT frames, or two. */
+static int plan_visits(struct workspace *w, struct sweep_result *res,
+		       struct stray_error *err)
+{
+	w->plan = calloc(w->man.n, sizeof(*w->plan));
+	res->visits = calloc(w->man.n, sizeof(*res->visits));
+	if (!w->plan || !res->visits)
+		return stray_error_set(err, STRAY_ENOMEM, "manifest",
+				       "no memory for the visit plan");
+	res->n_visits = pair_runs(w, find_runs(w));
+	if (res->n_visits == 0)
+		return stray_error_at(err, STRAY_ENOTFOUND, w->man.n ?
+			"manifest.csv" : "", 0, "frametyp",
+			"no FULL or AMBIENT frames in the sweep");
+	return STRAY_OK;
+}
+
+static int light_buffers(struct workspace *w, struct sweep_result *res,
+			 struct stray_error *err)
+{
+	size_t ab = stray_accum_bytes(w->n_pix), nc = w->geo.n_cols;
+
+	w->acc_mem[0] = ws_alloc(w, ab);
+	w->acc_mem[1] = ws_alloc(w, ab);
+	w->j = ws_alloc(w, w->n_pix * sizeof(float));
+	w->var_j = ws_alloc(w, w->n_pix * sizeof(float));
+	w->prof_var = calloc(nc, sizeof(double));
+	w->ghost_scratch = calloc(stray_ghost_scratch(nc, &w->o->ghost),
+				  sizeof(double));
+	res->profiles = calloc(res->n_visits * nc, sizeof(double));
+	if (!w->acc_mem[0] || !w->acc_mem[1] || !w->j || !w->var_j ||
+	    !w->prof_var || !w->ghost_scratch || !res->profiles)
+		return stray_error_set(err, STRAY_ENOMEM, "frame",
+				       "no memory for the accumulators");
+	stray_accum_init(&w->full, w->n_pix, w->acc_mem[0]);
+	stray_accum_init(&w->amb, w->n_pix, w->acc_mem[1]);
+	return STRAY_OK;
+}
+
+/* Stream one visit's frames into the FULL and AMBIENT accumulators. */
+static int accumulate_visit(struct workspace *w, const struct visit_plan *p,
+			    struct sweep_result *res, struct stray_error *err)
+{
+	struct stray_frame f;
+	size_t i, r;
+	int rc = STRAY_OK;
+
+	stray_accum_reset(&w->full);
+	stray_accum_reset(&w->amb);
+	for (r = 0; r < p->n_runs; r++)
+		for (i = p->first[r]; i <= p->last[r] && rc == STRAY_OK; i++) {
+			const struct sweep_entry *e = &w->man.e[i];
+
+			if (e->type == SWEEP_DARK)
+				continue;
+			rc = load_frame(w, e, &f, err);
+			if (rc == STRAY_OK)
+				rc = at_frame(w, e, stray_accum_add(
+					e->type == SWEEP_FULL ? &w->full : &w->amb,
+					&w->dark, &f, err), err);
+			res->has_monitor |= w->fits.h.has_monitor;
+		}
+	return rc;
+}
+
+static int keep_image(struct workspace *w, double theta,
+		      struct sweep_result *res, struct stray_error *err)
+{
+	if (!w->o->keep_image || res->image ||
+	    fabs(theta - w->o->image_theta_deg) > STRAY_THETA_TOL_DEG)
+		return STRAY_OK;
+	res->image = malloc(w->n_pix * sizeof(float));
+	if (!res->image)
+		return stray_error_set(err, STRAY_ENOMEM, "image",
+				       "no memory for the J image");
+	memcpy(res->image, w->j, w->n_pix * sizeof(float));
+	res->image_theta_deg = theta;
+	return STRAY_OK;
+}
+
+static int reduce_visit(struct workspace *w, size_t v,
+			struct sweep_result *res, struct stray_error *err)
+{
+	struct visit_plan *p = &w->plan[v];
+	const struct sweep_entry *e0 = &w->man.e[p->first[0]];
+	struct stray_frame geo = { 0 };
+	struct stray_response_sums s;
+	struct stray_visit *vis = &res->visits[v];
+	double *prof = res->profiles + v * w->geo.n_cols;
+	int rc;
+
+	if ((rc = accumulate_visit(w, p, res, err)) != STRAY_OK)
+		return rc;
+	geo.n_rows = w->geo.n_rows;
+	geo.n_cols = w->geo.n_cols;
+	rc = stray_response_compute(&w->full, &w->amb, &w->dark, w->mask,
+				    &geo, &w->o->response, w->j, w->var_j,
+				    &s, err);
+	if (rc != STRAY_OK)
+		return at_frame(w, e0, rc, err);
+	vis->theta_deg = e0->angle_deg;
+	/* Acquisition order: the middle of the visit's frames. */
+	vis->order = p->n_runs == 1 ?
+		0.5 * ((double)p->first[0] + (double)p->last[0]) :
+		0.25 * ((double)p->first[0] + (double)p->last[0] +
+			(double)p->first[1] + (double)p->last[1]);
+	vis->power = s.power;
+	vis->var_power = s.var_power;
+	vis->sigma = s.sigma;
+	vis->n_pix = s.n_pix;
+	res->n_sat_samples += w->full.n_sat + w->amb.n_sat;
+	res->n_sat_pixels += s.n_sat_pix;
+	stray_response_profile(w->j, w->var_j, geo.n_rows, geo.n_cols, prof,
+			       w->prof_var);
+	p->n_peaks = stray_ghost_find(prof, w->prof_var, geo.n_cols,
+				      &w->o->ghost, w->ghost_scratch, p->peaks,
+				      STRAY_GHOST_PEAKS_MAX);
+	return keep_image(w, vis->theta_deg, res, err);
+}
+
+static const struct stray_visit *sort_base;
+
+static int by_theta(const void *a, const void *b)
+{
+	const struct stray_visit *x = &sort_base[*(const size_t *)a];
+	const struct stray_visit *y = &sort_base[*(const size_t *)b];
+
+	if (x->theta_deg != y->theta_deg)
+		return (x->theta_deg > y->theta_deg) - (x->theta_deg < y->theta_deg);
+	return (x->order > y->order) - (x->order < y->order);
+}
+
+/* Feed the first visit of every angle, in increasing theta, to a tracker. */
+static int track_ghosts(struct workspace *w, struct sweep_result *res,
+			struct stray_error *err)
+{
+	struct stray_ghost_tracker t;
+	size_t *idx = malloc(res->n_visits * sizeof(*idx)), i;
+	double last = -HUGE_VAL;
+
+	if (!idx)
+		return stray_error_set(err, STRAY_ENOMEM, "ghosts", "no memory");
+	for (i = 0; i < SWEEP_TRACKS_MAX; i++) {
+		res->tracks[i].pt = calloc(res->n_visits, sizeof(*res->tracks[i].pt));
+		res->tracks[i].cap = res->n_visits;
+		if (!res->tracks[i].pt) {
+			free(idx);
+			return stray_error_set(err, STRAY_ENOMEM, "ghosts",
+					       "no memory");
+		}
+	}
+	for (i = 0; i < res->n_visits; i++)
+		idx[i] = i;
+	sort_base = res->visits;
+	qsort(idx, res->n_visits, sizeof(*idx), by_theta);
+	stray_ghost_tracker_init(&t, &w->o->ghost, res->tracks,
+				 SWEEP_TRACKS_MAX);
+	for (i = 0; i < res->n_visits; i++) {
+		const struct stray_visit *v = &res->visits[idx[i]];
+
+		if (v->theta_deg <= last + STRAY_THETA_TOL_DEG)
+			continue;
+		last = v->theta_deg;
+		stray_ghost_tracker_add(&t, v->theta_deg, w->plan[idx[i]].peaks,
+					w->plan[idx[i]].n_peaks,
+					(double)w->geo.n_rows, v->power);
+	}
+	res->n_tracks = stray_ghost_tracker_finish(&t);
+	free(idx);
+	return STRAY_OK;
+}
+
+static int reduce_all(struct workspace *w, struct sweep_result *res,
+		      struct stray_error *err)
+{
+	size_t v;
+	int rc;
+
+	if ((rc = setup(w, err)) || (rc = dark_levels(w, res, err)) ||
+	    (rc = dark_pixels(w, res, err)) ||
+	    (rc = plan_visits(w, res, err)) ||
+	    (rc = light_buffers(w, res, err)))
+		return rc;
+	for (v = 0; v < res->n_visits; v++)
+		if ((rc = reduce_visit(w, v, res, err)) != STRAY_OK)
+			return rc;
+	res->points = calloc(res->n_visits, sizeof(*res->points));
+	if (!res->points)
+		return stray_error_set(err, STRAY_ENOMEM, "curve", "no memory");
+	rc = stray_reduce_curve(res->visits, res->n_visits, res->points,
+				&res->n_points, &res->drift, err);
+	if (rc != STRAY_OK)
+		return stray_error_at(err, rc, w->dir, 0, 0, 0);
+	res->p0 = res->drift.p0;
+	return track_ghosts(w, res, err);
+}
+
+int sweep_reduce(const char *dir, const struct sweep_opts *o,
+		 struct sweep_result *res, struct stray_error *err)
+{
+	struct workspace *w = calloc(1, sizeof(*w));
+	int rc;
+
+	memset(res, 0, sizeof(*res));
+	if (!w)
+		return stray_error_set(err, STRAY_ENOMEM, "sweep", "no memory");
+	w->dir = dir;
+	w->o = o;
+	w->monitor = -1;
+	rc = sweep_manifest_load(dir, &w->man, err);
+	if (rc == STRAY_OK) {
+		res->n_frames = w->man.n;
+		rc = reduce_all(w, res, err);
+		res->n_rows = w->geo.n_rows;
+		res->n_cols = w->geo.n_cols;
+		res->col0 = w->geo.col0;
+	}
+	res->workspace_bytes = w->peak_bytes;
+	free(w->pix);
+	free(w->mask);
+	free(w->acc_mem[0]);
+	free(w->acc_mem[1]);
+	free(w->j);
+	free(w->var_j);
+	free(w->prof_var);
+	free(w->ghost_scratch);
+	free(w->plan);
+	sweep_manifest_free(&w->man);
+	free(w);
+	return rc;
+}
+
+void sweep_result_free(struct sweep_result *res)
+{
+	size_t i;
+
+	free(res->points);
+	free(res->visits);
+	free(res->profiles);
+	free(res->image);
+	for (i = 0; i < SWEEP_TRACKS_MAX; i++)
+		free(res->tracks[i].pt);
+	memset(res, 0, sizeof(*res));
+}

@@ -1,0 +1,77 @@
+/*
+ * sweep_reduce.h - a sweep folder to the lens curve (thesis §3.2), driving
+ * the libstray/reduce math from the frames on disk.
+ *
+ * Streaming: the manifest (metadata only) is read whole; the frames are
+ * read one at a time, darks twice (levels, then hot/dead pixels), then
+ * each visit of the gimbal to an angle (consecutive manifest rows at one
+ * angle) through two per-pixel accumulators.  Memory is a fixed number of
+ * per-pixel buffers - about 31 bytes a pixel, the size of 16 frames -
+ * plus a few numbers per visit, whatever the number of frames.
+ */
+#ifndef STRAY_TOOLS_SWEEP_REDUCE_H
+#define STRAY_TOOLS_SWEEP_REDUCE_H
+
+#include <stddef.h>
+
+#include "stray/error.h"
+#include "stray/reduce_curve.h"
+#include "stray/reduce_dark.h"
+#include "stray/reduce_frame.h"
+#include "stray/reduce_ghost.h"
+#include "stray/reduce_response.h"
+
+#define SWEEP_TRACKS_MAX 16
+#define SWEEP_PIXLIST_MAX 1000
+
+struct sweep_opts {
+	struct stray_bayer_map map;
+	struct stray_response_opts response;
+	struct stray_ghost_opts ghost;
+	double hot_sigma;
+	int verify_sha256;
+	int keep_image;		/* keep J at image_theta_deg */
+	double image_theta_deg;
+};
+
+void sweep_opts_default(struct sweep_opts *o);
+
+struct sweep_pixel {
+	long row, col;		/* detector coordinates */
+	int flag;		/* enum stray_pixel_flag */
+};
+
+struct sweep_result {
+	size_t n_rows, n_cols, n_frames, n_darks;
+	long col0;		/* detector column of stored column 0 */
+	size_t n_points;
+	struct stray_curve_point *points;
+	struct stray_drift drift;
+	int has_monitor;	/* frames carried MONITOR */
+	/* Visits in acquisition order, with their row-collapsed profiles. */
+	size_t n_visits;
+	struct stray_visit *visits;
+	double *profiles;	/* n_visits * n_cols */
+	/* Pixels. */
+	struct stray_mask_stats mask;
+	size_t n_pixlist;
+	struct sweep_pixel pixlist[SWEEP_PIXLIST_MAX];
+	unsigned long n_sat_samples;	/* saturated samples left out */
+	size_t n_sat_pixels;		/* pixel-visits saturated throughout */
+	/* Ghost tracks (ascending theta), points owned by the result. */
+	size_t n_tracks;
+	struct stray_ghost_track tracks[SWEEP_TRACKS_MAX];
+	double p0;		/* P(0) the curve is normalised by */
+	/* J at the requested angle (fig. 3.8), n_rows * n_cols, or NULL. */
+	float *image;
+	double image_theta_deg;
+	size_t workspace_bytes;	/* per-pixel buffers, for the bound */
+};
+
+/* Reduce DIR; res is zeroed first and must be freed. */
+int sweep_reduce(const char *dir, const struct sweep_opts *o,
+		 struct sweep_result *res, struct stray_error *err);
+
+void sweep_result_free(struct sweep_result *res);
+
+#endif /* STRAY_TOOLS_SWEEP_REDUCE_H */

@@ -1,0 +1,377 @@
+/*
+ * integrator.c - adjoint path tracing with next-event connections to the
+ * collimated source at every angle of the sweep (see integrator.h).
+ */
+#include <math.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "tracer/guide.h"
+#include "tracer/integrator.h"
+#include "tracer/rng.h"
+#include "worker.h"
+
+/* Per-path state threaded through the vertex loop. */
+struct path_state {
+	double *acc;		/* this batch's [theta][order] */
+	double *map;		/* this batch's irradiance map, or NULL */
+	long pixel;		/* map pixel of the path's detector point */
+	struct tracer_vertex *dump;	/* this path's dump slots, or NULL */
+	int *dump_len;
+	struct tracer_path_table *table;
+	int seq[TRACER_SEQ_MAX];	/* groups, detector side first */
+	uint64_t batch_first;	/* first path index of the batch */
+	double shift[6];	/* the batch's random QMC shift */
+	double u_first[2];	/* QMC numbers of the first BRDF sample */
+	double *path_c;		/* pilot: this path's scattered c per angle */
+	size_t *touched, n_touched;
+	int cell;		/* pilot: guide cell of the path's direction */
+	int failed;
+	double rho_prod;
+	uint64_t casts, connections;
+};
+
+/* Path record: contribution / prod rho under (angle, group sequence). */
+static void record(struct path_state *ps, uint32_t j, int depth, double c)
+{
+	int g[TRACER_SEQ_MAX], i;
+	int n = depth < TRACER_SEQ_MAX ? depth : TRACER_SEQ_MAX;
+	uint64_t key;
+
+	if (!ps->table || ps->rho_prod <= 0.0)
+		return;
+	/* the key lists groups from the source side to the detector */
+	for (i = 0; i < n; i++)
+		g[i] = ps->seq[n - 1 - i];
+	key = tracer_seq_pack(g, n);
+	if (depth > TRACER_SEQ_MAX)
+		key |= TRACER_SEQ_TRUNCATED;
+	if (tracer_paths_add(ps->table, j, key, c / ps->rho_prod))
+		ps->failed = 1;
+}
+
+static void add_to_map(const struct worker_ctx *w, struct path_state *ps,
+		       size_t j, double c)
+{
+	if (ps->map && ps->pixel >= 0 && j == w->o->map_theta_index)
+		ps->map[ps->pixel] += c;
+}
+
+/* Map pixel of detector point x (detector frame), or -1 outside. */
+static long pixel_of(const struct worker_ctx *w, struct vec3 x)
+{
+	const struct tracer_result *r = w->res;
+	struct frame f = frame_from_normal(w->s->det.normal);
+	struct vec3 q = frame_to_local(&f, v3_sub(x, w->s->det.center));
+	long col = (long)floor((q.x / r->map_half_w_mm + 1.0) * 0.5 * r->map_n);
+	long row = (long)floor((q.y / r->map_half_h_mm + 1.0) * 0.5 * r->map_n);
+
+	if (col < 0 || row < 0 || col >= r->map_n || row >= r->map_n)
+		return -1;
+	return row * r->map_n + col;
+}
+
+static void dump_vertex(struct path_state *ps, struct vec3 p, int group)
+{
+	if (ps->dump && *ps->dump_len < TRACER_DUMP_DEPTH) {
+		struct tracer_vertex *v = &ps->dump[(*ps->dump_len)++];
+
+		v->x = (float)p.x;
+		v->y = (float)p.y;
+		v->z = (float)p.z;
+		v->group = group;
+	}
+}
+
+/* Direct light: the detector point connected to each source angle. */
+static void connect_direct(struct worker_ctx *w, struct path_state *ps,
+			   struct vec3 x)
+{
+	const struct tracer_scene *s = w->s;
+	struct vec3 o = tracer_offset_origin(x, s->det.normal);
+	size_t j;
+
+	for (j = 0; j < w->o->n_theta; j++) {
+		struct vec3 d = w->dir[j];
+		double c = v3_dot(d, s->det.normal);
+
+		if (c <= 0.0 || !tracer_detector_accepts(&s->det, d) ||
+		    !tracer_beam_covers(&s->beam, d, x))
+			continue;
+		ps->casts++;
+		ps->connections++;
+		if (tracer_scene_occluded(s, o, d, INFINITY))
+			continue;
+		c *= tracer_lens_transmission(w->o->lens,
+					      acos(fmin(c, 1.0)) * 180.0 / M_PI);
+		ps->acc[j * TRACER_ORDERS] += c;
+		add_to_map(w, ps, j, c);
+	}
+}
+
+/*
+ * Next-event connection at a scatter vertex: T f(wo, d) cos(n, d) V(x, d),
+ * the collimated source being E delta(w - d) (adjoint transport by
+ * reciprocity: Veach 1997, PhD thesis, Stanford, ch. 3-4).
+ */
+static void connect_vertex(struct worker_ctx *w, struct path_state *ps,
+			   const struct tracer_hit *h, const struct frame *f,
+			   const struct tracer_brdf *mat, struct vec3 wo,
+			   double T, int depth)
+{
+	const struct tracer_scene *s = w->s;
+	struct vec3 o = tracer_offset_origin(h->p, h->ng);
+	int order = depth < TRACER_ORDERS - 1 ? depth : TRACER_ORDERS - 1;
+	size_t j;
+
+	for (j = 0; j < w->o->n_theta; j++) {
+		struct vec3 d = w->dir[j];
+		double cos_d = v3_dot(d, h->ng), fv, c;
+
+		if (cos_d <= 0.0 || !tracer_beam_covers(&s->beam, d, h->p))
+			continue;
+		fv = mat->ops->eval(mat, wo, frame_to_local(f, d));
+		if (fv <= 0.0)
+			continue;
+		ps->casts++;
+		ps->connections++;
+		if (tracer_scene_occluded(s, o, d, INFINITY))
+			continue;
+		c = T * fv * cos_d;
+		ps->acc[j * TRACER_ORDERS + order] += c;
+		add_to_map(w, ps, j, c);
+		if (ps->path_c) {
+			if (ps->path_c[j] == 0.0)
+				ps->touched[ps->n_touched++] = j;
+			ps->path_c[j] += c;
+		}
+		record(ps, (uint32_t)j, depth, c);
+	}
+}
+
+/*
+ * The first six dimensions (detector point, direction, first bounce) of a
+ * path come from a randomised quasi-Monte Carlo set: the R6 Kronecker sequence
+ * (Roberts 2018, "The unreasonable effectiveness of quasirandom
+ * sequences", extremelearning.com.au) with a random shift per batch
+ * (Cranley and Patterson 1976, SIAM J. Numer. Anal. 13(6)).  Batches stay
+ * independent, so their spread is still an honest standard error; within
+ * one the points cover the detector's phase space evenly.
+ */
+static void qmc_point(const struct path_state *ps, uint64_t index,
+		      double u[6])
+{
+	/* 1 / phi_6^k, phi_6 the real root of x^7 = x + 1 */
+	static const double g[6] = {
+		0.8986537126286992, 0.8075784952213447, 0.7257334129697598,
+		0.6521830259439716, 0.5860866975779693, 0.5266889867007358
+	};
+	double i = (double)(index - ps->batch_first);
+	int k;
+
+	for (k = 0; k < 6; k++) {
+		double v = ps->shift[k] + i * g[k];
+
+		u[k] = v - floor(v);
+	}
+}
+
+/*
+ * The path's start on the detector: a QMC point (its direct light goes
+ * straight to the tally) and a cosine-weighted direction; returns the
+ * starting throughput, pi sin^2(cone) times the lens transmission at
+ * that incidence times the guide's weight (also the start of the analog
+ * energy weight, whose expectation stays 1).
+ */
+static double start_path(struct worker_ctx *w, struct path_state *ps,
+			 uint64_t index, struct vec3 *o, struct vec3 *dir,
+			 double *guide_weight)
+{
+	const struct tracer_scene *s = w->s;
+	struct vec3 x;
+	double u[6], proj, c, g;
+
+	qmc_point(ps, index, u);
+	ps->u_first[0] = u[4];
+	ps->u_first[1] = u[5];
+	x = tracer_detector_sample_point(&s->det, u[0], u[1]);
+	ps->pixel = ps->map ? pixel_of(w, x) : -1;
+	ps->dump = NULL;
+	if (index < w->res->n_dump) {
+		ps->dump = w->res->dump + index * TRACER_DUMP_DEPTH;
+		ps->dump_len = &w->res->dump_len[index];
+	}
+	dump_vertex(ps, x, -1);
+	connect_direct(w, ps, x);
+	ps->cell = tracer_guide_cell(u[2], u[3]);
+	g = w->guide ? tracer_guide_sample(w->guide, &u[2], &u[3]) : 1.0;
+	*guide_weight = g;
+	*dir = tracer_detector_sample_dir(&s->det, u[2], u[3], &proj);
+	*o = tracer_offset_origin(x, s->det.normal);
+	c = fmin(1.0, v3_dot(*dir, s->det.normal));
+	return g * proj * tracer_lens_transmission(w->o->lens,
+						   acos(c) * 180.0 / M_PI);
+}
+
+/* Russian roulette past rr_depth: unbiased, no hard intensity floor. */
+static int survives(const struct tracer_trace_opts *op, struct tracer_rng *rng,
+		    int depth, double *T, double *Te)
+{
+	double q;
+
+	if (depth < op->rr_depth)
+		return 1;
+	q = fmin(1.0, *Te / op->rr_weight);
+	if (tracer_rng_uniform(rng) >= q)
+		return 0;
+	*T /= q;
+	*Te /= q;
+	return 1;
+}
+
+/* One adjoint path from the detector; energy bookkeeping into en[]. */
+static void trace_path(struct worker_ctx *w, struct path_state *ps,
+		       uint64_t index, double *en)
+{
+	const struct tracer_scene *s = w->s;
+	struct tracer_rng rng;
+	struct vec3 dir, o;
+	double Te, T = start_path(w, ps, index, &o, &dir, &Te);
+	int depth;
+
+	tracer_rng_init(&rng, w->o->seed, index);
+	ps->rho_prod = 1.0;
+	for (depth = 1; depth <= w->o->max_depth; depth++) {
+		const struct tracer_brdf *mat;
+		struct tracer_brdf_sample bs;
+		struct tracer_hit h;
+		struct frame f;
+		struct vec3 wo;
+		double u1, u2;
+
+		ps->casts++;
+		if (!tracer_scene_intersect(s, o, dir, &h)) {
+			en[TRACER_ESCAPED] += Te;
+			return;
+		}
+		dump_vertex(ps, h.p, h.group);
+		mat = &s->material[h.group];
+		if (!mat->ops || mat->rho <= 0.0) {
+			en[TRACER_ABSORBED] += Te;
+			return;
+		}
+		if (depth <= TRACER_SEQ_MAX)
+			ps->seq[depth - 1] = h.group;
+		ps->rho_prod *= mat->rho;
+		f = frame_from_normal(h.ng);
+		wo = frame_to_local(&f, v3_scale(dir, -1.0));
+		if (!(mat->ops->flags(mat) & TRACER_BRDF_SPECULAR))
+			connect_vertex(w, ps, &h, &f, mat, wo, T, depth);
+		/* Sample the BRDF to continue the path (QMC the first time). */
+		u1 = depth == 1 ? ps->u_first[0] : tracer_rng_uniform(&rng);
+		u2 = depth == 1 ? ps->u_first[1] : tracer_rng_uniform(&rng);
+		if (!mat->ops->sample(mat, wo, u1, u2, &bs) || bs.weight <= 0.0) {
+			en[TRACER_ABSORBED] += Te;
+			return;
+		}
+		en[TRACER_ABSORBED] += Te * (1.0 - bs.weight);
+		T *= bs.weight;
+		Te *= bs.weight;
+		if (!survives(w->o, &rng, depth, &T, &Te))
+			return;
+		dir = frame_to_world(&f, bs.wi);
+		o = tracer_offset_origin(h.p, h.ng);
+	}
+	en[TRACER_LOST] += Te;
+}
+
+uint64_t tracer_batch_start(const struct tracer_result *r, int b)
+{
+	return r->n_paths * (uint64_t)b / (uint64_t)r->n_batches;
+}
+
+/* Pilot: the path's squared contributions into its cell's tallies. */
+static void pilot_flush(struct worker_ctx *w, struct path_state *ps, int b)
+{
+	size_t n = w->res->n_theta, k;
+	double *s2 = w->pilot_s2 + ((size_t)b * TRACER_GUIDE_CELLS +
+				    (size_t)ps->cell) * n;
+
+	for (k = 0; k < ps->n_touched; k++) {
+		size_t j = ps->touched[k];
+
+		s2[j] += ps->path_c[j] * ps->path_c[j];
+		ps->path_c[j] = 0.0;
+	}
+	ps->n_touched = 0;
+}
+
+static void run_batch(struct worker_ctx *w, int b, uint64_t *casts,
+		      uint64_t *conn)
+{
+	struct tracer_result *r = w->res;
+	struct path_state ps;
+	struct tracer_rng rng;
+	uint64_t i, end = tracer_batch_start(r, b + 1);
+	int k;
+
+	memset(&ps, 0, sizeof(ps));
+	ps.acc = r->power + (size_t)b * r->n_theta * TRACER_ORDERS;
+	ps.table = w->o->record_paths ? &w->batch_tables[b] : NULL;
+	ps.batch_first = tracer_batch_start(r, b);
+	ps.map = r->map ? w->batch_maps + (size_t)b * r->map_n * r->map_n :
+		 NULL;
+	/* the shift's stream lies beyond every path index */
+	tracer_rng_init(&rng, w->o->seed, UINT64_MAX - (uint64_t)b);
+	for (k = 0; k < 6; k++)
+		ps.shift[k] = tracer_rng_uniform(&rng);
+	if (w->pilot_s2) {
+		ps.path_c = calloc(r->n_theta, sizeof(double));
+		ps.touched = malloc(r->n_theta * sizeof(size_t));
+		if (!ps.path_c || !ps.touched)
+			w->failed = 1;
+	}
+	for (i = tracer_batch_start(r, b); i < end; i++) {
+		trace_path(w, &ps, i, r->energy + (size_t)b * TRACER_ENERGY_N);
+		if (ps.path_c && ps.touched)
+			pilot_flush(w, &ps, b);
+	}
+	free(ps.path_c);
+	free(ps.touched);
+	r->batch_paths[b] = end - tracer_batch_start(r, b);
+	*casts += ps.casts;
+	if (ps.failed)
+		w->failed = 1;
+	*conn += ps.connections;
+}
+
+void *tracer_worker(void *arg)
+{
+	struct worker_ctx *w = arg;
+	uint64_t casts = 0, conn = 0;
+
+	for (;;) {
+		int b;
+
+		pthread_mutex_lock(&w->lock);
+		b = w->next_batch < w->res->n_batches ? w->next_batch++ : -1;
+		pthread_mutex_unlock(&w->lock);
+		if (b < 0)
+			break;
+		run_batch(w, b, &casts, &conn);
+		pthread_mutex_lock(&w->lock);
+		w->done_batches++;
+		if (w->o->progress)
+			w->o->progress(w->o->progress_user,
+				       (double)w->done_batches /
+				       w->res->n_batches);
+		pthread_mutex_unlock(&w->lock);
+	}
+	pthread_mutex_lock(&w->lock);
+	w->res->casts += casts;
+	w->res->connections += conn;
+	pthread_mutex_unlock(&w->lock);
+	return NULL;
+}

@@ -1,0 +1,302 @@
+/*
+ * scene_file.c - JSON scene files (cJSON): meshes, a material per surface
+ * group, the detector and the beam.  Mesh paths are relative to the scene
+ * file.  Example:
+ *
+ *   { "meshes": [ { "file": "baffle.obj" },
+ *                 { "file": "lens_mount.stl", "group": "mount" } ],
+ *     "materials": { "black": { "type": "lambert", "reflectance": 0.04 },
+ *                    "shiny": { "type": "mirror", "reflectance": 1 },
+ *                    "paint": { "type": "abg", "a": 0.01, "b": 0.01,
+ *                               "g": 2 },
+ *                    "dead":  { "type": "absorber" } },
+ *     "groups": { "exterior": "shiny", "detector": "dead" },
+ *     "default_material": "black",
+ *     "detector": { "shape": "disk", "center": [0, 0, -40],
+ *                   "normal": [0, 0, 1], "radius_mm": 6.5 },
+ *     "beam": { "center": [0, 0, 0], "normal": [0, 0, 1],
+ *               "radius_mm": 14 } }
+ * The beam is every ray through the aperture disk (centre, normal toward
+ * the sky, radius); normal defaults to +z.
+ */
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cJSON.h>
+
+#include "stray/errfmt.h"
+#include "tracer/mesh_import.h"
+#include "tracer/scene_file.h"
+
+struct ctx {
+	const char *path;
+	struct stray_error *err;
+};
+
+static int fail(const struct ctx *c, int code, const char *field,
+		const char *reason)
+{
+	return stray_error_at(c->err, code, c->path, 0, field, reason);
+}
+
+static char *read_text(const struct ctx *c, int *rc)
+{
+	FILE *f = fopen(c->path, "rb");
+	char *buf = NULL;
+	long n;
+
+	*rc = STRAY_OK;
+	if (!f || fseek(f, 0, SEEK_END) || (n = ftell(f)) < 0 ||
+	    fseek(f, 0, SEEK_SET) || !(buf = malloc((size_t)n + 1)) ||
+	    fread(buf, 1, (size_t)n, f) != (size_t)n) {
+		*rc = fail(c, STRAY_EIO, "--scene", "cannot read scene file");
+		free(buf);
+		buf = NULL;
+	} else {
+		buf[n] = '\0';
+	}
+	if (f)
+		fclose(f);
+	return buf;
+}
+
+static int number(const struct ctx *c, const cJSON *o, const char *key,
+		  double *v, int required)
+{
+	const cJSON *it = cJSON_GetObjectItemCaseSensitive(o, key);
+
+	if (!it && !required)
+		return STRAY_OK;
+	if (!cJSON_IsNumber(it) || !isfinite(it->valuedouble))
+		return fail(c, STRAY_EINVAL, key, it ? "must be a number" :
+						   "is missing");
+	*v = it->valuedouble;
+	return STRAY_OK;
+}
+
+static int vec(const struct ctx *c, const cJSON *o, const char *key,
+	       struct vec3 *v)
+{
+	const cJSON *a = cJSON_GetObjectItemCaseSensitive(o, key);
+	double x[3];
+	int i;
+
+	if (!cJSON_IsArray(a) || cJSON_GetArraySize(a) != 3)
+		return fail(c, STRAY_EINVAL, key, "must be [x, y, z]");
+	for (i = 0; i < 3; i++) {
+		const cJSON *e = cJSON_GetArrayItem(a, i);
+
+		if (!cJSON_IsNumber(e) || !isfinite(e->valuedouble))
+			return fail(c, STRAY_EINVAL, key, "must be [x, y, z]");
+		x[i] = e->valuedouble;
+	}
+	*v = v3(x[0], x[1], x[2]);
+	return STRAY_OK;
+}
+
+static int material(const struct ctx *c, const cJSON *m,
+		    struct tracer_brdf *b)
+{
+	const cJSON *t = cJSON_GetObjectItemCaseSensitive(m, "type");
+	const char *type = cJSON_IsString(t) ? t->valuestring : "";
+	int rc = STRAY_OK;
+
+	memset(b, 0, sizeof(*b));
+	b->rho = 1.0;
+	if (strcmp(type, "absorber") == 0)
+		return STRAY_OK;
+	if (strcmp(type, "lambert") == 0)
+		b->ops = &tracer_brdf_lambert_ops;
+	else if (strcmp(type, "mirror") == 0)
+		b->ops = &tracer_brdf_mirror_ops;
+	else if (strcmp(type, "abg") == 0)
+		b->ops = &tracer_brdf_abg_ops;
+	else
+		return fail(c, STRAY_EINVAL, "type", "must be lambert, mirror, "
+			    "abg or absorber");
+	rc = number(c, m, "reflectance", &b->rho, b->ops ==
+		    &tracer_brdf_lambert_ops);
+	if (!rc && b->ops == &tracer_brdf_abg_ops)
+		rc = number(c, m, "a", &b->abg.a, 1) ||
+		     number(c, m, "b", &b->abg.b, 1) ||
+		     number(c, m, "g", &b->abg.g, 1);
+	if (!rc && (b->rho < 0.0 || b->rho > 1.0))
+		rc = fail(c, STRAY_EINVAL, "reflectance", "must be in [0, 1]");
+	if (!rc && b->ops == &tracer_brdf_abg_ops &&
+	    !(b->abg.a >= 0.0 && b->abg.b > 0.0 && b->abg.g >= 0.0))
+		rc = fail(c, STRAY_EINVAL, "abg", "needs a >= 0, b > 0, g >= 0");
+	return rc ? c->err ? c->err->code : STRAY_EINVAL : STRAY_OK;
+}
+
+/* Path of a mesh file relative to the scene file's directory. */
+static void sibling(const char *scene, const char *file, char *out,
+		    size_t size)
+{
+	const char *slash = strrchr(scene, '/');
+
+	if (file[0] == '/' || !slash)
+		snprintf(out, size, "%s", file);
+	else
+		snprintf(out, size, "%.*s/%s", (int)(slash - scene), scene,
+			 file);
+}
+
+static int meshes(const struct ctx *c, const cJSON *root,
+		  struct tracer_mesh *m)
+{
+	const cJSON *arr = cJSON_GetObjectItemCaseSensitive(root, "meshes");
+	const cJSON *it;
+	char path[PATH_MAX];
+
+	if (!cJSON_IsArray(arr) || cJSON_GetArraySize(arr) == 0)
+		return fail(c, STRAY_EINVAL, "meshes", "must be a non-empty list");
+	cJSON_ArrayForEach(it, arr) {
+		const cJSON *f = cJSON_GetObjectItemCaseSensitive(it, "file");
+		const cJSON *g = cJSON_GetObjectItemCaseSensitive(it, "group");
+		double scale = 1.0;
+		int rc;
+
+		if (!cJSON_IsString(f) || (g && !cJSON_IsString(g)))
+			return fail(c, STRAY_EINVAL, "meshes",
+				    "each needs a \"file\" (and a string \"group\")");
+		rc = number(c, it, "scale_mm", &scale, 0);
+		if (rc)
+			return rc;
+		sibling(c->path, f->valuestring, path, sizeof(path));
+		rc = tracer_mesh_import(m, path, g ? g->valuestring : NULL,
+					scale, c->err);
+		if (rc)
+			return rc;
+	}
+	return STRAY_OK;
+}
+
+/* Each surface group's material: "groups" map, same-named material, or
+ * "default_material". */
+static int assign(const struct ctx *c, const cJSON *root,
+		  struct tracer_scene *s)
+{
+	const cJSON *mats = cJSON_GetObjectItemCaseSensitive(root, "materials");
+	const cJSON *map = cJSON_GetObjectItemCaseSensitive(root, "groups");
+	const cJSON *def = cJSON_GetObjectItemCaseSensitive(root,
+							   "default_material");
+	size_t g;
+
+	if (!cJSON_IsObject(mats))
+		return fail(c, STRAY_EINVAL, "materials", "must be an object");
+	for (g = 0; g < s->mesh.n_group; g++) {
+		const char *gname = s->mesh.group_name[g];
+		const cJSON *name = cJSON_GetObjectItemCaseSensitive(map, gname);
+		const char *mname = cJSON_IsString(name) ? name->valuestring :
+				    cJSON_GetObjectItemCaseSensitive(mats, gname) ?
+				    gname : cJSON_IsString(def) ?
+				    def->valuestring : NULL;
+		const cJSON *m = mname ?
+			cJSON_GetObjectItemCaseSensitive(mats, mname) : NULL;
+		int rc;
+
+		if (!m) {
+			rc = fail(c, STRAY_ENOTFOUND, "groups",
+				  "surface group has no material");
+			stray_error_text(c->err, gname);
+			return rc;
+		}
+		rc = material(c, m, &s->material[g]);
+		if (rc) {
+			stray_error_text(c->err, mname);
+			return rc;
+		}
+	}
+	return STRAY_OK;
+}
+
+static int detector_and_beam(const struct ctx *c, const cJSON *root,
+			     struct tracer_scene *s)
+{
+	const cJSON *d = cJSON_GetObjectItemCaseSensitive(root, "detector");
+	const cJSON *b = cJSON_GetObjectItemCaseSensitive(root, "beam");
+	const cJSON *shape = cJSON_GetObjectItemCaseSensitive(d, "shape");
+	struct tracer_detector *det = &s->det;
+	int rc;
+
+	if (!cJSON_IsObject(d) || !cJSON_IsObject(b))
+		return fail(c, STRAY_EINVAL, !cJSON_IsObject(d) ? "detector" :
+			    "beam", "is missing");
+	rc = vec(c, d, "center", &det->center);
+	if (!rc)
+		rc = vec(c, d, "normal", &det->normal);
+	det->normal = v3_norm(det->normal);
+	if (!rc)
+		rc = number(c, d, "accept_half_angle_deg",
+			    &det->accept_half_angle_deg, 0);
+	if (!rc && cJSON_IsString(shape) &&
+	    strcmp(shape->valuestring, "rect") == 0) {
+		det->shape = TRACER_DET_RECT;
+		rc = number(c, d, "width_mm", &det->half_w_mm, 1);
+		if (!rc)
+			rc = number(c, d, "height_mm", &det->half_h_mm, 1);
+		det->half_w_mm *= 0.5;
+		det->half_h_mm *= 0.5;
+	} else if (!rc) {
+		det->shape = TRACER_DET_DISK;
+		rc = number(c, d, "radius_mm", &det->radius_mm, 1);
+	}
+	if (!rc)
+		rc = vec(c, b, "center", &s->beam.center);
+	s->beam.normal = v3(0.0, 0.0, 1.0);
+	if (!rc && cJSON_GetObjectItemCaseSensitive(b, "normal"))
+		rc = vec(c, b, "normal", &s->beam.normal);
+	s->beam.normal = v3_norm(s->beam.normal);
+	if (!rc)
+		rc = number(c, b, "radius_mm", &s->beam.radius_mm, 1);
+	if (!rc && !(s->beam.radius_mm > 0.0))
+		rc = fail(c, STRAY_EINVAL, "radius_mm", "beam must be wider than 0");
+	if (!rc && tracer_detector_check(det, c->err))
+		rc = fail(c, c->err ? c->err->code : STRAY_EINVAL, "detector",
+			  "is invalid");
+	return rc;
+}
+
+/* 1-based line of a byte offset in text. */
+static long line_of(const char *text, const char *at)
+{
+	long line = 1;
+
+	for (; text < at && *text; text++)
+		line += *text == '\n';
+	return line;
+}
+
+int tracer_scene_file_load(const char *path, struct tracer_scene *s,
+			   struct stray_error *err)
+{
+	struct ctx c = { path, err };
+	cJSON *root;
+	char *text;
+	int rc;
+
+	text = read_text(&c, &rc);
+	if (!text)
+		return rc;
+	root = cJSON_Parse(text);
+	if (!root) {
+		const char *at = cJSON_GetErrorPtr();
+
+		rc = stray_error_at(err, STRAY_EPARSE, path,
+				    at ? line_of(text, at) : 0, "--scene",
+				    "malformed JSON");
+		free(text);
+		return rc;
+	}
+	rc = meshes(&c, root, &s->mesh);
+	if (!rc)
+		rc = assign(&c, root, s);
+	if (!rc)
+		rc = detector_and_beam(&c, root, s);
+	cJSON_Delete(root);
+	free(text);
+	return rc;
+}

@@ -1,0 +1,285 @@
+/*
+ * trace.c - a trace run: check the options, allocate the result, run the
+ * worker threads over the batches, merge per-batch tallies in batch order
+ * (bit-identical for any thread count), and the guided two-pass scheme.
+ */
+#include <math.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "tracer/guide.h"
+#include "tracer/integrator.h"
+#include "worker.h"
+
+void tracer_trace_defaults(struct tracer_trace_opts *o)
+{
+	memset(o, 0, sizeof(*o));
+	o->n_paths = 100000;
+	o->seed = 1;
+	o->threads = 1;
+	o->n_batches = 64;
+	o->rr_depth = 2;
+	o->rr_weight = 0.05;
+	o->max_depth = 64;
+	o->guide = 1;
+}
+
+static int check_opts(const struct tracer_scene *s,
+		      const struct tracer_trace_opts *o,
+		      struct stray_error *err)
+{
+	size_t j;
+
+	if (!s->rt)
+		return stray_error_set(err, STRAY_EINVAL, "scene",
+				       "not committed");
+	if (o->n_theta == 0)
+		return stray_error_set(err, STRAY_EINVAL, "angles",
+				       "list is empty");
+	for (j = 0; j < o->n_theta; j++)
+		if (!(o->theta_deg[j] >= 0.0 && o->theta_deg[j] <= 180.0))
+			return stray_error_set_value(err, STRAY_EINVAL,
+				"theta_deg", "must be in [0, 180]",
+				o->theta_deg[j]);
+	if (o->n_batches < 2 || o->n_paths < (uint64_t)o->n_batches)
+		return stray_error_set_value(err, STRAY_EINVAL, "rays",
+			"need at least one path per batch (and 2 batches)",
+			(double)o->n_paths);
+	if (o->threads < 1 || o->threads > 256)
+		return stray_error_set_value(err, STRAY_EINVAL, "threads",
+					     "must be 1 to 256", o->threads);
+	if (o->max_depth < 1 || o->max_depth > 1000 || o->rr_depth < 1 ||
+	    !(o->rr_weight > 0.0))
+		return stray_error_set(err, STRAY_EINVAL, "roulette",
+				       "depths must be >= 1, weight > 0");
+	if (o->map_n < 0 || o->map_n > 4096 ||
+	    (o->map_n && o->map_theta_index >= o->n_theta))
+		return stray_error_set_value(err, STRAY_EINVAL, "map",
+			"size must be 0 to 4096 at a traced angle", o->map_n);
+	if (o->dump_paths > 1000000 || o->dump_paths > o->n_paths)
+		return stray_error_set_value(err, STRAY_EINVAL, "dump",
+			"at most 1e6 paths, and no more than traced",
+			(double)o->dump_paths);
+	return tracer_detector_check(&s->det, err);
+}
+
+/* The optional per-path dump and the detector map with its extent. */
+static int alloc_extras(const struct tracer_scene *s,
+			const struct tracer_trace_opts *o,
+			struct tracer_result *r, double **batch_maps)
+{
+	size_t px = (size_t)o->map_n * (size_t)o->map_n;
+
+	r->n_dump = o->dump_paths;
+	if (r->n_dump) {
+		r->dump = calloc(r->n_dump * TRACER_DUMP_DEPTH,
+				 sizeof(*r->dump));
+		r->dump_len = calloc(r->n_dump, sizeof(int));
+		if (!r->dump || !r->dump_len)
+			return STRAY_ENOMEM;
+	}
+	if (!o->map_n)
+		return STRAY_OK;
+	r->map_n = o->map_n;
+	r->map_theta_deg = o->theta_deg[o->map_theta_index];
+	r->map_half_w_mm = s->det.shape == TRACER_DET_DISK ?
+			   s->det.radius_mm : s->det.half_w_mm;
+	r->map_half_h_mm = s->det.shape == TRACER_DET_DISK ?
+			   s->det.radius_mm : s->det.half_h_mm;
+	r->map = calloc(px, sizeof(double));
+	*batch_maps = calloc(px * (size_t)o->n_batches, sizeof(double));
+	return r->map && *batch_maps ? STRAY_OK : STRAY_ENOMEM;
+}
+
+/*
+ * Batch maps summed in batch order (bit-identical), then turned into
+ * irradiance over beam irradiance: sum / N * A_det / A_pixel.
+ */
+static void merge_maps(const struct tracer_scene *s, struct worker_ctx *w)
+{
+	struct tracer_result *r = w->res;
+	size_t px = (size_t)r->map_n * r->map_n, i;
+	double a_px = 4.0 * r->map_half_w_mm * r->map_half_h_mm / px;
+	int b;
+
+	if (!r->map)
+		return;
+	for (b = 0; b < r->n_batches; b++)
+		for (i = 0; i < px; i++)
+			r->map[i] += w->batch_maps[(size_t)b * px + i];
+	for (i = 0; i < px; i++)
+		r->map[i] *= tracer_detector_area(&s->det) /
+			     ((double)r->n_paths * a_px);
+}
+
+static int alloc_result(const struct tracer_trace_opts *o,
+			struct tracer_result *r)
+{
+	size_t nb = (size_t)o->n_batches;
+
+	memset(r, 0, sizeof(*r));
+	r->n_theta = o->n_theta;
+	r->n_batches = o->n_batches;
+	r->n_paths = o->n_paths;
+	r->batch_paths = calloc(nb, sizeof(uint64_t));
+	r->power = calloc(nb * o->n_theta * TRACER_ORDERS, sizeof(double));
+	r->energy = calloc(nb * TRACER_ENERGY_N, sizeof(double));
+	r->theta_deg = malloc(o->n_theta * sizeof(double));
+	if (r->theta_deg)
+		memcpy(r->theta_deg, o->theta_deg,
+		       o->n_theta * sizeof(double));
+	return r->batch_paths && r->power && r->energy && r->theta_deg ?
+	       STRAY_OK :
+	       STRAY_ENOMEM;
+}
+
+static double now_s(void)
+{
+	struct timespec ts;
+
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+static int run_workers(struct worker_ctx *w, int threads)
+{
+	pthread_t tid[256];
+	int i, started = 0;
+
+	for (i = 1; i < threads; i++) {
+		if (pthread_create(&tid[i], NULL, tracer_worker, w) != 0)
+			break;
+		started = i;
+	}
+	tracer_worker(w);	/* the calling thread works too */
+	for (i = 1; i <= started; i++)
+		pthread_join(tid[i], NULL);
+	return STRAY_OK;
+}
+
+/* Merge the batch path tables in batch order: bit-identical sums. */
+static int merge_tables(struct worker_ctx *w)
+{
+	int b, rc = STRAY_OK;
+
+	for (b = 0; b < w->res->n_batches; b++) {
+		if (!rc)
+			rc = tracer_paths_merge(&w->res->paths,
+						&w->batch_tables[b]);
+		tracer_paths_free(&w->batch_tables[b]);
+	}
+	return rc;
+}
+
+/* One pass of o->n_paths paths; with a guide, or filling pilot stats. */
+static int run_pass(const struct tracer_scene *s,
+		    const struct tracer_trace_opts *o, struct tracer_result *res,
+		    const struct tracer_guide *guide, double *pilot_s2,
+		    struct stray_error *err)
+{
+	struct worker_ctx w;
+	size_t j;
+	int rc;
+
+	memset(&w, 0, sizeof(w));
+	w.s = s;
+	w.o = o;
+	w.res = res;
+	w.guide = guide;
+	w.pilot_s2 = pilot_s2;
+	rc = alloc_result(o, res);
+	if (!rc)
+		rc = alloc_extras(s, o, res, &w.batch_maps);
+	w.dir = malloc(o->n_theta * sizeof(*w.dir));
+	w.batch_tables = calloc((size_t)o->n_batches, sizeof(*w.batch_tables));
+	if (rc || !w.dir || !w.batch_tables) {
+		rc = stray_error_set(err, STRAY_ENOMEM, "trace",
+				     "out of memory");
+		goto out_free;
+	}
+	for (j = 0; j < o->n_theta; j++)
+		w.dir[j] = tracer_source_dir(o->theta_deg[j]);
+	pthread_mutex_init(&w.lock, NULL);
+	run_workers(&w, o->threads);
+	pthread_mutex_destroy(&w.lock);
+	merge_maps(s, &w);
+	if (merge_tables(&w) || w.failed)
+		rc = stray_error_set(err, STRAY_ENOMEM, "paths",
+				     "out of memory recording paths");
+out_free:
+	free(w.dir);
+	free(w.batch_tables);
+	free(w.batch_maps);
+	if (rc)
+		tracer_result_free(res);
+	return rc;
+}
+
+/*
+ * The pilot: a tenth of the paths (own random streams, 8 batches) scores
+ * the guide's cells; its paths are not part of the estimate.
+ */
+static int build_guide(const struct tracer_scene *s,
+		       const struct tracer_trace_opts *o,
+		       struct tracer_guide *g, struct stray_error *err)
+{
+	struct tracer_trace_opts po = *o;
+	struct tracer_guide_stats st = { o->n_theta, NULL };
+	struct tracer_result pr;
+	double *s2, *p;
+	size_t per = TRACER_GUIDE_CELLS * o->n_theta, i, j;
+	int b, rc;
+
+	po.n_batches = 8;
+	po.n_paths = o->n_paths / 10 > 200000 ? 200000 : o->n_paths / 10;
+	po.seed = o->seed ^ 0x5DEECE66Dull;
+	po.record_paths = 0;
+	po.dump_paths = 0;
+	po.map_n = 0;
+	s2 = calloc(per * 8, sizeof(double));
+	st.s2 = calloc(per, sizeof(double));
+	p = malloc(o->n_theta * sizeof(double));
+	rc = s2 && st.s2 && p ? run_pass(s, &po, &pr, NULL, s2, err) :
+	     stray_error_set(err, STRAY_ENOMEM, "guide", "out of memory");
+	if (!rc) {
+		for (b = 0; b < 8; b++)	/* batch order: bit-identical */
+			for (i = 0; i < per; i++)
+				st.s2[i] += s2[(size_t)b * per + i];
+		for (j = 0; j < o->n_theta; j++) {
+			double sg;
+
+			tracer_result_power(&pr, j, -1, &p[j], &sg);
+		}
+		tracer_guide_build(g, &st, p);
+		tracer_result_free(&pr);
+	}
+	free(s2);
+	free(st.s2);
+	free(p);
+	return rc;
+}
+
+int tracer_trace(const struct tracer_scene *s,
+		 const struct tracer_trace_opts *o, struct tracer_result *res,
+		 struct stray_error *err)
+{
+	struct tracer_guide *g = NULL;
+	double t0 = now_s();
+	int rc = check_opts(s, o, err);
+
+	if (rc)
+		return rc;
+	if (o->guide && o->n_paths / 10 >= 1000) {
+		g = malloc(sizeof(*g));
+		rc = g ? build_guide(s, o, g, err) :
+		     stray_error_set(err, STRAY_ENOMEM, "guide", "out of memory");
+	}
+	if (!rc)
+		rc = run_pass(s, o, res, g, NULL, err);
+	if (!rc)
+		res->seconds = now_s() - t0;
+	free(g);
+	return rc;
+}

@@ -1,0 +1,33 @@
+/*
+ * worker.h - private to the tracer: the state the trace's worker threads
+ * share (integrator.c traces paths; trace.c runs the passes).
+ */
+#ifndef TRACER_WORKER_H
+#define TRACER_WORKER_H
+
+#include <pthread.h>
+
+#include "tracer/guide.h"
+#include "tracer/integrator.h"
+
+struct worker_ctx {
+	const struct tracer_scene *s;
+	const struct tracer_trace_opts *o;
+	struct tracer_result *res;
+	struct vec3 *dir;		/* source direction per angle */
+	struct tracer_path_table *batch_tables;
+	double *batch_maps;		/* [batch][pixel] */
+	const struct tracer_guide *guide;	/* main pass: sample by it */
+	double *pilot_s2;		/* pilot pass: [batch][cell][theta] */
+	pthread_mutex_t lock;
+	int next_batch, done_batches;
+	int failed;
+};
+
+/* Trace batches until none is left (a pthread start routine). */
+void *tracer_worker(void *arg);
+
+/* First path index of batch b. */
+uint64_t tracer_batch_start(const struct tracer_result *r, int b);
+
+#endif /* TRACER_WORKER_H */
