@@ -14,7 +14,7 @@ CC ?= cc
 CLANG ?= clang
 PYTHON ?= python3
 
-MODULES := libstray tools libstray/reduce tests tracer firmware_fdr
+MODULES := libstray tools libstray/reduce tests tracer rig firmware_fdr
 
 WARN := -Wall -Wextra -Werror
 OPT ?= -O2 -g

@@ -19,5 +19,6 @@ int cmd_orbit(int argc, char **argv);
 int cmd_firmware_table(int argc, char **argv);
 int cmd_reduce(int argc, char **argv);
 int cmd_trace(int argc, char **argv);
+int cmd_rig(int argc, char **argv);
 
 #endif /* STRAY_TOOLS_COMMANDS_H */

@@ -25,6 +25,7 @@ static const struct cmd commands[] = {
 	{ "orbit", cmd_orbit, "the flight module along a day of a sun-synchronous orbit" },
 	{ "trace", cmd_trace, "attenuation curve of a baffle by Monte Carlo ray tracing" },
 	{ "reduce", cmd_reduce, "lens attenuation curve, noise floor and ghosts from a lab sweep" },
+	{ "rig", cmd_rig, "control the lab sweep daemon strayrigd" },
 };
 
 #define N_COMMANDS (sizeof(commands) / sizeof(commands[0]))

@@ -1,0 +1,86 @@
+/*
+ * request.c - parse one control request (daemon.h) with cJSON into a
+ * struct rig_request: the command must be known, its arguments present,
+ * typed and finite.  Pure, so it is fuzzed on its own.
+ */
+#include <cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "rig/daemon.h"
+
+static const char *const cmd_names[RIG_CMD_COUNT] = {
+	"status", "home", "move", "sweep", "pause", "resume", "abort", "safe",
+	"shutdown",
+};
+
+const char *rig_cmd_name(int cmd)
+{
+	return cmd >= 0 && cmd < RIG_CMD_COUNT ? cmd_names[cmd] : "?";
+}
+
+static int bad(char *msg, size_t size, const char *why, const char *arg)
+{
+	char *p;
+
+	snprintf(msg, size, why, arg);
+	for (p = msg; *p; p++)	/* one line, whatever the client sent */
+		if ((unsigned char)*p < 0x20 || *p == 0x7f)
+			*p = '?';
+	return RIG_EPARSE;
+}
+
+static int parse_args(const cJSON *o, struct rig_request *req, char *msg,
+		      size_t size)
+{
+	const cJSON *t = cJSON_GetObjectItemCaseSensitive(o, "theta_deg");
+	const cJSON *dir = cJSON_GetObjectItemCaseSensitive(o, "dir");
+	const cJSON *res = cJSON_GetObjectItemCaseSensitive(o, "resume");
+
+	if (req->cmd == RIG_CMD_MOVE) {
+		if (!cJSON_IsNumber(t) || !isfinite(t->valuedouble))
+			return bad(msg, size, "move: %s",
+				   "theta_deg must be a number");
+		req->theta_deg = t->valuedouble;
+	}
+	if (req->cmd != RIG_CMD_SWEEP)
+		return RIG_OK;
+	if (!cJSON_IsString(dir) || !dir->valuestring[0] ||
+	    strlen(dir->valuestring) >= sizeof(req->dir))
+		return bad(msg, size, "sweep: %s",
+			   "dir must be a folder path");
+	if (res && !cJSON_IsBool(res))
+		return bad(msg, size, "sweep: %s",
+			   "resume must be true or false");
+	strcpy(req->dir, dir->valuestring);
+	req->resume = cJSON_IsTrue(res);
+	return RIG_OK;
+}
+
+int rig_request_parse(const char *text, struct rig_request *req, char *msg,
+		      size_t size)
+{
+	cJSON *o = cJSON_Parse(text);
+	const cJSON *cmd = cJSON_GetObjectItemCaseSensitive(o, "cmd");
+	int rc = RIG_OK;
+
+	memset(req, 0, sizeof(*req));
+	msg[0] = '\0';
+	if (!o || !cJSON_IsObject(o))
+		rc = bad(msg, size, "%s", "request is not a JSON object");
+	else if (!cJSON_IsString(cmd))
+		rc = bad(msg, size, "%s", "request has no string 'cmd'");
+	if (rc == RIG_OK) {
+		for (req->cmd = 0; req->cmd < RIG_CMD_COUNT; req->cmd++)
+			if (!strcmp(cmd_names[req->cmd], cmd->valuestring))
+				break;
+		if (req->cmd == RIG_CMD_COUNT)
+			rc = bad(msg, size, "unknown command '%.40s'",
+				 cmd->valuestring);
+	}
+	if (rc == RIG_OK)
+		rc = parse_args(o, req, msg, size);
+	cJSON_Delete(o);
+	return rc;
+}

@@ -1,0 +1,71 @@
+/*
+ * daemon.h - strayrigd's state and its control protocol.
+ *
+ * Requests and responses are one JSON object per line on a Unix socket
+ * (created 0600 unless configured; no network listener):
+ *   {"cmd":"status"} {"cmd":"home"} {"cmd":"move","theta_deg":12.5}
+ *   {"cmd":"sweep","dir":"/data/s1","resume":false}
+ *   {"cmd":"pause"} {"cmd":"resume"} {"cmd":"abort"} {"cmd":"safe"}
+ *   {"cmd":"shutdown"}
+ * Every response has "ok" (bool); a refusal or failure has "error", one
+ * line.  Commands that would break an interlock (a move during a sweep,
+ * an angle outside the limits) are refused.
+ */
+#ifndef RIG_DAEMON_H
+#define RIG_DAEMON_H
+
+#include <stddef.h>
+
+#include "rig/config.h"
+#include "rig/lab.h"
+#include "rig/sim.h"
+#include "rig/sweep.h"
+
+enum rig_run_state { RIG_IDLE, RIG_RUNNING, RIG_PAUSED, RIG_FAULTED };
+
+struct rig_daemon {
+	struct rig_config cfg;
+	struct rig_hal hal;
+	struct rig_sim sim;
+	int is_sim;
+	struct rig_lab lab;
+	struct rig_sweep sweep;
+	int sweep_open;
+	enum rig_run_state state;
+	char last_error[RIG_ERROR_MSG_MAX];
+	int quit;
+};
+
+/* Bring up the backend and the lab (made safe at once). */
+int rig_daemon_start(struct rig_daemon *d, struct rig_error *err);
+/* Lab safe, sweep closed, devices closed, backend down. */
+void rig_daemon_stop(struct rig_daemon *d);
+
+enum rig_cmd { RIG_CMD_STATUS, RIG_CMD_HOME, RIG_CMD_MOVE, RIG_CMD_SWEEP,
+	       RIG_CMD_PAUSE, RIG_CMD_RESUME, RIG_CMD_ABORT, RIG_CMD_SAFE,
+	       RIG_CMD_SHUTDOWN, RIG_CMD_COUNT };
+
+struct rig_request {
+	int cmd;		/* enum rig_cmd */
+	double theta_deg;	/* move */
+	char dir[RIG_PATH_MAX];	/* sweep */
+	int resume;		/* sweep */
+};
+
+/* Parse and check one request line (pure: no lab, no files).  On error
+ * returns RIG_EPARSE with a one-line reason in msg. */
+int rig_request_parse(const char *text, struct rig_request *req, char *msg,
+		      size_t size);
+const char *rig_cmd_name(int cmd);
+
+/* Handle one request line; returns a malloc'd JSON response line. */
+char *rig_control_handle(struct rig_daemon *d, const char *request);
+
+/* One unit of background work: a sweep step when running. */
+void rig_daemon_work(struct rig_daemon *d);
+
+/* Serve the socket until shutdown or *stop becomes nonzero. */
+int rig_daemon_serve(struct rig_daemon *d, volatile int *stop,
+		     struct rig_error *err);
+
+#endif /* RIG_DAEMON_H */

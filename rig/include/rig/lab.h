@@ -1,0 +1,59 @@
+/*
+ * lab.h - the lab as one object: stage, ND wheel, GPIO lines and camera
+ * opened on one HAL, with the interlocks and recovery the sweep and the
+ * daemon share.  Safe state: lamp off, beam blocked, shutter closed,
+ * stage stopped (rig_lab_safe, called on abort, fault, signal and exit).
+ */
+#ifndef RIG_LAB_H
+#define RIG_LAB_H
+
+#include "rig/config.h"
+#include "rig/devices.h"
+
+struct rig_lab {
+	const struct rig_config *cfg;
+	const struct rig_hal *hal;
+	struct rig_stage stage;
+	struct rig_wheel wheel;
+	struct rig_lines lines;
+	struct rig_camera camera;
+	struct rig_monitor monitor;
+	int open_mask;		/* bit per enum rig_sim_device */
+	double theta_deg;	/* last commanded and verified; NAN unknown */
+	unsigned recoveries;	/* faults survived by retry or reconnect */
+	unsigned crc_rereads;	/* of camera connections already closed */
+};
+
+int rig_lab_open(struct rig_lab *lab, const struct rig_config *cfg,
+		 const struct rig_hal *hal, struct rig_error *err);
+void rig_lab_close(struct rig_lab *lab);
+
+/* Lamp off, beam blocked, shutter closed, stage stopped; best effort on
+ * every device, returns the first failure. */
+int rig_lab_safe(struct rig_lab *lab, struct rig_error *err);
+
+/* Close and reopen one device (after a disconnect), re-homing a stage. */
+int rig_lab_reconnect(struct rig_lab *lab, int dev, struct rig_error *err);
+
+/* Home the stage, retrying and reconnecting on transient faults. */
+int rig_lab_home(struct rig_lab *lab, struct rig_error *err);
+
+/* Move to theta within limits, with retries and re-homing. */
+int rig_lab_move(struct rig_lab *lab, double theta_deg,
+		 struct rig_error *err);
+
+/* ND slot with retries and reconnects. */
+int rig_lab_wheel(struct rig_lab *lab, int slot, struct rig_error *err);
+
+/* Set lines for a frame type: 0 dark, 1 ambient, 2 full. */
+int rig_lab_illuminate(struct rig_lab *lab, int frame_type,
+		       struct rig_error *err);
+
+/* Exposure and capture with retries and reconnects. */
+int rig_lab_capture(struct rig_lab *lab, double t_exp_s,
+		    struct rig_image *img, struct rig_error *err);
+
+/* Lamp level from the monitor photodiode (1 = nominal), with retries. */
+int rig_lab_monitor(struct rig_lab *lab, double *level, struct rig_error *err);
+
+#endif /* RIG_LAB_H */

@@ -1,0 +1,258 @@
+/*
+ * lab.c - the lab's devices together (lab.h).  Transient faults
+ * (timeouts, disconnects, CRC, a missed target) are retried up to
+ * sweep.retries times, reconnecting the device in between; what still
+ * fails is returned with the device's own one-line message.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "rig/lab.h"
+
+static int open_dev(struct rig_lab *lab, int dev, struct rig_error *err)
+{
+	const struct rig_config *c = lab->cfg;
+	int rc;
+
+	switch (dev) {
+	case RIG_SIM_STAGE:
+		rc = rig_stage_open(&lab->stage, lab->hal, &c->stage, err);
+		break;
+	case RIG_SIM_WHEEL:
+		rc = rig_wheel_open(&lab->wheel, lab->hal, &c->wheel, err);
+		break;
+	case RIG_SIM_CAMERA:
+		rc = rig_camera_open(&lab->camera, lab->hal, &c->camera, err);
+		break;
+	case RIG_SIM_MONITOR:
+		rc = rig_monitor_open(&lab->monitor, lab->hal, &c->monitor,
+				      err);
+		break;
+	default:
+		rc = rig_lines_open(&lab->lines, lab->hal, c->lines, err);
+		break;
+	}
+	if (rc == RIG_OK)
+		lab->open_mask |= 1 << dev;
+	return rc;
+}
+
+static void close_dev(struct rig_lab *lab, int dev)
+{
+	if (!(lab->open_mask & (1 << dev)))
+		return;
+	lab->open_mask &= ~(1 << dev);
+	if (dev == RIG_SIM_STAGE)
+		rig_stage_close(&lab->stage);
+	else if (dev == RIG_SIM_WHEEL)
+		rig_wheel_close(&lab->wheel);
+	else if (dev == RIG_SIM_CAMERA) {
+		lab->crc_rereads += lab->camera.crc_rereads;
+		rig_camera_close(&lab->camera);
+	} else if (dev == RIG_SIM_MONITOR)
+		rig_monitor_close(&lab->monitor);
+	else
+		rig_lines_close(&lab->lines);
+}
+
+int rig_lab_open(struct rig_lab *lab, const struct rig_config *cfg,
+		 const struct rig_hal *hal, struct rig_error *err)
+{
+	int dev, rc = RIG_OK;
+
+	memset(lab, 0, sizeof(*lab));
+	lab->cfg = cfg;
+	lab->hal = hal;
+	lab->theta_deg = NAN;
+	/* Lines first, so the lab is made safe before anything moves. */
+	rc = open_dev(lab, RIG_SIM_GPIO, err);
+	if (rc == RIG_OK)
+		rc = rig_lines_safe(&lab->lines, err);
+	for (dev = 0; rc == RIG_OK && dev < RIG_SIM_GPIO; dev++)
+		if (dev != RIG_SIM_MONITOR || cfg->monitor.enabled)
+			rc = open_dev(lab, dev, err);
+	if (rc != RIG_OK)
+		rig_lab_close(lab);
+	return rc;
+}
+
+void rig_lab_close(struct rig_lab *lab)
+{
+	int dev;
+
+	for (dev = 0; dev < RIG_SIM_DEVICE_COUNT; dev++)
+		close_dev(lab, dev);
+}
+
+int rig_lab_safe(struct rig_lab *lab, struct rig_error *err)
+{
+	int rc = RIG_OK, r2;
+
+	if (lab->open_mask & (1 << RIG_SIM_GPIO))
+		rc = rig_lines_safe(&lab->lines, err);
+	else
+		rc = rig_error_set(err, RIG_EDISCONNECT,
+				   "gpio: lines not open; lab state unknown");
+	if (lab->open_mask & (1 << RIG_SIM_STAGE)) {
+		r2 = rig_stage_stop(&lab->stage, err);
+		if (rc == RIG_OK)
+			rc = r2;
+	}
+	return rc;
+}
+
+int rig_lab_reconnect(struct rig_lab *lab, int dev, struct rig_error *err)
+{
+	struct rig_error tmp;
+	int rc;
+
+	close_dev(lab, dev);
+	rig_hal_sleep(lab->hal, 1.0);	/* let the bus settle / replug */
+	rig_error_clear(&tmp);
+	rc = open_dev(lab, dev, &tmp);
+	if (rc == RIG_OK && dev == RIG_SIM_STAGE) {
+		lab->theta_deg = NAN;
+		rc = rig_stage_home(&lab->stage, &tmp);
+	}
+	if (rc != RIG_OK)
+		return rig_error_set(err, rc, "%s", tmp.msg);
+	return RIG_OK;
+}
+
+/* One device operation; arg carries its parameters. */
+typedef int (*lab_op)(struct rig_lab *lab, void *arg, struct rig_error *e);
+
+/* Run op until it succeeds, retrying transient faults (after closing the
+ * device, so the next try reconnects) up to sweep.retries times. */
+static int with_retries(struct rig_lab *lab, int dev, lab_op op, void *arg,
+			struct rig_error *err)
+{
+	struct rig_error e;
+	int n, rc = RIG_OK;
+
+	for (n = 0; n <= lab->cfg->sweep.retries; n++) {
+		rig_error_clear(&e);
+		rc = RIG_OK;
+		if (!(lab->open_mask & (1 << dev)))
+			rc = rig_lab_reconnect(lab, dev, &e);
+		if (rc == RIG_OK)
+			rc = op(lab, arg, &e);
+		if (rc == RIG_OK) {
+			lab->recoveries += n > 0;
+			return RIG_OK;
+		}
+		if (!rig_status_is_transient(rc))
+			break;
+		if (rc != RIG_ETARGET)	/* a miss re-homes instead */
+			close_dev(lab, dev);
+	}
+	return rig_error_set(err, rc, "%s", e.msg);
+}
+
+static int home_op(struct rig_lab *lab, void *arg, struct rig_error *e)
+{
+	(void)arg;
+	return rig_stage_home(&lab->stage, e);
+}
+
+int rig_lab_home(struct rig_lab *lab, struct rig_error *err)
+{
+	int rc = with_retries(lab, RIG_SIM_STAGE, home_op, NULL, err);
+
+	if (rc == RIG_OK)
+		lab->theta_deg = 0;
+	return rc;
+}
+
+static int move_op(struct rig_lab *lab, void *arg, struct rig_error *e)
+{
+	double theta_deg = *(const double *)arg;
+	int rc;
+
+	if (!lab->stage.homed) {
+		rc = rig_stage_home(&lab->stage, e);
+		if (rc != RIG_OK)
+			return rc;
+	}
+	rc = rig_stage_move(&lab->stage, theta_deg, e);
+	if (rc == RIG_ETARGET)
+		lab->stage.homed = 0;	/* re-home before the next try */
+	return rc;
+}
+
+int rig_lab_move(struct rig_lab *lab, double theta_deg, struct rig_error *err)
+{
+	const struct rig_stage_cfg *s = &lab->cfg->stage;
+	int rc;
+
+	if (!(theta_deg >= s->min_deg && theta_deg <= s->max_deg))
+		return rig_error_set(err, RIG_EINTERLOCK,
+			"stage: angle %g deg outside limits [%g, %g] deg",
+			theta_deg, s->min_deg, s->max_deg);
+	lab->theta_deg = NAN;
+	rc = with_retries(lab, RIG_SIM_STAGE, move_op, &theta_deg, err);
+	if (rc == RIG_OK)
+		lab->theta_deg = theta_deg;
+	return rc;
+}
+
+static int wheel_op(struct rig_lab *lab, void *arg, struct rig_error *e)
+{
+	return rig_wheel_goto(&lab->wheel, *(const int *)arg, e);
+}
+
+int rig_lab_wheel(struct rig_lab *lab, int slot, struct rig_error *err)
+{
+	if (lab->wheel.slot == slot && (lab->open_mask & 1 << RIG_SIM_WHEEL))
+		return RIG_OK;
+	return with_retries(lab, RIG_SIM_WHEEL, wheel_op, &slot, err);
+}
+
+int rig_lab_illuminate(struct rig_lab *lab, int frame_type,
+		       struct rig_error *err)
+{
+	struct rig_lines *l = &lab->lines;
+	int rc;
+
+	/* Table 3.1: dark = no light (shutter shut); ambient = beam blocked
+	 * from the aperture; full = beam on the aperture.  The lamp stays on
+	 * through a sweep so its drift is not restarted. */
+	rc = rig_lines_set(l, RIG_LINE_LAMP, 1, err);
+	if (rc == RIG_OK)
+		rc = rig_lines_set(l, RIG_LINE_BEAM_BLOCK, frame_type != 2,
+				   err);
+	if (rc == RIG_OK)
+		rc = rig_lines_set(l, RIG_LINE_SHUTTER, frame_type != 0, err);
+	return rc;
+}
+
+struct capture_arg {
+	double t_exp_s;
+	struct rig_image *img;
+};
+
+static int capture_op(struct rig_lab *lab, void *arg, struct rig_error *e)
+{
+	struct capture_arg *a = arg;
+	int rc = rig_camera_set_exposure(&lab->camera, a->t_exp_s, e);
+
+	return rc == RIG_OK ? rig_camera_capture(&lab->camera, a->img, e) : rc;
+}
+
+int rig_lab_capture(struct rig_lab *lab, double t_exp_s,
+		    struct rig_image *img, struct rig_error *err)
+{
+	struct capture_arg a = { t_exp_s, img };
+
+	return with_retries(lab, RIG_SIM_CAMERA, capture_op, &a, err);
+}
+
+static int monitor_op(struct rig_lab *lab, void *arg, struct rig_error *e)
+{
+	return rig_monitor_read(&lab->monitor, arg, e);
+}
+
+int rig_lab_monitor(struct rig_lab *lab, double *level, struct rig_error *err)
+{
+	return with_retries(lab, RIG_SIM_MONITOR, monitor_op, level, err);
+}

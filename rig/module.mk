@@ -1,0 +1,87 @@
+# rig: strayrigd, the lab sweep daemon; device drivers above the HAL seam,
+# real backends (libusb, hidapi, libgpiod) and simulators below it.
+
+RIG_SRC := $(filter-out rig/daemon/strayrigd.c,\
+	$(wildcard rig/*.c rig/hal/*.c rig/backend/*.c rig/proto/*.c \
+		rig/drv/*.c rig/sim/*.c rig/sweep/*.c rig/daemon/*.c))
+RIG_OBJ := $(RIG_SRC:%.c=$(B)/obj/%.o)
+RIG_LIB := $(B)/lib/librig.a
+RIG_BIN := $(B)/bin/strayrigd
+RIG_CFLAGS := -Irig/include -I/usr/include/libusb-1.0 -I/usr/include/hidapi \
+	-I/usr/include/cjson
+RIG_LDLIBS := -lcfitsio -lusb-1.0 -lhidapi-libusb -lgpiod -lcrypto -lz \
+	-lcjson -lcsv -lm
+
+$(RIG_OBJ) $(B)/obj/rig/daemon/strayrigd.o: EXTRA_CFLAGS += $(RIG_CFLAGS)
+
+$(RIG_LIB): $(RIG_OBJ)
+	@mkdir -p $(dir $@)
+	rm -f $@ && ar rcs $@ $^
+
+$(RIG_BIN): $(B)/obj/rig/daemon/strayrigd.o $(RIG_LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_BASE) -o $@ $< $(RIG_LIB) $(RIG_LDLIBS)
+
+all: $(RIG_BIN)
+
+# Tests: one cmocka binary per source file.  Driver tests wrap the HAL
+# (-Wl,--wrap=rig_hal_*), the end-to-end ones run against the simulators.
+RIG_TESTS := $(patsubst tests/rig/%.c,$(B)/tests/rig/%,\
+	$(wildcard tests/rig/test_*.c))
+TESTS += $(RIG_TESTS)
+RIG_WRAP := -Wl,--wrap=rig_hal_usb_open,--wrap=rig_hal_usb_control \
+	-Wl,--wrap=rig_hal_usb_write,--wrap=rig_hal_usb_read \
+	-Wl,--wrap=rig_hal_usb_close,--wrap=rig_hal_now,--wrap=rig_hal_sleep
+
+$(B)/obj/tests/rig/%.o: EXTRA_CFLAGS += $(RIG_CFLAGS) -Itests/rig
+
+$(B)/tests/rig/test_stage_wrap: LDWRAP := $(RIG_WRAP)
+$(B)/tests/rig/test_hal_fail_wrap: LDWRAP := \
+	-Wl,--wrap=rig_hal_usb_open,--wrap=rig_hal_usb_control \
+	-Wl,--wrap=rig_hal_usb_write,--wrap=rig_hal_usb_read \
+	-Wl,--wrap=rig_hal_hid_open,--wrap=rig_hal_hid_write \
+	-Wl,--wrap=rig_hal_hid_read,--wrap=rig_hal_gpio_open \
+	-Wl,--wrap=rig_hal_gpio_set,--wrap=rig_hal_gpio_get
+$(B)/tests/rig/test_daemon: $(STRAY_BIN)
+# The end-to-end test runs `stray reduce` and reads its CSV with libstray.
+$(B)/tests/rig/test_e2e_reduce: $(STRAY_BIN) $(STRAY_LIB)
+$(B)/tests/rig/test_e2e_reduce: LDEXTRA := $(STRAY_LIB) $(STRAY_LDLIBS)
+$(B)/tests/rig/%: $(B)/obj/tests/rig/%.o $(RIG_LIB) $(RIG_BIN)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_BASE) $(LDWRAP) -o $@ $< $(RIG_LIB) $(LDEXTRA) \
+		$(CMOCKA_LIBS) $(RIG_LDLIBS)
+
+install-rig: $(RIG_BIN)
+	install -d $(DESTDIR)$(PREFIX)/bin
+	install -m 755 $(RIG_BIN) $(DESTDIR)$(PREFIX)/bin/
+install: install-rig
+
+# Fuzz targets of the rig's parsers (tests/module.mk runs them: `make
+# fuzz`, and `make fuzz-smoke` in `make test`); each links only the
+# sources it exercises.
+RIG_FUZZ_CFLAGS = -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined \
+	$(CPPFLAGS_HOST) $(RIG_CFLAGS)
+
+build/fuzz/fuzz_apt: tests/fuzz/fuzz_apt.c rig/proto/apt.c rig/status.c
+	@mkdir -p $(dir $@)
+	$(CLANG) $(RIG_FUZZ_CFLAGS) -o $@ $^
+
+build/fuzz/fuzz_framelink: tests/fuzz/fuzz_framelink.c rig/proto/framelink.c \
+		rig/status.c
+	@mkdir -p $(dir $@)
+	$(CLANG) $(RIG_FUZZ_CFLAGS) -o $@ $^ -lz
+
+build/fuzz/fuzz_wheel_report: tests/fuzz/fuzz_wheel_report.c \
+		rig/proto/wheel_report.c rig/proto/monitor_report.c rig/status.c
+	@mkdir -p $(dir $@)
+	$(CLANG) $(RIG_FUZZ_CFLAGS) -o $@ $^
+
+build/fuzz/fuzz_rig_control: tests/fuzz/fuzz_rig_control.c \
+		rig/daemon/request.c rig/status.c
+	@mkdir -p $(dir $@)
+	$(CLANG) $(RIG_FUZZ_CFLAGS) -o $@ $^ -lcjson -lm
+
+build/fuzz/fuzz_rig_config: tests/fuzz/fuzz_rig_config.c rig/config.c \
+		rig/config_defaults.c rig/sim/vlab.c rig/status.c
+	@mkdir -p $(dir $@)
+	$(CLANG) $(RIG_FUZZ_CFLAGS) -o $@ $^ -lcjson -lm

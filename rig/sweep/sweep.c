@@ -1,0 +1,297 @@
+/*
+ * sweep.c - the sweep engine (sweep.h).  Order per angle: FULL frames,
+ * AMBIENT frames, then DARK frames at each exposure those used (eq. 3.4-
+ * 3.5: the dark must match the exposure time), `repeats` each.  What to
+ * take next is always derived from manifest.csv, never from memory, so a
+ * resumed sweep cannot skip, repeat or mislabel a frame.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rig/sweep.h"
+
+#define MAX_ANGLES 100000
+
+int rig_sweep_angles(const struct rig_sweep_cfg *cfg, double **angles,
+		     int *n, struct rig_error *err)
+{
+	double span = cfg->theta_stop_deg - cfg->theta_start_deg;
+	long k, count = (long)floor(span / cfg->theta_step_deg + 1e-9) + 1;
+
+	if (!(cfg->theta_step_deg > 0) || span < 0 || count > MAX_ANGLES)
+		return rig_error_set(err, RIG_EINVAL,
+			"sweep: angles %g..%g step %g give no valid list",
+			cfg->theta_start_deg, cfg->theta_stop_deg,
+			cfg->theta_step_deg);
+	*angles = malloc((size_t)count * sizeof(**angles));
+	if (!*angles)
+		return rig_error_set(err, RIG_ENOMEM, "sweep: no memory");
+	for (k = 0; k < count; k++)
+		(*angles)[k] = cfg->theta_start_deg + k * cfg->theta_step_deg;
+	*n = (int)count;
+	return RIG_OK;
+}
+
+static int slot_of(const struct rig_wheel_cfg *w, double nd);
+
+/* A resumed sweep starts each exposure search where the last angle's
+ * ended, as an uninterrupted one would. */
+static void seed_settings(struct rig_sweep *sw)
+{
+	size_t i;
+
+	for (i = 0; i < sw->mf.n; i++) {
+		const struct rig_frame_meta *m = &sw->mf.rows[i].meta;
+
+		if (m->type == RIG_DARK)
+			continue;
+		sw->t_exp_s[m->type] = m->exptime_s;
+		sw->slot[m->type] = slot_of(&sw->lab->cfg->wheel, m->ndtrans);
+	}
+}
+
+int rig_sweep_open(struct rig_sweep *sw, struct rig_lab *lab,
+		   const char *dir, int resume, struct rig_error *err)
+{
+	const struct rig_camera_cfg *cam = &lab->cfg->camera;
+	int rc;
+
+	memset(sw, 0, sizeof(*sw));
+	sw->lab = lab;
+	sw->cfg = &lab->cfg->sweep;
+	rc = rig_sweep_angles(sw->cfg, &sw->angles, &sw->n_angles, err);
+	if (rc != RIG_OK)
+		return rc;
+	sw->img.px = malloc((size_t)cam->n_rows * cam->n_cols *
+			    sizeof(*sw->img.px));
+	if (!sw->img.px) {
+		rig_sweep_close(sw);
+		return rig_error_set(err, RIG_ENOMEM, "sweep: no memory");
+	}
+	rc = rig_manifest_open(&sw->mf, dir, resume, err);
+	if (rc != RIG_OK) {
+		rig_sweep_close(sw);
+		return rc;
+	}
+	seed_settings(sw);
+	sw->done_at_open = (long)sw->mf.n;
+	sw->t_open_s = rig_hal_now(lab->hal);
+	return RIG_OK;
+}
+
+static int slot_of(const struct rig_wheel_cfg *w, double nd)
+{
+	int k, best = 0;
+
+	for (k = 1; k < w->n_slots; k++)
+		if (fabs(log(w->trans[k] / nd)) <
+		    fabs(log(w->trans[best] / nd)))
+			best = k;
+	return best;
+}
+
+/* Exposure and slot for a lit frame type at the current angle: from the
+ * manifest if the group has begun, else by search. */
+static int lit_setting(struct rig_sweep *sw, int type, double theta,
+		       struct rig_error *err)
+{
+	const struct rig_manifest_row *first;
+	int rc;
+
+	if (sw->have[type])
+		return RIG_OK;
+	if (rig_manifest_count(&sw->mf, theta, type, &first) > 0) {
+		sw->t_exp_s[type] = first->meta.exptime_s;
+		sw->slot[type] = slot_of(&sw->lab->cfg->wheel,
+					 first->meta.ndtrans);
+	} else {
+		if (!(sw->t_exp_s[type] > 0))
+			sw->t_exp_s[type] = sw->cfg->t_init_s;
+		rc = rig_expo_search(sw->lab, &sw->img, &sw->t_exp_s[type],
+				     &sw->slot[type], err);
+		if (rc != RIG_OK)
+			return rc;
+	}
+	sw->have[type] = 1;
+	return RIG_OK;
+}
+
+static int take(struct rig_sweep *sw, int type, int seq, double t_exp_s,
+		struct rig_error *err)
+{
+	struct rig_lab *lab = sw->lab;
+	struct rig_manifest_row row;
+	int slot = lab->wheel.slot, rc;
+
+	rc = rig_lab_illuminate(lab, type, err);
+	if (rc == RIG_OK && type != RIG_DARK)
+		rc = rig_lab_wheel(lab, slot = sw->slot[type], err);
+	if (rc == RIG_OK)
+		rc = rig_lab_capture(lab, t_exp_s, &sw->img, err);
+	memset(&row, 0, sizeof(row));
+	row.meta.has_monitor = lab->cfg->monitor.enabled;
+	if (rc == RIG_OK && row.meta.has_monitor)
+		rc = rig_lab_monitor(lab, &row.meta.monitor, err);
+	if (rc != RIG_OK)
+		return rc;
+	row.meta.type = type;
+	row.meta.angle_deg = sw->angles[sw->i_angle];
+	row.meta.exptime_s = sw->img.t_exp_s;
+	row.meta.ndtrans = lab->cfg->wheel.trans[slot < 0 ? 0 : slot];
+	row.meta.seqnum = seq;
+	row.meta.sat_dn = lab->cfg->camera.sat_dn;
+	row.meta.full_frame = sw->img.n_rows == RIG_FL_SENSOR_ROWS;
+	rig_frame_filename(&row.meta, row.file, sizeof(row.file));
+	rc = rig_fits_write(sw->mf.dir, row.file, &sw->img, &row.meta,
+			    row.sha256, err);
+	if (rc == RIG_OK)
+		rc = rig_manifest_append(&sw->mf, &row, err);
+	if (rc == RIG_OK)
+		sw->taken++;
+	return rc;
+}
+
+/* Exposures the darks at this angle must match: FULL's, then AMBIENT's
+ * when it differs. */
+static int dark_exposures(const struct rig_sweep *sw, double theta,
+			  double t[2])
+{
+	const struct rig_manifest_row *f, *a;
+
+	rig_manifest_count(&sw->mf, theta, RIG_FULL, &f);
+	rig_manifest_count(&sw->mf, theta, RIG_AMBIENT, &a);
+	t[0] = f->meta.exptime_s;
+	t[1] = a->meta.exptime_s;
+	return fabs(t[0] - t[1]) < 1e-9 ? 1 : 2;
+}
+
+static void next_angle(struct rig_sweep *sw)
+{
+	sw->i_angle++;
+	sw->at_angle = 0;
+	memset(sw->have, 0, sizeof(sw->have));
+}
+
+/* The frame to take next at the current angle; 0 when all are taken. */
+static int plan(struct rig_sweep *sw, int *type, int *seq, double *t)
+{
+	static const int lit[2] = { RIG_FULL, RIG_AMBIENT };
+	double theta = sw->angles[sw->i_angle], td[2];
+	int reps = sw->cfg->repeats, k, n, nd;
+
+	for (k = 0; k < 2; k++) {
+		n = rig_manifest_count(&sw->mf, theta, lit[k], NULL);
+		if (n < reps) {
+			*type = lit[k];
+			*seq = n;
+			*t = -1;	/* from lit_setting */
+			return 1;
+		}
+	}
+	nd = dark_exposures(sw, theta, td);
+	n = rig_manifest_count(&sw->mf, theta, RIG_DARK, NULL);
+	if (n >= reps * nd)
+		return 0;
+	*type = RIG_DARK;
+	*seq = n;
+	*t = td[n / reps];
+	return 1;
+}
+
+static int step_once(struct rig_sweep *sw, struct rig_error *err)
+{
+	int type, seq, rc;
+	double t;
+
+	while (sw->i_angle < sw->n_angles && !plan(sw, &type, &seq, &t))
+		next_angle(sw);
+	if (sw->i_angle >= sw->n_angles) {
+		sw->finished = 1;
+		return rig_lab_safe(sw->lab, err);
+	}
+	if (!sw->at_angle) {
+		rc = rig_lab_move(sw->lab, sw->angles[sw->i_angle], err);
+		if (rc != RIG_OK)
+			return rc;
+		sw->at_angle = 1;
+	}
+	if (type != RIG_DARK) {
+		rc = rig_lab_illuminate(sw->lab, type, err);
+		if (rc == RIG_OK)
+			rc = lit_setting(sw, type, sw->angles[sw->i_angle],
+					 err);
+		if (rc != RIG_OK)
+			return rc;
+		t = sw->t_exp_s[type];
+	}
+	return take(sw, type, seq, t, err);
+}
+
+int rig_sweep_step(struct rig_sweep *sw, struct rig_error *err)
+{
+	int rc;
+
+	if (sw->finished)
+		return RIG_OK;
+	rc = step_once(sw, err);
+	if (rc != RIG_OK) {
+		struct rig_error ignore;
+
+		rig_error_clear(&ignore);
+		rig_lab_safe(sw->lab, &ignore);
+	}
+	return rc;
+}
+
+void rig_sweep_progress(const struct rig_sweep *sw, struct rig_progress *p)
+{
+	int reps = sw->cfg->repeats, k;
+	double rate;
+
+	memset(p, 0, sizeof(*p));
+	p->done = (long)sw->mf.n;
+	/* Angles not yet finished count 4 groups (two dark exposures)
+	 * until their exposures are known. */
+	for (k = 0; k < sw->n_angles; k++) {
+		double theta = sw->angles[k];
+		int nf = rig_manifest_count(&sw->mf, theta, RIG_FULL, NULL);
+		int na = rig_manifest_count(&sw->mf, theta, RIG_AMBIENT, NULL);
+		double td[2];
+
+		p->total += reps * 2 + (nf >= reps && na >= reps
+			? reps * dark_exposures(sw, theta, td) : reps * 2);
+	}
+	p->elapsed_s = rig_hal_now(sw->lab->hal) - sw->t_open_s;
+	rate = sw->taken > 0 ? p->elapsed_s / sw->taken : 0;
+	p->eta_s = rate * (double)(p->total - p->done);
+	p->theta_deg = sw->i_angle < sw->n_angles ? sw->angles[sw->i_angle]
+						  : NAN;
+	p->finished = sw->finished;
+}
+
+int rig_sweep_run(struct rig_sweep *sw, FILE *out, struct rig_error *err)
+{
+	struct rig_progress p;
+	int rc = RIG_OK;
+
+	while (!sw->finished && rc == RIG_OK) {
+		rc = rig_sweep_step(sw, err);
+		if (out && rc == RIG_OK) {
+			rig_sweep_progress(sw, &p);
+			fprintf(out, "sweep: %ld/%ld frames, theta %.3f deg, "
+				"elapsed %.1f s, eta %.1f s\n", p.done, p.total,
+				p.theta_deg, p.elapsed_s, p.eta_s);
+		}
+	}
+	return rc;
+}
+
+void rig_sweep_close(struct rig_sweep *sw)
+{
+	rig_manifest_close(&sw->mf);
+	free(sw->angles);
+	free(sw->img.px);
+	sw->angles = NULL;
+	sw->img.px = NULL;
+}

@@ -1,0 +1,189 @@
+/*
+ * cmd_rig.c - `stray rig`: talk to strayrigd over its Unix socket.
+ * One JSON request per connection, one JSON response line back (the
+ * protocol of rig/include/rig/daemon.h); --json prints that response.
+ */
+#define _DEFAULT_SOURCE	/* struct sockaddr_un */
+#include <errno.h>
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "commands.h"
+
+#define DEFAULT_SOCKET "/tmp/strayrigd.sock"
+#define RESPONSE_MAX 65536
+
+static const char usage[] =
+	"usage: stray rig [--socket PATH] [--json] <action> [<args>]\n"
+	"\n"
+	"Control the lab sweep daemon strayrigd.  Actions:\n"
+	"  status               state, angle, lines, sweep progress and ETA\n"
+	"  home                 home the rotation stage\n"
+	"  move THETA_DEG       move the stage (refused outside the limits)\n"
+	"  sweep DIR [--resume] start (or resume) a sweep into DIR\n"
+	"  pause | resume       hold a sweep (lab made safe) and go on\n"
+	"  abort | safe         stop; lamp off, beam blocked, shutter closed\n"
+	"  shutdown             make safe and stop the daemon\n"
+	"\n"
+	"  --socket PATH        control socket (default $STRAYRIGD_SOCKET or\n"
+	"                       " DEFAULT_SOCKET ")\n"
+	"  --json               print the daemon's JSON response\n";
+
+static const char *const plain[] = { "status", "home", "pause", "resume",
+				     "abort", "safe", "shutdown", NULL };
+
+/* Build the request for argv[0..n); NULL after a usage message. */
+static cJSON *build_request(int n, char **args, int resume, int *rc)
+{
+	cJSON *req = cJSON_CreateObject();
+	const char *const *p;
+	double theta;
+
+	*rc = CLI_USAGE;
+	cJSON_AddStringToObject(req, "cmd", args[0]);
+	for (p = plain; *p; p++)
+		if (!strcmp(*p, args[0]) && n == 1 && !resume)
+			return req;
+	if (!strcmp(args[0], "move") && n == 2) {
+		char *end;
+
+		theta = strtod(args[1], &end);
+		if (end != args[1] && !*end && isfinite(theta)) {
+			cJSON_AddNumberToObject(req, "theta_deg", theta);
+			return req;
+		}
+		cJSON_Delete(req);
+		cli_usage_error("rig", "move: angle '%s' is not a finite number",
+				args[1]);
+		return NULL;
+	}
+	if (!strcmp(args[0], "sweep") && n == 2) {
+		cJSON_AddStringToObject(req, "dir", args[1]);
+		cJSON_AddBoolToObject(req, "resume", resume);
+		return req;
+	}
+	cJSON_Delete(req);
+	cli_usage_error("rig", "bad action or arguments '%s'", args[0]);
+	return NULL;
+}
+
+/* Send text, read the response line into buf. */
+static int exchange(const char *sock, const char *text, char *buf,
+		    size_t size)
+{
+	struct sockaddr_un a;
+	size_t n = 0;
+	ssize_t k;
+	int fd;
+
+	memset(&a, 0, sizeof(a));
+	a.sun_family = AF_UNIX;
+	if (strlen(sock) >= sizeof(a.sun_path))
+		return -1;
+	strcpy(a.sun_path, sock);
+	fd = socket(AF_UNIX, SOCK_STREAM, 0);
+	if (fd < 0 || connect(fd, (struct sockaddr *)&a, sizeof(a)) != 0 ||
+	    write(fd, text, strlen(text)) != (ssize_t)strlen(text) ||
+	    write(fd, "\n", 1) != 1) {
+		if (fd >= 0)
+			close(fd);
+		return -1;
+	}
+	while (n < size - 1 && (k = read(fd, buf + n, size - 1 - n)) > 0)
+		n += (size_t)k;
+	buf[n] = '\0';
+	close(fd);
+	return n > 0 ? 0 : -1;
+}
+
+static void print_human(const cJSON *resp)
+{
+	const cJSON *it;
+
+	cJSON_ArrayForEach(it, resp) {
+		char *v;
+
+		if (!strcmp(it->string, "ok"))
+			continue;
+		v = cJSON_IsString(it) ? NULL : cJSON_PrintUnformatted(it);
+		printf("%s: %s\n", it->string, v ? v : it->valuestring);
+		free(v);
+	}
+	if (!resp->child || !resp->child->next)
+		printf("ok\n");
+}
+
+static int talk(const char *sock, cJSON *req)
+{
+	char *text = cJSON_PrintUnformatted(req), *buf = malloc(RESPONSE_MAX);
+	cJSON *resp = NULL;
+	int rc = CLI_FAIL;
+
+	if (!text || !buf || exchange(sock, text, buf, RESPONSE_MAX) != 0) {
+		fprintf(stderr, "stray rig: cannot talk to strayrigd at '%s': "
+			"%s\n", sock, strerror(errno));
+		goto out;
+	}
+	resp = cJSON_Parse(buf);
+	if (!resp) {
+		fprintf(stderr, "stray rig: '%s': response is not JSON\n",
+			sock);
+		goto out;
+	}
+	if (cli.json) {
+		printf("%s\n", buf);
+	} else if (cJSON_IsTrue(cJSON_GetObjectItem(resp, "ok"))) {
+		print_human(resp);
+	}
+	if (cJSON_IsTrue(cJSON_GetObjectItem(resp, "ok")))
+		rc = CLI_OK;
+	else
+		fprintf(stderr, "stray rig: %s\n", cJSON_GetStringValue(
+			cJSON_GetObjectItem(resp, "error")));
+out:
+	cJSON_Delete(resp);
+	free(text);
+	free(buf);
+	return rc;
+}
+
+int cmd_rig(int argc, char **argv)
+{
+	static const struct option opts[] = {
+		{ "socket", required_argument, NULL, 's' },
+		{ "resume", no_argument, NULL, 'r' },
+		{ "json", no_argument, &cli.json, 1 },
+		{ "help", no_argument, NULL, 'h' },
+		{ NULL, 0, NULL, 0 }
+	};
+	const char *sock = getenv("STRAYRIGD_SOCKET");
+	int opt, resume = 0, rc;
+	cJSON *req;
+
+	while ((opt = getopt_long(argc, argv, "hs:", opts, NULL)) != -1) {
+		switch (opt) {
+		case 0: break;
+		case 'h': fputs(usage, stdout); return CLI_OK;
+		case 's': sock = optarg; break;
+		case 'r': resume = 1; break;
+		default:
+			return cli_usage_error("rig", "unknown option '%s'",
+					       argv[optind - 1]);
+		}
+	}
+	if (optind >= argc)
+		return cli_usage_error("rig", "no action given");
+	req = build_request(argc - optind, argv + optind, resume, &rc);
+	if (!req)
+		return rc;
+	rc = talk(sock ? sock : DEFAULT_SOCKET, req);
+	cJSON_Delete(req);
+	return rc;
+}
