@@ -28,7 +28,7 @@ CFLAGS_BASE := -std=c99 $(WARN) $(OPT) $(SANFLAGS) -MMD -MP
 CPPFLAGS_HOST := -D_POSIX_C_SOURCE=200809L -Ilibstray/include
 LDLIBS_BASE := -lm
 
-.PHONY: all test check demo bench deps install fuzz clean
+.PHONY: all test check demo demo-check bench deps install fuzz clean
 # Keep intermediate objects (incremental builds, no "rm" noise).
 .SECONDARY:
 all:
@@ -48,12 +48,22 @@ deps:
 	@scripts/install-deps.sh
 
 # The README's test command.  Installs what is missing, replays each
-# parser's fuzz target for a fixed number of runs, runs every test binary,
-# then repeats the suite under AddressSanitizer and UBSan.
+# parser's fuzz target for a fixed number of runs, runs the demo small and
+# checks its report, runs every test binary, then repeats the suite under
+# AddressSanitizer and UBSan.
 test: deps
 	@$(MAKE) --no-print-directory fuzz-smoke
+	@$(MAKE) --no-print-directory demo-check
 	@$(MAKE) --no-print-directory check
 	@$(MAKE) --no-print-directory check B=build/asan SAN=1
+
+# The README's first command, run small and read as a reader would: the
+# report opened in headless Chromium, every figure loaded, no section empty.
+demo-check: all
+	@echo "== make demo (small), then its report in headless Chromium"
+	@DEMO_RAYS=300000 scripts/demo.sh $(B) $(B)/demo-check \
+		> $(B)/demo-check.log 2>&1 || { tail -n 30 $(B)/demo-check.log; exit 1; }
+	@scripts/check-report.sh $(B)/demo-check $(DEMO_CHECK_FLAGS)
 
 # TESTS_SLOW: tests too slow under the sanitizers, run in the normal pass only.
 check: all $(TESTS) $(if $(filter 1,$(SAN)),,$(TESTS_SLOW))

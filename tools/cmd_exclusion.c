@@ -120,12 +120,15 @@ static void print_text(const struct fdr_setup *s, const struct excl_args *a,
 			continue;
 		}
 		printf("exclusion %6.2f deg", b[i].angle_deg);
+		if (i == 1 && b[i].angle_deg != b[i].ex.theta_deg) {
+			printf("  (field-of-view edge: the Moon saturates in the field; its FDR alone gives %.2f deg)\n",
+			       b[i].ex.theta_deg);
+			continue;
+		}
 		if (b[i].ex.has_interval && b[i].excluded)
 			printf("  [%.2f, %s%.2f] at %g sigma", b[i].ex.theta_lo_deg,
 			       b[i].ex.hi_reached ? "" : ">",
 			       b[i].ex.theta_hi_deg, a->k_sigma);
-		if (i == 1 && b[i].angle_deg == s->sensor.fov_half_deg)
-			printf("  (field-of-view edge: the Moon saturates in the field)");
 		if (i == 2)
 			printf("  (from the limb)");
 		putchar('\n');

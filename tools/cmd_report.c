@@ -18,40 +18,41 @@
 #include "stray/errfmt.h"
 #include "stray/file.h"
 
-#define FIGS_MAX 3
+#define FIGS_MAX 4
 #define ROWS_MAX 12
 
 struct section {
 	const char *id, *title, *what;
 	const char *json;		/* artifact, or NULL */
+	const char *txt;		/* a text artifact shown as it is */
 	const char *fig[FIGS_MAX];	/* figures, NULL-terminated */
 };
 
 static const struct section sections[] = {
 	{ "photometry", "Reference fluxes (thesis table 2.1)",
 	  "Photon fluxes of the bright sources and the designed reference star in the sensor's passband (eq. 2.1-2.2).",
-	  "photometry.json", { NULL } },
+	  "photometry.json", NULL, { NULL } },
 	{ "fdr", "False-detection rate and the attenuation it requires (fig. 2.7)",
 	  "False stars per image against system attenuation, the tolerated rate, and alpha_required where they cross (eq. 2.3-2.18).",
-	  "fdr_sun.json", { "fdr_sun.png", NULL } },
+	  "fdr_sun.json", NULL, { "fdr_sun.png", NULL } },
 	{ "lens", "Lens attenuation curve, noise floor and ghosts (thesis ch. 3)",
-	  "The lens curve reduced from the lab sweep, its image noise floor (eq. 3.13-3.15), and the internal-reflection ghosts tracked across angles (fig. 3.9).",
-	  "reduce.json", { "lens_curve.png", "lens_profiles.png", "lens_image.png" } },
+	  "The lens curve reduced from the lab sweep with its image noise floor (eq. 3.13-3.15), the row-collapsed profiles over angle and the internal-reflection ghosts tracked across angles (figs 3.7-3.9).",
+	  "reduce.json", "rig.txt", { "alpha.png", "profiles.png", "ghosts.png", "j.png" } },
 	{ "system", "System attenuation and exclusion angles (fig. 5.1)",
-	  "The traced system curve (baffle and measured lens) with its error bars and the Sun, Moon and Earth exclusion angles.",
-	  "exclusion.json", { "exclusion.png", NULL } },
+	  "The traced system curve (baffle and measured lens) with its error bars and the Sun, Moon and Earth exclusion angles, for the design as drawn and for the design change the path analysis suggests.",
+	  "exclusion.json", "exclusion.txt", { "exclusion.png", "exclusion_variant.png", NULL } },
 	{ "paths", "Scatter orders and the top stray-light paths (thesis §5.3)",
 	  "Detector power split by scatter order (fig. 5.5) and the surface sequences that carry most of it.",
-	  "trace.json", { "orders.png", NULL } },
+	  "trace.json", "paths.txt", { "orders.png", NULL } },
 	{ "diagnosis", "Diagnosis: what the model got wrong (thesis ch. 4)",
 	  "Measured baffle curve against the nominal and the corrected model, the named causes with their intervals, the gain, and the Sun exclusion angle before and after.",
-	  "diagnose.json", { "diagnose.png", NULL } },
+	  "diagnose.json", "diagnose.txt", { "diagnose.png", NULL } },
 	{ "firmware", "Flight module footprint",
-	  "The on-board exclusion and false-star module: code and data size on the Cortex-M4 target and its table.",
-	  "firmware.json", { NULL } },
+	  "The on-board exclusion and false-star module on its Cortex-M4F target: code, data and stack, and its flight table.",
+	  "firmware.json", "firmware.txt", { NULL } },
 	{ "orbit", "A day in orbit",
-	  "Predicted false stars and exclusion flags along a 550 km sun-synchronous orbit, tracker pointing anti-nadir.",
-	  "orbit.json", { "orbit.png", NULL } },
+	  "Predicted false stars and exclusion flags along a 550 km sun-synchronous orbit, tracker pointing anti-nadir, evaluated by the flight module frame by frame.",
+	  "orbit.json", NULL, { "orbit.png", "orbit_fdr.png", NULL } },
 };
 
 #define N_SECTIONS (sizeof(sections) / sizeof(sections[0]))
@@ -60,9 +61,11 @@ static const char usage[] =
 	"usage: stray report DIR [--title T]\n"
 	"\n"
 	"Write DIR/report.html (with DIR's PNG figures) and DIR/report.md from\n"
-	"the artifacts the other commands left in DIR: photometry.json,\n"
-	"fdr_sun.json, reduce.json, exclusion.json, trace.json, diagnose.json,\n"
-	"firmware.json, orbit.json and their figures.\n";
+	"the artifacts the other commands left in DIR (their --json output,\n"
+	"text output and --plot figures): photometry.json, fdr_sun.json,\n"
+	"reduce.json, exclusion.json, trace.json, diagnose.json, firmware.json,\n"
+	"orbit.json, the matching .txt files and figures.  scripts/demo.sh\n"
+	"shows which command leaves which file.\n";
 
 static int exists(const char *dir, const char *name)
 {
@@ -264,6 +267,22 @@ static int render_section(struct sink *s, const char *dir,
 			free(text);
 		}
 	}
+	if (sec->txt && exists(dir, sec->txt)) {
+		struct stray_error err;
+
+		snprintf(path, sizeof(path), "%s/%s", dir, sec->txt);
+		stray_error_clear(&err);
+		if (stray_file_read(path, &text, &len, &err) == STRAY_OK) {
+			fputs(s->html ? "<pre>" : "```\n", s->f);
+			if (s->html)
+				html_escaped(s->f, text);
+			else
+				fputs(text, s->f);
+			fputs(s->html ? "</pre>\n" : "```\n\n", s->f);
+			shown = 1;
+			free(text);
+		}
+	}
 	for (i = 0; i < FIGS_MAX && sec->fig[i]; i++) {
 		if (!exists(dir, sec->fig[i]))
 			continue;
@@ -291,6 +310,7 @@ static const char html_head[] =
 	"td,th{border:1px solid #bbb;padding:.2em .6em;text-align:left}\n"
 	"img{max-width:100%%;border:1px solid #ddd}\n"
 	".empty{color:#a00;font-style:italic}\n"
+	"pre{background:#f6f6f6;padding:.5em;overflow-x:auto;font-size:85%%}\n"
 	"</style>\n"
 	/* The screenshot test reads these attributes: every figure loaded? */
 	"<script>window.addEventListener('load',function(){var im=document.images,b=0;"
