@@ -14,6 +14,7 @@
 
 #include "stray/errfmt.h"
 #include "tracer/mesh_import.h"
+#include "tracer/mesh_locate.h"
 
 /* The surface group of one assimp mesh: forced, OBJ group, material. */
 static const char *group_of(const struct aiScene *sc,
@@ -70,8 +71,10 @@ int tracer_mesh_import(struct tracer_mesh *m, const char *path,
 				aiProcess_FindInvalidData);
 	if (!sc) {
 		rc = stray_error_at(err, STRAY_EPARSE, path, 0, "mesh",
-				    "cannot import");
+				    aiGetErrorString()[0] ? "cannot import"
+							  : "unreadable");
 		stray_error_text(err, aiGetErrorString());
+		tracer_mesh_locate(path, err);
 		return rc;
 	}
 	for (i = 0; i < sc->mNumMeshes && !rc; i++) {

@@ -176,7 +176,9 @@ static void test_scene_file_stl_plate(void **state)
 	tracer_scene_free(&s);
 }
 
-static void expect_mesh_error(const char *name, const char *text, size_t n)
+/* Refused, naming the file and where: a line, or a byte offset. */
+static void expect_mesh_error(const char *name, const char *text, size_t n,
+			      long line, const char *where)
 {
 	struct tracer_mesh m;
 	struct stray_error err;
@@ -189,12 +191,16 @@ static void expect_mesh_error(const char *name, const char *text, size_t n)
 			 STRAY_EPARSE);
 	assert_string_equal(err.file, path);
 	assert_true(strlen(err.text) > 0);	/* the importer's reason */
+	assert_int_equal(err.line, line);
+	if (where && !strstr(err.text, where))
+		fail_msg("'%s' does not say '%s'", err.text, where);
 	tracer_mesh_free(&m);
 }
 
 static void test_scene_file_malformed_meshes(void **state)
 {
 	static const char bad_index[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n";
+	static const char bad_number[] = "v 0 0 0\nv 1 x 0\nv 0 1 0\nf 1 2 3\n";
 	static const char bad_ascii[] = "solid x\nfacet normal 0 0 1\n"
 		"outer loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1\n"
 		"endloop\nendfacet\nendsolid\n";
@@ -202,11 +208,16 @@ static void test_scene_file_malformed_meshes(void **state)
 	uint32_t n = 1000;
 
 	(void)state;
-	expect_mesh_error("bad_index.obj", bad_index, sizeof(bad_index) - 1);
-	expect_mesh_error("bad_ascii.stl", bad_ascii, sizeof(bad_ascii) - 1);
+	expect_mesh_error("bad_index.obj", bad_index, sizeof(bad_index) - 1,
+			  4, NULL);
+	expect_mesh_error("bad_number.obj", bad_number, sizeof(bad_number) - 1,
+			  2, NULL);
+	expect_mesh_error("bad_ascii.stl", bad_ascii, sizeof(bad_ascii) - 1,
+			  6, NULL);
 	memcpy(trunc + 80, &n, 4);	/* claims 1000 facets, holds 2 */
-	expect_mesh_error("truncated.stl", trunc, sizeof(trunc));
-	expect_mesh_error("empty.obj", "# nothing\n", 10);
+	expect_mesh_error("truncated.stl", trunc, sizeof(trunc), 0,
+			  "byte 200: 1000 facets declared need 50084 bytes");
+	expect_mesh_error("empty.obj", "# nothing\n", 10, 0, NULL);
 }
 
 static void expect_scene_error(const char *json, int code, const char *field,
