@@ -14,7 +14,7 @@ CC ?= cc
 CLANG ?= clang
 PYTHON ?= python3
 
-MODULES := libstray tools libstray/reduce tests tracer rig firmware_fdr
+MODULES := libstray tools libstray/reduce tests tracer tools/diagnose rig firmware_fdr
 
 WARN := -Wall -Wextra -Werror
 OPT ?= -O2 -g
@@ -61,9 +61,9 @@ test: deps
 # report opened in headless Chromium, every figure loaded, no section empty.
 demo-check: all
 	@echo "== make demo (small), then its report in headless Chromium"
-	@DEMO_RAYS=300000 scripts/demo.sh $(B) $(B)/demo-check \
+	@DEMO_RAYS=300000 DEMO_STEP_DEG=5 scripts/demo.sh $(B) $(B)/demo-check \
 		> $(B)/demo-check.log 2>&1 || { tail -n 30 $(B)/demo-check.log; exit 1; }
-	@scripts/check-report.sh $(B)/demo-check $(DEMO_CHECK_FLAGS)
+	@scripts/check-report.sh $(B)/demo-check --complete
 
 # TESTS_SLOW: tests too slow under the sanitizers, run in the normal pass only.
 check: all $(TESTS) $(if $(filter 1,$(SAN)),,$(TESTS_SLOW))

@@ -15,10 +15,12 @@ int cmd_photometry(int argc, char **argv);
 int cmd_fdr(int argc, char **argv);
 int cmd_exclusion(int argc, char **argv);
 int cmd_report(int argc, char **argv);
+int cmd_photometer(int argc, char **argv);
 int cmd_orbit(int argc, char **argv);
 int cmd_firmware_table(int argc, char **argv);
 int cmd_reduce(int argc, char **argv);
 int cmd_trace(int argc, char **argv);
+int cmd_diagnose(int argc, char **argv);
 int cmd_rig(int argc, char **argv);
 
 #endif /* STRAY_TOOLS_COMMANDS_H */

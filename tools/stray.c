@@ -21,9 +21,12 @@ static const struct cmd commands[] = {
 	  "Sun, Moon and Earth exclusion angles of a curve" },
 	{ "report", cmd_report,
 	  "design-review report (HTML and Markdown) of a results folder" },
+	{ "photometer", cmd_photometer,
+	  "virtual photometer sweep of a baffle (noise, floor) from a true curve" },
 	{ "firmware-table", cmd_firmware_table, "flight table of firmware_fdr (C source and CRC-sealed blob)" },
 	{ "orbit", cmd_orbit, "the flight module along a day of a sun-synchronous orbit" },
 	{ "trace", cmd_trace, "attenuation curve of a baffle by Monte Carlo ray tracing" },
+	{ "diagnose", cmd_diagnose, "name the physical causes of a model-measurement discrepancy" },
 	{ "reduce", cmd_reduce, "lens attenuation curve, noise floor and ghosts from a lab sweep" },
 	{ "rig", cmd_rig, "control the lab sweep daemon strayrigd" },
 };

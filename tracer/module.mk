@@ -64,3 +64,6 @@ fuzz-tracer: $(TRACER_FUZZ)
 		build/fuzz/corpus-tracer tests/tracer/fuzz_seeds 2>&1 \
 		| grep -E 'stat::number_of_executed_units|ERROR|SUMMARY'
 fuzz: fuzz-tracer
+
+# The virtual photometer draws its noise from the tracer's Philox streams.
+$(B)/obj/tools/cmd_photometer.o: EXTRA_CFLAGS += -Itracer/include

@@ -1,0 +1,160 @@
+/*
+ * truth.c - the hidden-effect generator (truth.h).  Traces the hidden
+ * scene directly at the true angles, then applies what a laboratory adds:
+ * an additive floor and leak, a multiplicative dip (not in any registry),
+ * photometer noise and a detection floor.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "stray/curve_io.h"
+#include "stray/errfmt.h"
+#include "tracer/integrator.h"
+#include "tracer/scene_load.h"
+#include "truth.h"
+
+void truth_defaults(struct truth_config *c, const double *theta, size_t n)
+{
+	memset(c, 0, sizeof(*c));
+	c->theta_deg = theta;
+	c->n = n;
+	c->rel_noise = 0.03;
+	c->floor_sigma = 1e-7;
+	c->seed = 4242;
+	c->n_paths = 1000000;
+	c->noise_seed = 99;
+}
+
+/* splitmix64 (Steele et al. 2014) and Box-Muller: test noise only. */
+static double uniform(uint64_t *s)
+{
+	uint64_t z = (*s += 0x9e3779b97f4a7c15ull);
+
+	z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+	z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+	z ^= z >> 31;
+	return ((z >> 11) + 0.5) * (1.0 / 9007199254740992.0);
+}
+
+static double gauss(uint64_t *s)
+{
+	double u1 = uniform(s), u2 = uniform(s);
+
+	return sqrt(-2.0 * log(u1)) * cos(2.0 * M_PI * u2);
+}
+
+/* A forward-scattering coating of the same hemispherical reflectance:
+ * ABg with B = 0.01 and A from Simpson's rule on the normal-incidence
+ * total integrated scatter 2 pi int_0^1 r / (B + r^g) dr = 1. */
+static void make_abg(struct tracer_scene *s, double g)
+{
+	const double B = 0.01;
+	double sum = 0.0, a;
+	int i, n = 2000;
+	size_t k;
+
+	for (i = 0; i <= n; i++) {
+		double r = (double)i / n, w = i == 0 || i == n ? 1 : i % 2 ? 4 : 2;
+
+		sum += w * r / (B + pow(r, g));
+	}
+	a = 1.0 / (2.0 * M_PI * sum / (3.0 * n));
+	for (k = 0; k < s->mesh.n_group; k++)
+		if (s->material[k].ops == &tracer_brdf_lambert_ops) {
+			s->material[k].ops = &tracer_brdf_abg_ops;
+			s->material[k].abg.a = a;
+			s->material[k].abg.b = B;
+			s->material[k].abg.g = g;
+		}
+}
+
+static int trace_truth(const struct truth_config *c, double *alpha,
+		       double *sim_sigma)
+{
+	struct tracer_scene s;
+	struct tracer_trace_opts o;
+	struct tracer_result r;
+	struct stray_error err;
+	double th[256];
+	size_t i;
+	int rc;
+
+	if (c->n + 1 > 256)
+		return -1;
+	stray_error_clear(&err);
+	th[0] = fabs(c->angle_offset_deg);	/* the logged zero, truly */
+	for (i = 0; i < c->n; i++)
+		th[i + 1] = fabs(c->theta_deg[i] + c->angle_offset_deg);
+	tracer_scene_init(&s);
+	memset(&r, 0, sizeof(r));
+	rc = tracer_scene_load("ref4", c->sets, c->n_sets, &s, &err);
+	if (!rc && c->abg_g > 0.0)
+		make_abg(&s, c->abg_g);
+	/* the stage turns about a point behind the aperture: in the baffle's
+	 * frame the beam axis passes through it at every angle */
+	if (!rc)
+		s.beam.center = v3(0.0, 0.0, s.beam.center.z - c->pivot_mm);
+	if (!rc)
+		rc = tracer_scene_commit(&s, &err);
+	if (!rc) {
+		tracer_trace_defaults(&o);
+		o.theta_deg = th;
+		o.n_theta = c->n + 1;
+		o.n_paths = c->n_paths;
+		o.seed = c->seed;
+		o.threads = 2;
+		rc = tracer_trace(&s, &o, &r, &err);
+	}
+	for (i = 0; !rc && i < c->n; i++)
+		tracer_result_alpha(&r, i + 1, 0, -1, &alpha[i], &sim_sigma[i]);
+	if (rc)
+		fprintf(stderr, "truth: %s (%s)\n", err.reason ? err.reason : "",
+			err.field ? err.field : "");
+	tracer_result_free(&r);
+	tracer_scene_free(&s);
+	return rc;
+}
+
+int truth_write(const struct truth_config *c, const char *path)
+{
+	struct stray_curve out;
+	struct stray_error err;
+	double a[256], ss[256];
+	uint64_t noise = c->noise_seed;
+	size_t i;
+	int rc = trace_truth(c, a, ss);
+
+	if (rc)
+		return rc;
+	stray_error_clear(&err);
+	if (stray_curve_alloc(&out, c->n, 1, &err))
+		return -1;
+	for (i = 0; i < c->n; i++) {
+		double th = c->theta_deg[i], x = a[i], s;
+
+		x += c->floor;
+		if (c->leak_level > 0.0 && th >= c->leak_lo_deg &&
+		    th <= c->leak_hi_deg)
+			x += c->leak_level;
+		if (c->dip_factor > 0.0 && th >= c->dip_lo_deg &&
+		    th <= c->dip_hi_deg)
+			x *= c->dip_factor;
+		s = sqrt(pow(c->rel_noise * x, 2) + pow(c->floor_sigma, 2) +
+			 pow(ss[i], 2));
+		out.theta_deg[i] = th;
+		if (th == 0.0) {	/* the normalisation point */
+			out.alpha[i] = 1.0;
+			out.sigma[i] = 1e-3;
+			continue;
+		}
+		x += c->rel_noise * x * gauss(&noise) +
+		     c->floor_sigma * gauss(&noise);
+		out.alpha[i] = fmax(x, c->floor_sigma);	/* detection floor */
+		out.sigma[i] = s;
+	}
+	rc = stray_curve_save(path, &out, &err);
+	stray_curve_free(&out);
+	return rc;
+}

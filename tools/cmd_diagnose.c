@@ -1,0 +1,164 @@
+/*
+ * cmd_diagnose.c - `stray diagnose MEASURED.csv --scene SCENE`: what the
+ * simulation gets wrong against a measured curve, which registered
+ * physical cause explains it, and the gain (issue 5; thesis §4).
+ * The work is in tools/diagnose/ (diag.h).
+ */
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "commands.h"
+#include "diag.h"
+#include "stray/errfmt.h"
+
+static const char usage[] =
+	"usage: stray diagnose MEASURED.csv --scene SCENE [--rays N]\n"
+	"                      [--seed K] [--threads T] [--set key=value]...\n"
+	"                      [--plot F.png] [--causes] [--json]\n"
+	"\n"
+	"Compares a measured attenuation curve (CSV with a sigma column) with\n"
+	"the traced model of SCENE, fits each registered physical cause and\n"
+	"greedy combinations by weighted least squares of log10 residuals,\n"
+	"names the causes that lower BIC by more than 10, with profile-chi2\n"
+	"intervals, and reports the gain and the Sun exclusion angle before\n"
+	"and after.\n"
+	"\n"
+	"  --scene SCENE     'ref4' (built in) or a scene file\n"
+	"  --rays N          detector-side paths per trace (default 200000)\n"
+	"  --seed K          seed shared by every trace (default 1)\n"
+	"  --threads T       tracer threads (default 1)\n"
+	"  --set key=value   the scene as built (repeatable)\n"
+	"  --plot F.png      measured vs model (F.png) and residuals (F-resid.png)\n"
+	"  --causes          list the registered causes and exit\n"
+	"  --json            machine-readable output\n";
+
+struct diag_args {
+	const char *measured, *scene, *plot;
+	const char *sets[DIAG_SETS_MAX];
+	int n_sets, list;
+	double rays, seed, threads;
+};
+
+static int parse_args(int argc, char **argv, struct diag_args *a)
+{
+	static const struct option opts[] = {
+		{ "scene", required_argument, NULL, 's' },
+		{ "rays", required_argument, NULL, 'n' },
+		{ "seed", required_argument, NULL, 'k' },
+		{ "threads", required_argument, NULL, 't' },
+		{ "set", required_argument, NULL, 'S' },
+		{ "plot", required_argument, NULL, 'p' },
+		{ "causes", no_argument, NULL, 'c' },
+		{ "json", no_argument, NULL, 'j' },
+		{ "help", no_argument, NULL, 'h' },
+		{ NULL, 0, NULL, 0 }
+	};
+	int opt, rc = CLI_OK;
+
+	while (!rc && (opt = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+		switch (opt) {
+		case 's': a->scene = optarg; break;
+		case 'p': a->plot = optarg; break;
+		case 'c': a->list = 1; break;
+		case 'j': cli.json = 1; break;
+		case 'n': rc = cli_parse_double("diagnose", "rays", optarg, &a->rays); break;
+		case 'k': rc = cli_parse_double("diagnose", "seed", optarg, &a->seed); break;
+		case 't': rc = cli_parse_double("diagnose", "threads", optarg, &a->threads); break;
+		case 'S':
+			if (a->n_sets == DIAG_SETS_MAX)
+				return cli_usage_error("diagnose", "too many --set");
+			a->sets[a->n_sets++] = optarg;
+			break;
+		case 'h': fputs(usage, stdout); return -1;
+		default: return cli_usage_error("diagnose", "unknown option");
+		}
+	}
+	if (rc || a->list)
+		return rc;
+	if (optind + 1 != argc)
+		return cli_usage_error("diagnose", "expected one MEASURED.csv");
+	a->measured = argv[optind];
+	if (!a->scene)
+		return cli_usage_error("diagnose", "--scene is required");
+	if (!(a->rays >= 1000 && a->rays <= 1e10 && a->rays == floor(a->rays)))
+		return cli_usage_error("diagnose", "option '--rays': must be an "
+				       "integer in [1000, 1e10]");
+	if (!(a->seed >= 0 && a->seed <= 9e15 && a->seed == floor(a->seed)))
+		return cli_usage_error("diagnose", "option '--seed': must be an "
+				       "integer >= 0");
+	if (!(a->threads >= 1 && a->threads <= 256 &&
+	      a->threads == floor(a->threads)))
+		return cli_usage_error("diagnose", "option '--threads': must be "
+				       "an integer in [1, 256]");
+	return CLI_OK;
+}
+
+static void log_line(const char *line)
+{
+	if (!cli.json)
+		fprintf(stderr, "stray diagnose: %s\n", line);
+}
+
+static void list_causes(void)
+{
+	int i, k;
+
+	for (i = 0; diag_causes[i]; i++) {
+		printf("%s:", diag_causes[i]->name);
+		for (k = 0; k < diag_causes[i]->n_params; k++)
+			printf(" %s [%g, %g] %s", diag_causes[i]->param[k].name,
+			       diag_causes[i]->param[k].lo,
+			       diag_causes[i]->param[k].hi,
+			       diag_causes[i]->param[k].unit);
+		printf("\n  %s\n", diag_causes[i]->explanation);
+	}
+}
+
+int cmd_diagnose(int argc, char **argv)
+{
+	struct diag_args a = { .rays = 200000, .seed = 1, .threads = 1 };
+	struct stray_error err;
+	struct diag_data d;
+	struct diag_eval e;
+	struct diag_result r;
+	int rc, i;
+
+	stray_error_clear(&err);
+	rc = parse_args(argc, argv, &a);
+	if (rc)
+		return rc < 0 ? CLI_OK : rc;
+	if (a.list) {
+		list_causes();
+		return CLI_OK;
+	}
+	if (diag_data_load(a.measured, &d, &err))
+		return cli_fail("diagnose", &err);
+	diag_eval_init(&e, a.scene, d.theta_deg, d.n);
+	e.n_paths = (uint64_t)a.rays;
+	e.seed = (uint64_t)a.seed;
+	e.threads = (int)a.threads;
+	for (i = 0; i < a.n_sets; i++)
+		e.sets[e.n_sets++] = a.sets[i];
+	memset(&r, 0, sizeof(r));
+	rc = diag_eval_prepare(&e, &err);
+	if (!rc)
+		rc = diag_run(&e, &d, &r, log_line, &err);
+	if (!rc && a.plot)
+		rc = diag_plot(a.plot, &d, &r, &err);
+	if (!rc) {
+		if (cli.json)
+			rc = diag_report_json(&d, &e, &r);
+		else
+			diag_report_text(&d, &e, &r);
+	} else {
+		rc = cli_fail("diagnose", &err);
+	}
+	diag_result_free(&r);
+	diag_eval_free(&e);
+	diag_data_free(&d);
+	return rc;
+}

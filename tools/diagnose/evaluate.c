@@ -1,0 +1,306 @@
+/*
+ * evaluate.c - a model state to alpha(theta_i) with its sigma.
+ *
+ * Geometry (re-trace causes) is interpolated multilinearly in log alpha
+ * between traced nodes of each active axis; the interior reflectance is
+ * applied to each node by re-weighting its path table; the angle offset,
+ * the floor and the leak post-process the curve.
+ * Approximation (stated in the report): the angle offset's correction
+ * alpha(theta + d) / alpha(theta) is taken from the nominal geometry's
+ * fine grid (at the state's reflectance), not from each geometry node;
+ * that trace has a quarter of the paths, as only ratios within it are
+ * used (common random numbers: most of its noise cancels in them).
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "diag_eval.h"
+#include "stray/errfmt.h"
+
+#define LEAK_EDGE_DEG 0.2	/* soft window edge, so the fit has a slope */
+
+void diag_eval_init(struct diag_eval *e, const char *scene,
+		    const double *theta_deg, size_t n)
+{
+	memset(e, 0, sizeof(*e));
+	e->scene = scene;
+	e->parametric = strcmp(scene, "ref4") == 0;
+	e->n_paths = 200000;
+	e->seed = 1;
+	e->threads = 1;
+	e->theta_deg = theta_deg;
+	e->n = n;
+	e->sub_step_deg = DIAG_OFFSET_MAX_DEG / (DIAG_SUB / 2);
+}
+
+int diag_eval_prepare(struct diag_eval *e, struct stray_error *err)
+{
+	double nominal[DIAG_GEO_N];
+	const struct diag_trace *t;
+	size_t i;
+	int rc, a;
+
+	for (a = 0; a < DIAG_GEO_N; a++)
+		nominal[a] = NAN;
+	rc = diag_trace_get(e, nominal, 0, &t, err);
+	if (rc)
+		return rc;
+	e->direct_share = malloc((e->n ? e->n : 1) * sizeof(double));
+	if (!e->direct_share)
+		return stray_error_set(err, STRAY_ENOMEM, "diagnose",
+				       "out of memory");
+	for (i = 0; i < e->n; i++)
+		e->direct_share[i] = t->direct[t->idx[i * DIAG_SUB +
+						       DIAG_SUB / 2]];
+	return STRAY_OK;
+}
+
+void diag_eval_free(struct diag_eval *e)
+{
+	diag_trace_cache_free(e);
+	free(e->direct_share);
+	e->direct_share = NULL;
+}
+
+/* The retrace cause of an axis (its nodes and nominal), or NULL. */
+static const struct diag_cause *axis_cause(int axis)
+{
+	int i;
+
+	for (i = 0; diag_causes[i]; i++)
+		if (diag_causes[i]->kind == DIAG_RETRACE &&
+		    diag_causes[i]->geo_axis == axis)
+			return diag_causes[i];
+	return NULL;
+}
+
+/* A node value as a cache key: the scene's own value is NaN, so the
+ * nominal node shares the nominal trace. */
+static double node_key(const struct diag_cause *c, double v)
+{
+	if (c && c->n_params > 0 && v == c->param[0].nominal)
+		return NAN;
+	return v;
+}
+
+struct corners {
+	int n_axis, axis[DIAG_GEO_N];
+	double lo[DIAG_GEO_N], hi[DIAG_GEO_N], t[DIAG_GEO_N];
+};
+
+static void bracket(const struct diag_state *s, struct corners *c)
+{
+	int a, k;
+
+	c->n_axis = 0;
+	for (a = 0; a < DIAG_GEO_N; a++) {
+		const struct diag_cause *cs = axis_cause(a);
+		double v = s->geo[a];
+		int m = c->n_axis;
+
+		if (isnan(v) || isnan(node_key(cs, v)))
+			continue;
+		c->axis[m] = a;
+		c->lo[m] = c->hi[m] = v;
+		c->t[m] = 0.0;
+		if (cs && cs->n_nodes > 1) {
+			v = fmin(fmax(v, cs->nodes[0]),
+				 cs->nodes[cs->n_nodes - 1]);
+			for (k = 0; k + 2 < cs->n_nodes &&
+			     v > cs->nodes[k + 1]; k++)
+				;
+			c->lo[m] = node_key(cs, cs->nodes[k]);
+			c->hi[m] = node_key(cs, cs->nodes[k + 1]);
+			c->t[m] = (v - cs->nodes[k]) /
+				(cs->nodes[k + 1] - cs->nodes[k]);
+		}
+		c->n_axis++;
+	}
+}
+
+/* alpha and relative variance at the centre of each measured angle (and
+ * at the fine sub-points when t is fine), for one trace. */
+static void trace_alpha(const struct diag_eval *e, const struct diag_trace *t,
+			double rho, double *p, double *var, double *alpha,
+			double *relvar, int all_sub)
+{
+	size_t i;
+	int k;
+	double p0, v0;
+
+	diag_trace_power(t, rho, p, var);
+	p0 = p[t->ref];
+	v0 = p0 > 0.0 ? var[t->ref] / (p0 * p0) : 0.0;
+	for (i = 0; i < e->n; i++)
+		for (k = 0; k < DIAG_SUB; k++) {
+			size_t j, o = i * DIAG_SUB + k;
+
+			if (!all_sub && k != DIAG_SUB / 2)
+				continue;
+			j = t->idx[o];
+			alpha[o] = p0 > 0.0 ? p[j] / p0 : 0.0;
+			relvar[o] = p[j] > 0.0 ?
+				var[j] / (p[j] * p[j]) + v0 : 0.0;
+		}
+}
+
+/* Blend the corners of the active axes: log alpha multilinear (linear in
+ * alpha where a corner is 0), relative sigma likewise. */
+static int blend_geometry(struct diag_eval *e, const struct diag_state *s,
+			  double *work, double *alpha, double *relcov,
+			  struct stray_error *err)
+{
+	struct corners c;
+	size_t i, nt, nm = e->n * DIAG_SUB;
+	double *p, *var, *a_c, *rv_c, *la, *lin;
+	int corner, n_corner, rc = STRAY_OK;
+
+	bracket(s, &c);
+	n_corner = 1 << c.n_axis;
+	nt = e->n * DIAG_SUB + 1;	/* bounds every trace's angle count */
+	p = work;
+	var = p + nt;
+	a_c = var + nt;
+	rv_c = a_c + nm;
+	la = rv_c + nm;
+	lin = la + e->n;
+	memset(la, 0, 2 * e->n * sizeof(*la));
+	memset(relcov, 0, e->n * e->n * sizeof(*relcov));
+	for (i = 0; i < e->n; i++)
+		alpha[i] = 1.0;	/* 1: every corner positive so far */
+	for (corner = 0; corner < n_corner && !rc; corner++) {
+		double geo[DIAG_GEO_N], w = 1.0;
+		const struct diag_trace *t;
+		int a;
+
+		for (a = 0; a < DIAG_GEO_N; a++)
+			geo[a] = NAN;
+		for (a = 0; a < c.n_axis; a++) {
+			int up = (corner >> a) & 1;
+
+			geo[c.axis[a]] = up ? c.hi[a] : c.lo[a];
+			w *= up ? c.t[a] : 1.0 - c.t[a];
+		}
+		if (w == 0.0)
+			continue;
+		rc = diag_trace_get(e, geo, 0, &t, err);
+		if (rc)
+			break;
+		trace_alpha(e, t, s->reflectance, p, var, a_c, rv_c, 0);
+		for (i = 0; i < e->n; i++) {
+			double ai = a_c[i * DIAG_SUB + DIAG_SUB / 2];
+
+			lin[i] += w * ai;
+			if (ai > 0.0)
+				la[i] += w * log(ai);
+			else
+				alpha[i] = 0.0;
+		}
+		for (i = 0; i < e->n * e->n; i++)
+			relcov[i] += w * t->relcov[i];
+	}
+	for (i = 0; i < e->n; i++)
+		alpha[i] = alpha[i] > 0.0 ? exp(la[i]) : lin[i];
+	return rc;
+}
+
+/* alpha(theta_i + d) / alpha(theta_i) on the nominal fine grid, by
+ * quadratic interpolation of log alpha through the nearest 3 points. */
+static int offset_factor(struct diag_eval *e, const struct diag_state *s,
+			 double *work, double *factor,
+			 struct stray_error *err)
+{
+	double nominal[DIAG_GEO_N];
+	const struct diag_trace *t;
+	size_t i, nm = e->n * DIAG_SUB;
+	double *p, *var, *a, *rv, d = s->angle_offset_deg, h = e->sub_step_deg;
+	int rc, g;
+
+	for (g = 0; g < DIAG_GEO_N; g++)
+		nominal[g] = NAN;
+	rc = diag_trace_get(e, nominal, 1, &t, err);
+
+	if (rc)
+		return rc;
+	p = work;
+	var = p + t->n_theta;
+	a = var + t->n_theta;
+	rv = a + nm;
+	trace_alpha(e, t, s->reflectance, p, var, a, rv, 1);
+	for (i = 0; i < e->n; i++) {
+		double x = fmin(fmax(d / h, -(DIAG_SUB / 2)), DIAG_SUB / 2);
+		int m = (int)lround(x), k;
+		const double *y;
+		double c = a[i * DIAG_SUB + DIAG_SUB / 2], u;
+
+		m = m < -(DIAG_SUB / 2 - 1) ? -(DIAG_SUB / 2 - 1) :
+		    m > DIAG_SUB / 2 - 1 ? DIAG_SUB / 2 - 1 : m;
+		y = &a[i * DIAG_SUB + DIAG_SUB / 2 + m - 1];
+		u = x - m;	/* in [-1, 1] around the middle point */
+		factor[i] = 1.0;
+		for (k = 0; k < 3 && y[k] > 0.0; k++)
+			;
+		if (k == 3 && c > 0.0)	/* quadratic in log alpha */
+			factor[i] = exp(0.5 * u * (u - 1.0) * log(y[0]) +
+					(1.0 - u * u) * log(y[1]) +
+					0.5 * u * (u + 1.0) * log(y[2])) / c;
+		else if (c > 0.0)
+			factor[i] = (0.5 * u * (u - 1.0) * y[0] +
+				     (1.0 - u * u) * y[1] +
+				     0.5 * u * (u + 1.0) * y[2]) / c;
+	}
+	return STRAY_OK;
+}
+
+static double window(double theta, double lo, double hi)
+{
+	return 1.0 / (1.0 + exp(-(theta - lo) / LEAK_EDGE_DEG)) /
+	       (1.0 + exp(-(hi - theta) / LEAK_EDGE_DEG));
+}
+
+int diag_eval_model(struct diag_eval *e, const struct diag_state *s,
+		    double *alpha, double *sigma, double *relcov,
+		    struct stray_error *err)
+{
+	size_t i, k, n = e->n, nt = n * DIAG_SUB + 1, n_work;
+	double *work, *rc_own = NULL, *factor, *frac;
+	int rc;
+
+	n_work = 2 * nt + 2 * n * DIAG_SUB + 4 * n;
+	work = malloc(n_work * sizeof(*work));
+	if (!relcov)
+		relcov = rc_own = malloc(n * n * sizeof(*relcov));
+	if (!work || !relcov) {
+		free(work);
+		free(rc_own);
+		return stray_error_set(err, STRAY_ENOMEM, "diagnose",
+				       "out of memory");
+	}
+	factor = work + n_work - 2 * n;
+	frac = factor + n;
+	rc = blend_geometry(e, s, work, alpha, relcov, err);
+	if (!rc && s->angle_offset_deg != 0.0)
+		rc = offset_factor(e, s, work, factor, err);
+	for (i = 0; !rc && i < n; i++) {
+		double th = e->theta_deg[i], a = alpha[i], g;
+
+		if (s->angle_offset_deg != 0.0)
+			a *= factor[i];
+		g = a;		/* the traced part carries the MC error */
+		a += s->floor;
+		if (isfinite(s->leak_log10))
+			a += pow(10.0, s->leak_log10) *
+			     window(th, s->leak_lo_deg, s->leak_hi_deg);
+		alpha[i] = a;
+		frac[i] = a > 0.0 ? g / a : 0.0;
+	}
+	for (i = 0; !rc && i < n; i++) {
+		for (k = 0; k < n; k++)
+			relcov[i * n + k] *= frac[i] * frac[k];
+		sigma[i] = alpha[i] * sqrt(fmax(relcov[i * n + i], 0.0));
+	}
+	free(work);
+	free(rc_own);
+	return rc;
+}

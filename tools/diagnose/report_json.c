@@ -1,0 +1,101 @@
+/*
+ * report_json.c - `stray diagnose --json` (docs/cli.md): `causes` (list of
+ * {name, params}), `rms_before`, `rms_after`, `significant`, and the rest
+ * of the diagnosis.
+ */
+#include <math.h>
+
+#include "cli.h"
+#include "diag.h"
+
+static cJSON *fit_json(const struct diag_fit *f)
+{
+	cJSON *list = cJSON_CreateArray();
+	int c, k, o = 0;
+
+	for (c = 0; c < f->n_causes; c++) {
+		const struct diag_cause *cs = f->cause[c];
+		cJSON *it = cJSON_CreateObject(), *p = cJSON_CreateObject();
+		cJSON *ci = cJSON_CreateObject();
+
+		cJSON_AddStringToObject(it, "name", cs->name);
+		for (k = 0; k < cs->n_params; k++, o++) {
+			cJSON *pair = cJSON_CreateArray();
+
+			cJSON_AddItemToObject(p, cs->param[k].name,
+					      cli_json_number(f->p[o]));
+			cJSON_AddItemToArray(pair, cli_json_number(f->ci_lo[o]));
+			cJSON_AddItemToArray(pair, cli_json_number(f->ci_hi[o]));
+			cJSON_AddItemToObject(ci, cs->param[k].name, pair);
+		}
+		cJSON_AddItemToObject(it, "params", p);
+		cJSON_AddItemToObject(it, "intervals", ci);
+		cJSON_AddItemToArray(list, it);
+	}
+	return list;
+}
+
+static cJSON *regions_json(const double *rms, const int *count)
+{
+	cJSON *o = cJSON_CreateObject();
+	static const char *const key[DIAG_REGIONS] = {
+		"in_field", "transition", "scatter"
+	};
+	int k;
+
+	for (k = 0; k < DIAG_REGIONS; k++)
+		if (count[k])
+			cJSON_AddItemToObject(o, key[k], cli_json_number(rms[k]));
+	return o;
+}
+
+int diag_report_json(const struct diag_data *d, const struct diag_eval *e,
+		     const struct diag_result *r)
+{
+	cJSON *o = cJSON_CreateObject(), *single = cJSON_CreateObject();
+	int i;
+
+	cJSON_AddStringToObject(o, "scene", e->scene);
+	cJSON_AddNumberToObject(o, "n", (double)d->n);
+	cJSON_AddBoolToObject(o, "significant", r->significant);
+	cJSON_AddBoolToObject(o, "explained", r->explained);
+	cJSON_AddItemToObject(o, "causes", fit_json(&r->named));
+	cJSON_AddItemToObject(o, "interval_delta_chi2",
+			      cli_json_number(DIAG_CI_DCHI2));
+	cJSON_AddItemToObject(o, "tentative", fit_json(&r->tentative));
+	cJSON_AddItemToObject(o, "rms_before", cli_json_number(r->rms_before));
+	cJSON_AddItemToObject(o, "rms_after", cli_json_number(r->rms_after));
+	cJSON_AddItemToObject(o, "rms_region_before",
+			      regions_json(r->rms_region_before, r->n_region));
+	cJSON_AddItemToObject(o, "rms_region_after",
+			      regions_json(r->rms_region_after, r->n_region));
+	cJSON_AddItemToObject(o, "chi2_before", cli_json_number(r->chi2_before));
+	cJSON_AddItemToObject(o, "chi2_after", cli_json_number(r->chi2_after));
+	cJSON_AddItemToObject(o, "reduced_chi2_before",
+			      cli_json_number(r->chi2_before / r->dof_before));
+	cJSON_AddItemToObject(o, "reduced_chi2_after", cli_json_number(
+		r->dof_after > 0 ? r->chi2_after / r->dof_after : NAN));
+	cJSON_AddItemToObject(o, "p_before", cli_json_number(r->p_before));
+	cJSON_AddItemToObject(o, "p_after", cli_json_number(r->p_after));
+	cJSON_AddItemToObject(o, "worst_theta_deg",
+			      cli_json_number(r->worst_theta_deg));
+	cJSON_AddItemToObject(o, "worst_pull", cli_json_number(r->worst_pull));
+	cJSON_AddItemToObject(o, "sun_alpha_required",
+			      cli_json_number(r->sun_alpha_req));
+	cJSON_AddItemToObject(o, "sun_deg_before",
+			      cli_json_number(r->sun_deg_before));
+	cJSON_AddItemToObject(o, "sun_deg_after",
+			      cli_json_number(r->sun_deg_after));
+	for (i = 0; i < r->n_single; i++) {
+		cJSON *s = cJSON_CreateObject();
+
+		cJSON_AddItemToObject(s, "chi2", cli_json_number(r->single[i].chi2));
+		cJSON_AddItemToObject(s, "bic", cli_json_number(r->single[i].bic));
+		cJSON_AddItemToObject(single, r->single[i].cause[0]->name, s);
+	}
+	cJSON_AddItemToObject(o, "single", single);
+	cJSON_AddNumberToObject(o, "traces", (double)e->n_traces);
+	cJSON_AddItemToObject(o, "trace_seconds",
+			      cli_json_number(e->trace_seconds));
+	return cli_json_emit(o);
+}

@@ -1,0 +1,335 @@
+/*
+ * run.c - the diagnosis: baseline, each cause alone, greedy combinations
+ * ranked by BIC, intervals, the gain.
+ *
+ * Decisions (stated in the report):
+ *   - "no significant discrepancy" when the baseline chi2 has
+ *     p >= DIAG_P_ACCEPT;
+ *   - a cause enters (alone, or added to those already named) only when it
+ *     lowers BIC = chi2 + k ln n by more than DIAG_BIC_MARGIN (Kass &
+ *     Raftery 1995: "very strong" evidence), and leaves again when the
+ *     others explain the data without it;
+ *   - when even the best model fails (p < DIAG_P_FINAL) nothing is
+ *     named: the best model is reported as tentative, with the residual
+ *     that remains and where it sits.
+ */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "diag.h"
+#include "stray/errfmt.h"
+
+#define P_FINAL 1e-3	/* the best model must not fail worse than this */
+#define IN_FIELD_DEG 10.0	/* st16-like field half-angle (ref4-baffle.md) */
+#define TRANSITION_SHARE 1e-3	/* direct light still a part of the total */
+
+static void say(void (*log)(const char *), const char *fmt, ...)
+	__attribute__((format(printf, 2, 3)));
+
+static void say(void (*log)(const char *), const char *fmt, ...)
+{
+	char line[256];
+	va_list ap;
+
+	if (!log)
+		return;
+	va_start(ap, fmt);
+	vsnprintf(line, sizeof(line), fmt, ap);
+	va_end(ap);
+	log(line);
+}
+
+static void assign_regions(const struct diag_eval *e,
+			   const struct diag_data *d)
+{
+	size_t i;
+
+	for (i = 0; i < d->n; i++)
+		d->region[i] = d->theta_deg[i] <= IN_FIELD_DEG ? DIAG_IN_FIELD :
+			e->direct_share[i] > TRANSITION_SHARE ?
+			DIAG_TRANSITION : DIAG_SCATTER;
+}
+
+static void rms(const struct diag_data *d, const double *r, double *all,
+		double *region, int *count)
+{
+	double s = 0.0, sr[DIAG_REGIONS] = { 0 };
+	size_t i;
+	int k;
+
+	for (k = 0; k < DIAG_REGIONS; k++)
+		count[k] = 0;
+	for (i = 0; i < d->n; i++) {
+		s += r[i] * r[i];
+		sr[d->region[i]] += r[i] * r[i];
+		count[d->region[i]]++;
+	}
+	*all = sqrt(s / d->n);
+	for (k = 0; k < DIAG_REGIONS; k++)
+		region[k] = count[k] ? sqrt(sr[k] / count[k]) : NAN;
+}
+
+static int uses(const struct diag_fit *f, const struct diag_cause *c)
+{
+	int i;
+
+	for (i = 0; i < f->n_causes; i++)
+		if (f->cause[i] == c)
+			return 1;
+	return 0;
+}
+
+static int earned_alone(const struct diag_result *r,
+			const struct diag_cause *c)
+{
+	int i;
+
+	for (i = 0; i < r->n_single; i++)
+		if (r->single[i].cause[0] == c)
+			return r->chi2_before - r->single[i].bic >
+			       DIAG_BIC_MARGIN;
+	return 0;
+}
+
+static int usable(const struct diag_eval *e, const struct diag_cause *c)
+{
+	return e->parametric || !c->needs_baffle;
+}
+
+/* Greedy forward steps from `cur`; each must lower BIC by the margin.
+ * Candidates are the causes that earned their place alone (a cause that
+ * cannot improve the baseline by itself is not tried in combination: it
+ * saves the traces of its grid). */
+static int forward(struct diag_eval *e, const struct diag_data *d,
+		   const struct diag_result *r, struct diag_fit *cur,
+		   void (*log)(const char *), struct stray_error *err)
+{
+	int i, rc = STRAY_OK;
+
+	while (cur->n_causes < DIAG_COMBO_MAX && !rc) {
+		struct diag_fit best, f;
+
+		best.bic = INFINITY;
+		for (i = 0; diag_causes[i] && !rc; i++) {
+			if (uses(cur, diag_causes[i]) ||
+			    !usable(e, diag_causes[i]) ||
+			    !earned_alone(r, diag_causes[i]))
+				continue;
+			f = *cur;
+			f.cause[f.n_causes++] = diag_causes[i];
+			rc = diag_fit_run(e, d, &f, 1, err);
+			if (!rc && f.bic < best.bic)
+				best = f;
+		}
+		if (rc || !(cur->bic - best.bic > DIAG_BIC_MARGIN))
+			break;
+		say(log, "  + %s: BIC %.1f -> %.1f", best.cause[best.n_causes - 1]->name,
+		    cur->bic, best.bic);
+		*cur = best;
+	}
+	return rc;
+}
+
+/* Drop causes the others make redundant (BIC not worse by the margin). */
+static int backward(struct diag_eval *e, const struct diag_data *d,
+		    struct diag_fit *cur, void (*log)(const char *),
+		    struct stray_error *err)
+{
+	int i, j, rc = STRAY_OK;
+
+	for (i = 0; cur->n_causes > 1 && i < cur->n_causes && !rc; i++) {
+		struct diag_fit f;
+		int k, o = 0, q = 0;
+
+		memset(&f, 0, sizeof(f));
+		for (j = 0; j < cur->n_causes; j++) {
+			int np = cur->cause[j]->n_params;
+
+			if (j != i) {
+				f.cause[f.n_causes++] = cur->cause[j];
+				for (k = 0; k < np; k++)
+					f.p[q++] = cur->p[o + k];
+			}
+			o += np;
+		}
+		/* the last kept cause restarts from its grid */
+		rc = diag_fit_run(e, d, &f, 1, err);
+		if (!rc && f.bic - cur->bic < DIAG_BIC_MARGIN) {
+			say(log, "  - %s: redundant (BIC %.1f -> %.1f)",
+			    cur->cause[i]->name, cur->bic, f.bic);
+			*cur = f;
+			i = -1;
+		}
+	}
+	return rc;
+}
+
+static int fit_singles(struct diag_eval *e, const struct diag_data *d,
+		       struct diag_result *r, void (*log)(const char *),
+		       struct stray_error *err)
+{
+	int i, rc = STRAY_OK;
+
+	r->n_single = 0;
+	for (i = 0; diag_causes[i] && !rc; i++) {
+		struct diag_fit *f = &r->single[r->n_single];
+
+		if (!usable(e, diag_causes[i]))
+			continue;
+		memset(f, 0, sizeof(*f));
+		f->n_causes = 1;
+		f->cause[0] = diag_causes[i];
+		rc = diag_fit_run(e, d, f, 0, err);
+		if (!rc)
+			say(log, "  %-18s chi2 %10.1f  BIC %10.1f",
+			    diag_causes[i]->name, f->chi2, f->bic);
+		r->n_single++;
+	}
+	return rc;
+}
+
+static int final_curves(struct diag_eval *e, const struct diag_data *d,
+			struct diag_result *r, const struct diag_fit *f,
+			struct stray_error *err)
+{
+	struct diag_state s;
+	double chi2;
+	size_t i;
+	int rc;
+
+	diag_fit_state(f, f->p, &s);
+	rc = diag_chi2(e, d, &s, &chi2, r->resid_after, r->rsig_after,
+		       r->model_after, NULL, err);
+	r->chi2_after = chi2;
+	r->dof_after = (int)d->n - f->k;
+	r->p_after = diag_chi2_pvalue(chi2, r->dof_after);
+	rms(d, r->resid_after, &r->rms_after, r->rms_region_after,
+	    r->n_region);
+	r->worst_pull = 0.0;
+	for (i = 0; i < d->n; i++) {
+		double pull = r->resid_after[i] / r->rsig_after[i];
+
+		if (fabs(pull) > fabs(r->worst_pull)) {
+			r->worst_pull = pull;
+			r->worst_theta_deg = d->theta_deg[i];
+		}
+	}
+	return rc;
+}
+
+static int alloc_result(struct diag_result *r, size_t n,
+			struct stray_error *err)
+{
+	double *m = calloc(6 * n, sizeof(*m));
+
+	memset(r, 0, sizeof(*r));
+	if (!m)
+		return stray_error_set(err, STRAY_ENOMEM, "diagnose",
+				       "out of memory");
+	r->model_before = m;
+	r->model_after = m + n;
+	r->resid_before = m + 2 * n;
+	r->resid_after = m + 3 * n;
+	r->rsig_before = m + 4 * n;
+	r->rsig_after = m + 5 * n;
+	return STRAY_OK;
+}
+
+static int name_causes(struct diag_eval *e, const struct diag_data *d,
+		       struct diag_result *r, double bic0,
+		       void (*log)(const char *), struct stray_error *err)
+{
+	struct diag_fit cur;
+	int i, rc;
+
+	memset(&cur, 0, sizeof(cur));
+	cur.bic = bic0;
+	for (i = 0; i < r->n_single; i++)
+		if (bic0 - r->single[i].bic > DIAG_BIC_MARGIN &&
+		    r->single[i].bic < cur.bic)
+			cur = r->single[i];
+	if (cur.n_causes == 0) {
+		say(log, "no cause lowers BIC by more than %.0f",
+		    DIAG_BIC_MARGIN);
+		return STRAY_OK;
+	}
+	say(log, "greedy combinations from %s:", cur.cause[0]->name);
+	rc = forward(e, d, r, &cur, log, err);
+	if (!rc)
+		rc = backward(e, d, &cur, log, err);
+	if (!rc)
+		rc = diag_fit_intervals(e, d, &cur, err);
+	if (rc)
+		return rc;
+	r->explained = diag_chi2_pvalue(cur.chi2, (int)d->n - cur.k) >= P_FINAL;
+	if (r->explained)
+		r->named = cur;
+	else
+		r->tentative = cur;
+	return final_curves(e, d, r, &cur, err);
+}
+
+int diag_run(struct diag_eval *e, const struct diag_data *d,
+	     struct diag_result *r, void (*log)(const char *),
+	     struct stray_error *err)
+{
+	struct diag_state s;
+	int rc = alloc_result(r, d->n, err);
+
+	if (rc)
+		return rc;
+	assign_regions(e, d);
+	diag_state_nominal(&s);
+	rc = diag_chi2(e, d, &s, &r->chi2_before, r->resid_before,
+		       r->rsig_before, r->model_before, NULL, err);
+	if (rc)
+		return rc;
+	r->dof_before = (int)d->n;
+	r->p_before = diag_chi2_pvalue(r->chi2_before, r->dof_before);
+	rms(d, r->resid_before, &r->rms_before, r->rms_region_before,
+	    r->n_region);
+	r->significant = r->p_before < DIAG_P_ACCEPT;
+	say(log, "baseline: chi2 %.1f for %d points (p = %.3g)",
+	    r->chi2_before, r->dof_before, r->p_before);
+	/* defaults: the corrected model is the baseline */
+	memcpy(r->model_after, r->model_before, d->n * sizeof(double));
+	memcpy(r->resid_after, r->resid_before, d->n * sizeof(double));
+	memcpy(r->rsig_after, r->rsig_before, d->n * sizeof(double));
+	r->chi2_after = r->chi2_before;
+	r->dof_after = r->dof_before;
+	r->p_after = r->p_before;
+	r->rms_after = r->rms_before;
+	memcpy(r->rms_region_after, r->rms_region_before,
+	       sizeof(r->rms_region_after));
+	r->explained = !r->significant;
+	if (r->significant) {
+		say(log, "each cause alone:");
+		rc = fit_singles(e, d, r, log, err);
+		if (!rc)
+			rc = name_causes(e, d, r, r->chi2_before, log, err);
+	}
+	if (!rc && r->named.n_causes == 0 && r->tentative.n_causes == 0) {
+		struct diag_fit none;
+
+		memset(&none, 0, sizeof(none));
+		rc = final_curves(e, d, r, &none, err);
+	}
+	if (!rc)
+		rc = diag_sun_exclusion(d->theta_deg, r->model_before, d->n,
+					&r->sun_deg_before, &r->sun_alpha_req,
+					err);
+	if (!rc)
+		rc = diag_sun_exclusion(d->theta_deg, r->model_after, d->n,
+					&r->sun_deg_after, &r->sun_alpha_req,
+					err);
+	return rc;
+}
+
+void diag_result_free(struct diag_result *r)
+{
+	free(r->model_before);
+	memset(r, 0, sizeof(*r));
+}
