@@ -23,10 +23,12 @@ int fdrfw_init(struct fdrfw_ctx *ctx, const struct fdrfw_table *table)
 {
 	int rc = fdrfw_table_check(table);
 
-	ctx->table = rc == FDRFW_OK ? table : NULL;
-	ctx->latched = 0;
-	ctx->i_sdt_t_exp_s = rc == FDRFW_OK ? table->t_exp_nominal_s : 0.0f;
-	ctx->i_sdt_e = rc == FDRFW_OK ? (double)table->i_sdt_e : 0.0;
+	(void)memset(ctx, 0, sizeof(*ctx));
+	ctx->table = table;
+	if (rc == FDRFW_OK)
+		rc = fdrfw_fdr_init(ctx);
+	if (rc != FDRFW_OK)
+		ctx->table = NULL;
 	return rc;
 }
 
@@ -82,21 +84,24 @@ static int body_dirs(const struct fdrfw_input *in, float sun[3],
 	return fdrfw_unit(r, moon);
 }
 
-/* Lunar flux at this phase: the full Moon scaled by libstray's phase law. */
-static double moon_flux(const struct fdrfw_table *t, float phase_deg)
+/* Lunar flux at this phase: the full Moon scaled by libstray's phase law,
+ * in the core's real type. */
+static stray_real moon_flux(const struct fdrfw_table *t, float phase_deg)
 {
-	double m_full = (double)t->moon_full_mag;
-	double dm = stray_moon_mag_at_phase(m_full, (double)phase_deg) - m_full;
+	stray_real m_full = (stray_real)t->moon_full_mag;
+	stray_real dm = stray_moon_mag_at_phase(m_full, (stray_real)phase_deg) -
+			m_full;
 
 	/* eq. 2.2: F = F_full 10^(-0.4 dm), as exp: libm's pow is 3 KiB. */
-	return (double)t->f_moon_full_ph_s_m2 * exp(-0.4 * LN10 * dm);
+	return (stray_real)t->f_moon_full_ph_s_m2 *
+	       stray_exp(STRAY_R(-0.4 * LN10) * dm);
 }
 
 static void store(struct fdrfw_output *out, enum fdrfw_body b,
 		  const struct fdrfw_source_result *r, uint32_t excl_flag)
 {
 	out->ln_fdr[b] = (float)r->ln_fdr;
-	out->false_stars[b] = (float)exp(r->ln_fdr);
+	out->false_stars[b] = (float)stray_exp(r->ln_fdr);
 	if (r->excluded != 0)
 		out->flags |= excl_flag;
 }
@@ -145,26 +150,25 @@ static int moon_in_field_excluded(const struct fdrfw_ctx *ctx, float theta)
 	return theta < edge;
 }
 
-static int assess(struct fdrfw_ctx *ctx, const struct fdrfw_input *in,
-		  const float b[3], const struct fdrfw_earth_cap *cap,
-		  struct fdrfw_output *out)
+static int assess(struct fdrfw_ctx *ctx, const float b[3],
+		  const struct fdrfw_earth_cap *cap, struct fdrfw_output *out)
 {
 	const struct fdrfw_table *t = ctx->table;
-	struct fdrfw_source_result r = { -INFINITY, 0 };
+	struct fdrfw_source_result r = { -STRAY_HUGE, 0 };
 	uint32_t held = ctx->latched;
 	int rc = 0;
 
 	if (!(out->flags & FDRFW_SUN_ECLIPSED))
-		rc |= fdrfw_point_source(ctx, in->t_exp_s,
-			(double)t->f_sun_ph_s_m2, out->theta_deg[FDRFW_SUN],
+		rc |= fdrfw_point_source(ctx, (stray_real)t->f_sun_ph_s_m2,
+			out->theta_deg[FDRFW_SUN],
 			(held & FDRFW_SUN_EXCLUDED) != 0, &r);
 	store(out, FDRFW_SUN, &r, FDRFW_SUN_EXCLUDED);
-	rc |= fdrfw_point_source(ctx, in->t_exp_s,
-		moon_flux(t, out->moon_phase_deg), out->theta_deg[FDRFW_MOON],
+	rc |= fdrfw_point_source(ctx, moon_flux(t, out->moon_phase_deg),
+		out->theta_deg[FDRFW_MOON],
 		(held & FDRFW_MOON_EXCLUDED) != 0, &r);
 	r.excluded |= moon_in_field_excluded(ctx, out->theta_deg[FDRFW_MOON]);
 	store(out, FDRFW_MOON, &r, FDRFW_MOON_EXCLUDED);
-	rc |= fdrfw_earth_source(ctx, in->t_exp_s, cap, b,
+	rc |= fdrfw_earth_source(ctx, cap, b,
 				 (held & FDRFW_EARTH_EXCLUDED) != 0, &r);
 	store(out, FDRFW_EARTH, &r, FDRFW_EARTH_EXCLUDED);
 	out->false_stars_total = out->false_stars[FDRFW_SUN] +
@@ -176,9 +180,8 @@ static int assess(struct fdrfw_ctx *ctx, const struct fdrfw_input *in,
 int fdrfw_frame(struct fdrfw_ctx *ctx, const struct fdrfw_input *in,
 		struct fdrfw_output *out)
 {
-	float q[4], b[3], sun[3], moon[3];
+	float b[3], sun[3], moon[3];
 	struct fdrfw_earth_cap cap;
-	unsigned i;
 
 	if (ctx->table == NULL || !inputs_valid(in) ||
 	    !body_dirs(in, sun, moon) ||
@@ -188,14 +191,10 @@ int fdrfw_frame(struct fdrfw_ctx *ctx, const struct fdrfw_input *in,
 		fail_frame(out);
 		return FDRFW_EINPUT;
 	}
-	for (i = 0; i < 4u; i++)	/* within UNIT_TOL: renormalise */
-		q[i] = in->q[i] / sqrtf(in->q[0] * in->q[0] +
-			in->q[1] * in->q[1] + in->q[2] * in->q[2] +
-			in->q[3] * in->q[3]);
-	fdrfw_boresight(q, b);
+	fdrfw_boresight_renorm(in->q, b);	/* within UNIT_TOL of unit */
 	(void)memset(out, 0, sizeof(*out));
 	locate(ctx->table, b, sun, moon, &cap, out);
-	if (assess(ctx, in, b, &cap, out) != 0) {
+	if (assess(ctx, b, &cap, out) != 0) {
 		fail_frame(out);
 		return FDRFW_EINPUT;
 	}

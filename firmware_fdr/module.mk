@@ -55,6 +55,33 @@ endef
 $(B)/tests/firmware_fdr/%: $(B)/obj/tests/firmware_fdr/%.o $(FDRFW_TEST_DEPS)
 	$(FDRFW_TEST_LINK)
 
+# libstray's core built as on the target (STRAY_REAL_FLOAT) for
+# test_float_core: its objects and the shim float_core.c are linked into
+# one relocatable object that keeps only fcore_* global, so the float core
+# sits beside the double libstray in one binary and is compared with it.
+FCORE_SRC := $(addprefix libstray/core/,fdr.c tail.c root.c error.c) \
+	tests/firmware_fdr/float_core.c
+FCORE_OBJ := $(FCORE_SRC:%.c=$(B)/obj/fcore/%.o)
+FCORE_REL := $(B)/obj/fcore/float_core_all.o
+
+$(B)/obj/fcore/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_BASE) $(CPPFLAGS_HOST) -DSTRAY_REAL_FLOAT \
+		-Wdouble-promotion -ffreestanding -Itests/firmware_fdr -c $< -o $@
+
+$(FCORE_REL): $(FCORE_OBJ)
+	$(CC) -r -nostdlib -o $@.all $^
+	objcopy --wildcard --keep-global-symbol='fcore_*' $@.all $@
+	rm -f $@.all
+
+$(B)/tests/firmware_fdr/test_float_core: \
+		$(B)/obj/tests/firmware_fdr/test_float_core.o $(FCORE_REL) \
+		$(FDRFW_TEST_DEPS)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_BASE) -o $@ $< $(FCORE_REL) $(FDRFW_TEST_SUPPORT) \
+		$(FDRFW_GROUND_LIB) $(FDRFW_LIB) $(STRAY_LIB) $(CMOCKA_LIBS) \
+		-lerfa $(STRAY_LDLIBS)
+
 include firmware_fdr/target/target.mk
 
 # The shared vectors (checked in): regenerate with `make fdrfw-vectors`.

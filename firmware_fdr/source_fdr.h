@@ -8,23 +8,30 @@
 #include "fdrfw/earth.h"
 #include "fdrfw/fdrfw.h"
 
+/*
+ * The model in ctx from its (checked) table, z = Q^-1(Pr_drs) solved once,
+ * I_sdt at the nominal exposure.  FDRFW_ERANGE if the model is not valid.
+ */
+int fdrfw_fdr_init(struct fdrfw_ctx *ctx);
+
 /* What one source does to a frame. */
 struct fdrfw_source_result {
-	double ln_fdr;		/* ln of expected false stars, eq. 2.18 */
+	stray_real ln_fdr;	/* ln of expected false stars, eq. 2.18 */
 	int excluded;		/* FDR at the exclusion envelope >= tolerated */
 };
 
 /*
- * A point source of flux f_src at theta_deg off axis.  With latched set,
+ * A point source of flux f_src at theta_deg off axis, at the exposure the
+ * context's threshold is for (fdrfw_set_exposure).  With latched set,
  * the envelope is read hysteresis_deg nearer the axis, so a raised flag
  * clears only that far past the exclusion angle.
  */
-int fdrfw_point_source(const struct fdrfw_ctx *ctx, float t_exp_s,
-		       double f_src, float theta_deg, int latched,
+int fdrfw_point_source(struct fdrfw_ctx *ctx, stray_real f_src,
+		       float theta_deg, int latched,
 		       struct fdrfw_source_result *res);
 
 /* The sunlit Earth over the cap's quadrature, boresight b (unit). */
-int fdrfw_earth_source(const struct fdrfw_ctx *ctx, float t_exp_s,
+int fdrfw_earth_source(struct fdrfw_ctx *ctx,
 		       const struct fdrfw_earth_cap *cap, const float b[3],
 		       int latched, struct fdrfw_source_result *res);
 

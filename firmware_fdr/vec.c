@@ -57,3 +57,14 @@ void fdrfw_boresight(const float q[4], float b[3])
 	b[1] = 2.0f * (y * z + w * x);
 	b[2] = 1.0f - 2.0f * (x * x + y * y);
 }
+
+void fdrfw_boresight_renorm(const float q[4], float b[3])
+{
+	float u[4];
+	float n = sqrtf(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+	unsigned i;
+
+	for (i = 0; i < 4u; i++)
+		u[i] = q[i] / n;
+	fdrfw_boresight(u, b);
+}

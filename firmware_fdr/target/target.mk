@@ -10,7 +10,7 @@ QEMU_ARM ?= qemu-system-arm
 ARM_ARCH := -mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard
 ARM_CFLAGS := -std=c99 -Wall -Wextra -Werror $(ARM_ARCH) -Os -g -MMD -MP \
 	-ffreestanding -ffunction-sections -fdata-sections -fstack-usage \
-	-fcallgraph-info=su -DSTRAY_NO_ERRMSG -DSTRAY_WITH_POISSON=0 \
+	-fcallgraph-info=su -DSTRAY_NO_ERRMSG -DSTRAY_WITH_POISSON=0 -DSTRAY_REAL_FLOAT \
 	-Ilibstray/include \
 	-Ifirmware_fdr/include -Ifirmware_fdr/target
 ARM_LDFLAGS := $(ARM_ARCH) -nostartfiles -Wl,--gc-sections \
@@ -24,8 +24,8 @@ FW_CURVE := tests/vectors/fdrfw_curve.csv
 FW_FOOTPRINT := $(FW_B)/fdrfw_footprint.elf
 FW_VECTORS := $(FW_B)/fdrfw_vectors.elf
 
-# Everything on the target is built with -Wdouble-promotion: libstray's
-# core computes in double on purpose (explicitly, never by promotion).
+# Everything on the target is single precision (libstray's core with
+# STRAY_REAL_FLOAT) and built with -Wdouble-promotion to keep it so.
 FW_EXTRA := -Wdouble-promotion
 
 $(FW_B)/obj/%.o: %.c

@@ -42,7 +42,8 @@ int stray_error_set(struct stray_error *err, int code, const char *field,
 }
 
 int stray_error_set_value(struct stray_error *err, int code,
-			  const char *field, const char *reason, double value)
+			  const char *field, const char *reason,
+			  stray_real value)
 {
 	if (err && err->code == STRAY_OK && code != STRAY_OK) {
 		stray_error_set(err, code, field, reason);

@@ -13,10 +13,8 @@
  * regularized incomplete gamma function, with the Gaussian part of b
  * folded in by the shifted-Poisson approximation of Snyder, Hammoud &
  * White (1993, JOSA A 10, 1014); a region map replaces uniform light.
+ * Numbers are stray_real: double, or float in flight builds (config.h).
  */
-#include <float.h>
-#include <math.h>
-
 #include "stray/fdr.h"
 #include "stray/root.h"
 #include "stray/tail.h"
@@ -24,30 +22,31 @@
 /* Past this window mean the Poisson tail is evaluated as a Gaussian: the
  * threshold is then < 1e-2 standard deviations out, where the skew error
  * z^3 / (6 sqrt(mu)) is below 1e-9 (the series would need > 1e5 terms). */
-#define POISSON_GAUSS_MEAN 1e8
+#define POISSON_GAUSS_MEAN STRAY_R(1e8)
 
-#define ALPHA_SEARCH_MIN 1e-30
-#define ALPHA_SEARCH_MAX 1e12
+#define ALPHA_SEARCH_MIN STRAY_R(1e-30)
+#define ALPHA_SEARCH_MAX STRAY_R(1e12)
 
-static int positive(double v)
+static int positive(stray_real v)
 {
-	return isfinite(v) && v > 0.0;
+	return isfinite(v) && v > 0;
 }
 
-static int non_negative(double v)
+static int non_negative(stray_real v)
 {
-	return isfinite(v) && v >= 0.0;
+	return isfinite(v) && v >= 0;
 }
 
 static int map_check(const struct stray_region_map *map,
 		     struct stray_error *err)
 {
-	double sum = 0.0;
+	stray_real sum = 0;
 	unsigned r;
 
 	if (map->n < 1 || map->n > STRAY_MAP_REGIONS_MAX)
 		return stray_error_set_value(err, STRAY_EINVAL, "map_regions",
-			STRAY_MSG("must be 1..64 regions"), (double)map->n);
+			STRAY_MSG("must be 1..64 regions"),
+			(stray_real)map->n);
 	for (r = 0; r < map->n; r++) {
 		if (!non_negative(map->fraction[r]))
 			return stray_error_set_value(err, STRAY_EINVAL,
@@ -59,7 +58,7 @@ static int map_check(const struct stray_region_map *map,
 				map->rel_alpha[r]);
 		sum += map->fraction[r];
 	}
-	if (fabs(sum - 1.0) > 1e-6)
+	if (stray_fabs(sum - 1) > STRAY_R(1e-6))
 		return stray_error_set_value(err, STRAY_EINVAL, "map_fraction",
 			STRAY_MSG("fractions must sum to 1"), sum);
 	return STRAY_OK;
@@ -83,13 +82,13 @@ int stray_fdr_model_check(const struct stray_fdr_model *m,
 	if (!positive(m->a_cs_m2))
 		return stray_error_set_value(err, STRAY_EINVAL, "a_cs",
 			STRAY_MSG("must be finite and > 0"), m->a_cs_m2);
-	if (!(isfinite(m->n_pps) && m->n_pps >= 1.0))
+	if (!(isfinite(m->n_pps) && m->n_pps >= 1))
 		return stray_error_set_value(err, STRAY_EINVAL, "n_pps",
 			STRAY_MSG("must be >= 1 pixel"), m->n_pps);
 	if (!(isfinite(m->n_tot) && m->n_tot >= m->n_pps))
 		return stray_error_set_value(err, STRAY_EINVAL, "n_tot",
 			STRAY_MSG("must be >= n_pps"), m->n_tot);
-	if (!(m->pr_drs > 0.0 && m->pr_drs < 1.0))
+	if (!(m->pr_drs > 0 && m->pr_drs < 1))
 		return stray_error_set_value(err, STRAY_EINVAL, "pr_drs",
 			STRAY_MSG("must lie strictly between 0 and 1"),
 			m->pr_drs);
@@ -104,43 +103,44 @@ int stray_fdr_model_check(const struct stray_fdr_model *m,
 	    !(STRAY_WITH_POISSON && m->noise == STRAY_NOISE_POISSON))
 		return stray_error_set_value(err, STRAY_EINVAL, "noise_model",
 			STRAY_MSG("must be gauss, or poisson where built in"),
-			(double)m->noise);
+			(stray_real)m->noise);
 	return m->map ? map_check(m->map, err) : STRAY_OK;
 }
 
-double stray_fdr_pixel_photons(const struct stray_fdr_model *m, double alpha)
+stray_real stray_fdr_pixel_photons(const struct stray_fdr_model *m,
+				   stray_real alpha)
 {
 	/* eq. 2.3: I_px = alpha_sys F_src t_exp A_px */
 	return alpha * m->f_src_ph_s_m2 * m->t_exp_s * m->a_px_m2;
 }
 
-double stray_fdr_drs_photons(const struct stray_fdr_model *m)
+stray_real stray_fdr_drs_photons(const struct stray_fdr_model *m)
 {
 	/* eq. 2.12: I_drs = F_drs t_exp A_cs */
 	return m->f_drs_ph_s_m2 * m->t_exp_s * m->a_cs_m2;
 }
 
 /* Detector-noise variance of one window, b (zero in the thesis model). */
-static double window_noise_var(const struct stray_fdr_model *m)
+static stray_real window_noise_var(const struct stray_fdr_model *m)
 {
 	return m->n_pps * (m->read_noise_e * m->read_noise_e +
 			   m->dark_current_e_s * m->t_exp_s);
 }
 
 /* ln Pr(X >= mean + t) for a window of Poisson mean mu (shifted Poisson). */
-static int log_poisson_excess(double mu, double t, double *log_pr,
+static int log_poisson_excess(stray_real mu, stray_real t, stray_real *log_pr,
 			      struct stray_error *err)
 {
-	if (mu <= 0.0) {
-		*log_pr = t > 0.0 ? -HUGE_VAL : 0.0;
+	if (mu <= 0) {
+		*log_pr = t > 0 ? -STRAY_HUGE : 0;
 		return STRAY_OK;
 	}
 	if (mu > POISSON_GAUSS_MEAN) {
-		*log_pr = stray_log_gauss_q(t / sqrt(mu));
+		*log_pr = stray_log_gauss_q(t / stray_sqrt(mu));
 		return STRAY_OK;
 	}
-	if (mu + t <= 0.0) {
-		*log_pr = 0.0;
+	if (mu + t <= 0) {
+		*log_pr = 0;
 		return STRAY_OK;
 	}
 	return stray_log_gamma_p(mu + t, mu, log_pr, err);
@@ -148,26 +148,35 @@ static int log_poisson_excess(double mu, double t, double *log_pr,
 
 struct drs_ctx {
 	const struct stray_fdr_model *m;
-	double mu;		/* Poisson mean of star + noise counts */
-	double b;
-	double log_target;
+	stray_real mu;		/* Poisson mean of star + noise counts */
+	stray_real b;
+	stray_real log_target;
 };
 
 /* Residual of eq. 2.16 in the Poisson model: ln Pr(X >= I) - ln Pr_drs. */
-static int drs_residual(double i, void *ctx, double *y)
+static int drs_residual(stray_real i, void *ctx, stray_real *y)
 {
 	const struct drs_ctx *c = ctx;
-	double log_pr;
+	stray_real log_pr;
 	int rc = log_poisson_excess(c->mu, i - (c->mu - c->b), &log_pr, 0);
 
 	*y = log_pr - c->log_target;
 	return rc;
 }
 
-int stray_fdr_threshold(const struct stray_fdr_model *m, double *i_sdt,
+stray_real stray_fdr_threshold_gauss(const struct stray_fdr_model *m,
+				     stray_real z_drs)
+{
+	/* eq. 2.13-2.16: Pr_drs = Q((I_sdt - mu) / sigma) */
+	stray_real i_drs = stray_fdr_drs_photons(m);
+
+	return i_drs + z_drs * stray_sqrt(i_drs + window_noise_var(m));
+}
+
+int stray_fdr_threshold(const struct stray_fdr_model *m, stray_real *i_sdt,
 			struct stray_error *err)
 {
-	double i_drs, b, z;
+	stray_real i_drs, b, z;
 	int rc = stray_fdr_model_check(m, err);
 
 	if (rc != STRAY_OK)
@@ -175,18 +184,17 @@ int stray_fdr_threshold(const struct stray_fdr_model *m, double *i_sdt,
 	i_drs = stray_fdr_drs_photons(m);
 	b = window_noise_var(m);
 	if (!STRAY_WITH_POISSON || m->noise == STRAY_NOISE_GAUSS) {
-		/* eq. 2.13-2.16: Pr_drs = Q((I_sdt - mu) / sigma) */
 		rc = stray_gauss_q_inv(m->pr_drs, &z, err);
 		if (rc == STRAY_OK)
-			*i_sdt = i_drs + z * sqrt(i_drs + b);
+			*i_sdt = stray_fdr_threshold_gauss(m, z);
 		return rc;
 	} else {
-		struct drs_ctx c = { m, i_drs + b, b, log(m->pr_drs) };
+		struct drs_ctx c = { m, i_drs + b, b, stray_log(m->pr_drs) };
 		struct stray_root_result res;
-		double span = i_drs + 40.0 * sqrt(i_drs + b) + 40.0;
+		stray_real span = i_drs + 40 * stray_sqrt(i_drs + b) + 40;
 
-		rc = stray_root_brent(drs_residual, &c, -span, span, 1e-9 * span,
-				      &res, err);
+		rc = stray_root_brent(drs_residual, &c, -span, span,
+				      STRAY_TOL(1e-9) * span, &res, err);
 		if (rc == STRAY_OK)
 			*i_sdt = res.x;
 		return rc;
@@ -194,12 +202,12 @@ int stray_fdr_threshold(const struct stray_fdr_model *m, double *i_sdt,
 }
 
 /* ln Pr_fd of one window whose pixels see attenuation alpha (eq. 2.17). */
-int stray_fdr_log_pr_fd(const struct stray_fdr_model *m, double alpha,
-			double i_sdt, double *log_pr_fd,
+int stray_fdr_log_pr_fd(const struct stray_fdr_model *m, stray_real alpha,
+			stray_real i_sdt, stray_real *log_pr_fd,
 			struct stray_error *err)
 {
 	/* eq. 2.9-2.11: re-centred window, sigma^2 = n_pps I_px (+ b) */
-	double var = m->n_pps * stray_fdr_pixel_photons(m, alpha) +
+	stray_real var = m->n_pps * stray_fdr_pixel_photons(m, alpha) +
 		     window_noise_var(m);
 
 	if (!non_negative(alpha))
@@ -207,19 +215,20 @@ int stray_fdr_log_pr_fd(const struct stray_fdr_model *m, double alpha,
 			STRAY_MSG("must be finite and >= 0"), alpha);
 	if (STRAY_WITH_POISSON && m->noise == STRAY_NOISE_POISSON)
 		return log_poisson_excess(var, i_sdt, log_pr_fd, err);
-	if (var <= 0.0)
-		*log_pr_fd = i_sdt > 0.0 ? -HUGE_VAL : 0.0;
+	if (var <= 0)
+		*log_pr_fd = i_sdt > 0 ? -STRAY_HUGE : 0;
 	else
-		*log_pr_fd = stray_log_gauss_q(i_sdt / sqrt(var));
+		*log_pr_fd = stray_log_gauss_q(i_sdt / stray_sqrt(var));
 	return STRAY_OK;
 }
 
-int stray_fdr_log_rate(const struct stray_fdr_model *m, double alpha,
-		       double i_sdt, double *log_fdr, struct stray_error *err)
+int stray_fdr_log_rate(const struct stray_fdr_model *m, stray_real alpha,
+		       stray_real i_sdt, stray_real *log_fdr,
+		       struct stray_error *err)
 {
 	/* eq. 2.18: FDR = n_tot / n_pps * Pr_fd, summed over map regions */
-	double log_windows = log(m->n_tot / m->n_pps), acc = -HUGE_VAL;
-	double norm = 0.0, lp;
+	stray_real log_windows = stray_log(m->n_tot / m->n_pps);
+	stray_real acc = -STRAY_HUGE, norm = 0, lp;
 	const struct stray_region_map *map = m->map;
 	unsigned r;
 	int rc;
@@ -231,81 +240,85 @@ int stray_fdr_log_rate(const struct stray_fdr_model *m, double alpha,
 	}
 	for (r = 0; r < map->n; r++)
 		norm += map->fraction[r] * map->rel_alpha[r];
-	if (!(norm > 0.0))
+	if (!(norm > 0))
 		return stray_error_set(err, STRAY_EINVAL, "map_rel_alpha",
 			STRAY_MSG("map carries no light"));
 	for (r = 0; r < map->n; r++) {
-		if (map->fraction[r] == 0.0)
+		if (map->fraction[r] == 0)
 			continue;
 		rc = stray_fdr_log_pr_fd(m, alpha * map->rel_alpha[r] / norm,
 					 i_sdt, &lp, err);
 		if (rc != STRAY_OK)
 			return rc;
-		acc = stray_log_add(acc, log(map->fraction[r]) + lp);
+		acc = stray_log_add(acc, stray_log(map->fraction[r]) + lp);
 	}
 	*log_fdr = log_windows + acc;
 	return STRAY_OK;
 }
 
-int stray_fdr_rate(const struct stray_fdr_model *m, double alpha,
-		   double *fdr, struct stray_error *err)
+int stray_fdr_rate(const struct stray_fdr_model *m, stray_real alpha,
+		   stray_real *fdr, struct stray_error *err)
 {
-	double i_sdt, log_fdr;
+	stray_real i_sdt, log_fdr;
 	int rc = stray_fdr_threshold(m, &i_sdt, err);
 
 	if (rc == STRAY_OK)
 		rc = stray_fdr_log_rate(m, alpha, i_sdt, &log_fdr, err);
 	if (rc == STRAY_OK)
-		*fdr = exp(log_fdr);
+		*fdr = stray_exp(log_fdr);
 	return rc;
 }
 
 struct req_ctx {
 	const struct stray_fdr_model *m;
-	double i_sdt;
-	double log_rate;
+	stray_real i_sdt;
+	stray_real log_rate;
 };
 
 /* ln FDR(e^u) - ln rate: increasing in u, so it brackets one root. */
-static int req_residual(double u, void *ctx, double *y)
+static int req_residual(stray_real u, void *ctx, stray_real *y)
 {
 	const struct req_ctx *c = ctx;
-	double log_fdr;
-	int rc = stray_fdr_log_rate(c->m, exp(u), c->i_sdt, &log_fdr, 0);
+	stray_real log_fdr;
+	int rc = stray_fdr_log_rate(c->m, stray_exp(u), c->i_sdt, &log_fdr, 0);
 
 	/* The far end can give -inf (no light, no noise): keep it finite. */
-	*y = (log_fdr < -DBL_MAX ? -DBL_MAX : log_fdr) - c->log_rate;
+	*y = (log_fdr < -STRAY_REAL_MAX ? -STRAY_REAL_MAX : log_fdr) -
+	     c->log_rate;
 	return rc;
 }
 
-int stray_fdr_alpha_required(const struct stray_fdr_model *m, double rate,
-			     double *alpha_req, struct stray_error *err)
+int stray_fdr_alpha_required(const struct stray_fdr_model *m,
+			     stray_real rate, stray_real *alpha_req,
+			     struct stray_error *err)
 {
 	struct req_ctx c;
 	struct stray_root_result res;
-	double lo = log(ALPHA_SEARCH_MIN), hi = log(ALPHA_SEARCH_MAX), y;
+	stray_real lo = stray_log(ALPHA_SEARCH_MIN);
+	stray_real hi = stray_log(ALPHA_SEARCH_MAX), y;
 	int rc;
 
 	if (!positive(rate))
 		return stray_error_set_value(err, STRAY_EINVAL, "rate",
 			STRAY_MSG("must be finite and > 0"), rate);
 	c.m = m;
-	c.log_rate = log(rate);
+	c.log_rate = stray_log(rate);
 	rc = stray_fdr_threshold(m, &c.i_sdt, err);
 	if (rc != STRAY_OK)
 		return rc;
 	if ((rc = req_residual(lo, &c, &y)) != STRAY_OK)
 		return rc;
-	if (y > 0.0)
+	if (y > 0)
 		return stray_error_set_value(err, STRAY_ERANGE, "rate",
 			STRAY_MSG("exceeded by detector noise alone"), rate);
 	if ((rc = req_residual(hi, &c, &y)) != STRAY_OK)
 		return rc;
-	if (y < 0.0)
+	if (y < 0)
 		return stray_error_set_value(err, STRAY_ERANGE, "rate",
 			STRAY_MSG("not reached even at alpha 1e12"), rate);
-	rc = stray_root_brent(req_residual, &c, lo, hi, 1e-12, &res, err);
+	rc = stray_root_brent(req_residual, &c, lo, hi, STRAY_TOL(1e-12), &res,
+			      err);
 	if (rc == STRAY_OK)
-		*alpha_req = exp(res.x);
+		*alpha_req = stray_exp(res.x);
 	return rc;
 }

@@ -133,11 +133,11 @@ double stray_flux_to_mag(double f0_ph_s_m2, double flux_ph_s_m2)
 	return -2.5 * log10(flux_ph_s_m2 / f0_ph_s_m2);
 }
 
-double stray_moon_mag_at_phase(double m_full, double phase_deg)
+stray_real stray_moon_mag_at_phase(stray_real m_full, stray_real phase_deg)
 {
-	double p = fabs(phase_deg);
+	stray_real p = stray_fabs(phase_deg);
 
-	return m_full + 0.026 * p + 4e-9 * p * p * p * p;
+	return m_full + STRAY_R(0.026) * p + STRAY_R(4e-9) * p * p * p * p;
 }
 
 int stray_earth_flux(double f_sun_ph_s_m2, double albedo, double altitude_m,

@@ -6,37 +6,37 @@
  * [b, c], try inverse quadratic (or secant) interpolation, and fall back to
  * bisection whenever the step would not shrink the bracket fast enough.
  */
-#include <float.h>
-#include <math.h>
-
 #include "stray/config.h"
 #include "stray/root.h"
 
-static int same_sign(double u, double v)
+static int same_sign(stray_real u, stray_real v)
 {
-	return (u > 0.0) == (v > 0.0);
+	return (u > 0) == (v > 0);
 }
 
 /* One interpolation step d, or bisection (d = e = m) when it is unsafe. */
-static void brent_step(double a, double b, double c, double fa, double fb,
-		       double fc, double m, double tol, double *d, double *e)
+static void brent_step(stray_real a, stray_real b, stray_real c,
+		       stray_real fa, stray_real fb, stray_real fc,
+		       stray_real m, stray_real tol, stray_real *d,
+		       stray_real *e)
 {
-	double p, q, r, s = fb / fa;
+	stray_real p, q, r, s = fb / fa;
 
 	if (a == c) {		/* secant */
-		p = 2.0 * m * s;
-		q = 1.0 - s;
+		p = 2 * m * s;
+		q = 1 - s;
 	} else {		/* inverse quadratic interpolation */
 		q = fa / fc;
 		r = fb / fc;
-		p = s * (2.0 * m * q * (q - r) - (b - a) * (r - 1.0));
-		q = (q - 1.0) * (r - 1.0) * (s - 1.0);
+		p = s * (2 * m * q * (q - r) - (b - a) * (r - 1));
+		q = (q - 1) * (r - 1) * (s - 1);
 	}
-	if (p > 0.0)
+	if (p > 0)
 		q = -q;
 	else
 		p = -p;
-	if (2.0 * p < 3.0 * m * q - fabs(tol * q) && p < fabs(0.5 * *e * q)) {
+	if (2 * p < 3 * m * q - stray_fabs(tol * q) &&
+	    p < stray_fabs(STRAY_R(0.5) * *e * q)) {
 		*e = *d;
 		*d = p / q;
 	} else {
@@ -45,11 +45,11 @@ static void brent_step(double a, double b, double c, double fa, double fb,
 	}
 }
 
-int stray_root_brent(stray_root_fn f, void *ctx, double lo, double hi,
-		     double xtol, struct stray_root_result *res,
-		     struct stray_error *err)
+int stray_root_brent(stray_root_fn f, void *ctx, stray_real lo,
+		     stray_real hi, stray_real xtol,
+		     struct stray_root_result *res, struct stray_error *err)
 {
-	double a = lo, b = hi, c, fa, fb, fc, d, e;
+	stray_real a = lo, b = hi, c, fa, fb, fc, d, e;
 	int rc, it;
 
 	if (!(lo < hi) || !isfinite(lo) || !isfinite(hi))
@@ -61,8 +61,8 @@ int stray_root_brent(stray_root_fn f, void *ctx, double lo, double hi,
 		return stray_error_set(err, STRAY_EINVAL, "bracket",
 			STRAY_MSG("function is NaN at an end"));
 	res->iterations = 2;
-	if (fa == 0.0 || fb == 0.0) {
-		res->x = fa == 0.0 ? a : b;
+	if (fa == 0 || fb == 0) {
+		res->x = fa == 0 ? a : b;
 		return STRAY_OK;
 	}
 	if (same_sign(fa, fb))
@@ -73,25 +73,26 @@ int stray_root_brent(stray_root_fn f, void *ctx, double lo, double hi,
 	fc = fa;
 	d = e = b - a;
 	for (it = 0; it < STRAY_ROOT_ITER_MAX; it++) {
-		double tol, m;
+		stray_real tol, m;
 
-		if (fabs(fc) < fabs(fb)) {	/* b is the best estimate */
+		/* b is the best estimate */
+		if (stray_fabs(fc) < stray_fabs(fb)) {
 			a = b; b = c; c = a;
 			fa = fb; fb = fc; fc = fa;
 		}
-		tol = 2.0 * DBL_EPSILON * fabs(b) + 0.5 * xtol;
-		m = 0.5 * (c - b);
-		if (fabs(m) <= tol || fb == 0.0) {
+		tol = 2 * STRAY_EPSILON * stray_fabs(b) + STRAY_R(0.5) * xtol;
+		m = STRAY_R(0.5) * (c - b);
+		if (stray_fabs(m) <= tol || fb == 0) {
 			res->x = b;
 			return STRAY_OK;
 		}
-		if (fabs(e) < tol || fabs(fa) <= fabs(fb))
+		if (stray_fabs(e) < tol || stray_fabs(fa) <= stray_fabs(fb))
 			d = e = m;
 		else
 			brent_step(a, b, c, fa, fb, fc, m, tol, &d, &e);
 		a = b;
 		fa = fb;
-		b += fabs(d) > tol ? d : (m > 0.0 ? tol : -tol);
+		b += stray_fabs(d) > tol ? d : (m > 0 ? tol : -tol);
 		if ((rc = f(b, ctx, &fb)) != STRAY_OK)
 			return rc;
 		res->iterations++;

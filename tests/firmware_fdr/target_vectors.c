@@ -106,7 +106,7 @@ int main(void)
 	sh_put_uint(ticks_sum / N_VEC * INSNS_PER_TICK);
 	sh_puts(" max ");
 	sh_put_uint(ticks_max * INSNS_PER_TICK);
-	sh_puts("; first frame at a new exposure (I_sdt solved) max ");
+	sh_puts("; first frame at a new exposure (I_sdt recomputed) max ");
 	sh_put_uint(first_max * INSNS_PER_TICK);
 	sh_puts("\nfdrfw-target: stack per frame max ");
 	sh_put_uint(steady_max);

@@ -1,10 +1,10 @@
 /*
  * test_footprint.c - the Cortex-M4F footprint in the test log (issue #6):
- * runs `make firmware`'s report on the built image, and holds the module
- * to the budgets it can answer for: its own code <= 8 KiB and no static
- * RAM of its own (<= 64 B).  The whole image and the stack, which carry
- * libstray's double-precision core and newlib's libm, are printed and
- * discussed in firmware_fdr/README.md.
+ * runs `make firmware`'s report on the built image and holds the flight
+ * code (the module and the libstray core compiled into it, in float) to
+ * issue #6's budgets: code <= 8 KiB, static RAM <= 64 B, static stack of
+ * a frame and of init <= 512 B.  The whole image with newlib's libm is
+ * printed and discussed in firmware_fdr/README.md.
  */
 #include <stdarg.h>
 #include <stddef.h>

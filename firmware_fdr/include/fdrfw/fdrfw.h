@@ -3,9 +3,9 @@
  *
  * For each frame: the off-axis angle of the Sun, the Moon and the Earth,
  * the expected false stars from each (thesis eq. 2.3-2.18, evaluated by
- * libstray's own FDR core compiled into the module), and flags.  The
- * caller owns the context; nothing here allocates, recurses or keeps a
- * mutable global.
+ * libstray's own FDR core compiled into the module, in single precision on
+ * the target: STRAY_REAL_FLOAT), and flags.  The caller owns the context;
+ * nothing here allocates, recurses or keeps a mutable global.
  */
 #ifndef FDRFW_FDRFW_H
 #define FDRFW_FDRFW_H
@@ -13,6 +13,7 @@
 #include <stdint.h>
 
 #include "fdrfw/table.h"
+#include "stray/fdr.h"
 
 enum fdrfw_body { FDRFW_SUN = 0, FDRFW_MOON = 1, FDRFW_EARTH = 2,
 		  FDRFW_BODIES = 3 };
@@ -58,20 +59,28 @@ struct fdrfw_ctx {
 	const struct fdrfw_table *table;	/* checked at init */
 	uint32_t latched;	/* exclusion flags held by hysteresis */
 	float i_sdt_t_exp_s;	/* exposure the cached threshold is for */
-	double i_sdt_e;		/* eq. 2.16 threshold for that exposure */
+	stray_real i_sdt_e;	/* eq. 2.16 threshold for that exposure */
+	stray_real z_drs;	/* Q^-1(Pr_drs), solved once at init */
+	stray_real ln_fdr_tolerated;	/* ln of the table's tolerated FDR */
+	/* The FDR model (eq. 2.3-2.18) from the table, kept here rather than
+	 * rebuilt on the stack of every call; a source sets its flux. */
+	struct stray_fdr_model model;
 };
 
 /*
- * Check the table (magic, CRC, ranges) and bind it; on failure the
- * context stays unbound and every frame reports FDRFW_INPUT_INVALID.
+ * Check the table (magic, CRC, ranges) and bind it, and solve
+ * z = Q^-1(Pr_drs) (eq. 2.16) once by libstray's bounded root search; on
+ * failure the context stays unbound and every frame reports
+ * FDRFW_INPUT_INVALID.
  */
 int fdrfw_init(struct fdrfw_ctx *ctx, const struct fdrfw_table *table);
 
 /*
- * Solve the detection threshold I_sdt (eq. 2.16) for an exposure and
- * cache it in the context.  fdrfw_frame calls it when a frame's exposure
- * differs from the cached one; calling it at an exposure change keeps
- * that root search (and its stack) out of the frame loop.
+ * The detection threshold I_sdt (eq. 2.16) for an exposure, cached in the
+ * context.  z = Q^-1(Pr_drs) does not depend on the exposure and is solved
+ * once at init, so this is the closed form I_drs + z sqrt(I_drs): no root
+ * search in the frame loop.  fdrfw_frame calls it when a frame's exposure
+ * differs from the cached one.
  */
 int fdrfw_set_exposure(struct fdrfw_ctx *ctx, float t_exp_s);
 

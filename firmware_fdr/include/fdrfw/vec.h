@@ -22,4 +22,9 @@ float fdrfw_angle_deg(const float a[3], const float b[3]);
  */
 void fdrfw_boresight(const float q[4], float b[3]);
 
+/* The same for a quaternion only near unit length (an input within its
+ * tolerance): renormalised first, in this function's own frame so the
+ * copy is off the caller's deeper call paths. */
+void fdrfw_boresight_renorm(const float q[4], float b[3]);
+
 #endif /* FDRFW_VEC_H */

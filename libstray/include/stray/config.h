@@ -11,6 +11,12 @@
  *                     leave the exact-Poisson FDR model out (flight builds
  *                     use the thesis's Gaussian model; this drops lgamma
  *                     and the incomplete-gamma fractions from the image).
+ *   STRAY_REAL_FLOAT  compute the FDR core (tail, root, fdr, error values)
+ *                     in single precision: flight builds for an FPU that
+ *                     has only float (Cortex-M4F).  The host stays double.
+ *
+ * The core's .c files carry no #ifdef for these: the real type, its
+ * constants and its math functions are chosen here, once.
  */
 #ifndef STRAY_CONFIG_H
 #define STRAY_CONFIG_H
@@ -25,6 +31,51 @@
 	typedef char STRAY_STATIC_ASSERT_CAT(stray_static_assert_, \
 					     __LINE__)[(cond) ? 1 : -1]
 #endif
+
+/*
+ * stray_real: the core's floating type.  STRAY_R(c) gives a constant of that
+ * type (a cast, folded at compile time, so float builds never promote to
+ * double); STRAY_TOL(d) scales a tolerance chosen for double by
+ * FLT_EPSILON / DBL_EPSILON = 2^29, and is d itself in double.
+ */
+#include <float.h>
+#include <math.h>
+
+#ifdef STRAY_REAL_FLOAT
+typedef float stray_real;
+#define STRAY_TOL(d) ((float)((d) * 536870912.0))
+#define STRAY_EPSILON FLT_EPSILON
+#define STRAY_REAL_MIN FLT_MIN
+#define STRAY_REAL_MAX FLT_MAX
+#define STRAY_HUGE HUGE_VALF
+/* Q(5) = 2.9e-7: erfcf still far from underflow (Q(13) ~ FLT_MIN), and
+ * Laplace's fraction at depth 64 already exact to double there. */
+#define STRAY_GAUSS_CF_FROM_Z 5.0f
+#define stray_exp(x) expf(x)
+#define stray_log(x) logf(x)
+#define stray_log1p(x) log1pf(x)
+#define stray_erfc(x) erfcf(x)
+#define stray_lgamma(x) lgammaf(x)
+#define stray_sqrt(x) sqrtf(x)
+#define stray_fabs(x) fabsf(x)
+#else
+typedef double stray_real;
+#define STRAY_TOL(d) (d)
+#define STRAY_EPSILON DBL_EPSILON
+#define STRAY_REAL_MIN DBL_MIN
+#define STRAY_REAL_MAX DBL_MAX
+#define STRAY_HUGE HUGE_VAL
+/* Q(26) ~ 1e-149: erfc far from underflow. */
+#define STRAY_GAUSS_CF_FROM_Z 26.0
+#define stray_exp(x) exp(x)
+#define stray_log(x) log(x)
+#define stray_log1p(x) log1p(x)
+#define stray_erfc(x) erfc(x)
+#define stray_lgamma(x) lgamma(x)
+#define stray_sqrt(x) sqrt(x)
+#define stray_fabs(x) fabs(x)
+#endif
+#define STRAY_R(c) ((stray_real)(c))
 
 #ifdef STRAY_NO_ERRMSG
 #define STRAY_MSG(text) ((const char *)0)

@@ -14,6 +14,8 @@
 
 #include <stddef.h>
 
+#include "stray/config.h"
+
 enum stray_status {
 	STRAY_OK = 0,
 	STRAY_EINVAL,	/* a value is out of its domain (bad input) */
@@ -34,7 +36,7 @@ struct stray_error {
 	int code;		/* enum stray_status */
 	const char *field;	/* static: parameter, key or column name */
 	const char *reason;	/* static: what is wrong with it */
-	double value;		/* the offending number, when has_value */
+	stray_real value;	/* the offending number, when has_value */
 	int has_value;
 	/* Filled by the hosted layer only. */
 	long line;		/* 1-based line in file, 0 when none */
@@ -55,7 +57,8 @@ int stray_error_set(struct stray_error *err, int code, const char *field,
 
 /* As stray_error_set, with the offending numeric value. */
 int stray_error_set_value(struct stray_error *err, int code,
-			  const char *field, const char *reason, double value);
+			  const char *field, const char *reason,
+			  stray_real value);
 
 /* Static text of a status code; never NULL. */
 const char *stray_status_text(int code);

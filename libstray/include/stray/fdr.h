@@ -6,7 +6,8 @@
  * stars per image, and inverts it into the attenuation required for a
  * tolerated rate.  The defaults reproduce the thesis exactly (Gaussian shot
  * noise, uniform stray light, no detector noise); the extensions are
- * switched on by fields that default to zero.
+ * switched on by fields that default to zero.  Numbers are stray_real
+ * (config.h): double, or float in flight builds.
  */
 #ifndef STRAY_FDR_H
 #define STRAY_FDR_H
@@ -28,22 +29,22 @@ enum stray_noise_model {
  */
 struct stray_region_map {
 	unsigned n;
-	double fraction[STRAY_MAP_REGIONS_MAX];
-	double rel_alpha[STRAY_MAP_REGIONS_MAX];
+	stray_real fraction[STRAY_MAP_REGIONS_MAX];
+	stray_real rel_alpha[STRAY_MAP_REGIONS_MAX];
 };
 
 struct stray_fdr_model {
-	double f_src_ph_s_m2;	/* F_src: stray source photon flux (eq. 2.3) */
-	double f_drs_ph_s_m2;	/* F_drs: reference-star flux (eq. 2.12) */
-	double t_exp_s;		/* exposure time t_exp */
-	double a_px_m2;		/* pixel area A_px (eq. 2.3) */
-	double a_cs_m2;		/* light-collecting area A_cs (eq. 2.12) */
-	double n_pps;		/* pixels per star window (eq. 2.7) */
-	double n_tot;		/* pixels on the detector (eq. 2.18) */
-	double pr_drs;		/* DRS detection probability (eq. 2.16) */
+	stray_real f_src_ph_s_m2;	/* F_src: source flux (eq. 2.3) */
+	stray_real f_drs_ph_s_m2;	/* F_drs: reference-star flux (2.12) */
+	stray_real t_exp_s;		/* exposure time t_exp */
+	stray_real a_px_m2;		/* pixel area A_px (eq. 2.3) */
+	stray_real a_cs_m2;		/* collecting area A_cs (eq. 2.12) */
+	stray_real n_pps;		/* pixels per star window (eq. 2.7) */
+	stray_real n_tot;		/* pixels on the detector (eq. 2.18) */
+	stray_real pr_drs;		/* DRS detection prob. (eq. 2.16) */
 	/* Extensions beyond the thesis; zero/NULL reproduces it. */
-	double read_noise_e;	/* read noise, e- rms per pixel per frame */
-	double dark_current_e_s;	/* dark current, e- per pixel per s */
+	stray_real read_noise_e;	/* e- rms per pixel per frame */
+	stray_real dark_current_e_s;	/* e- per pixel per s */
 	enum stray_noise_model noise;
 	const struct stray_region_map *map;	/* NULL: uniform light */
 };
@@ -53,37 +54,49 @@ int stray_fdr_model_check(const struct stray_fdr_model *m,
 			  struct stray_error *err);
 
 /* eq. 2.3: expected stray photons in one pixel at attenuation alpha. */
-double stray_fdr_pixel_photons(const struct stray_fdr_model *m, double alpha);
+stray_real stray_fdr_pixel_photons(const struct stray_fdr_model *m,
+				   stray_real alpha);
 
 /* eq. 2.12: expected photons of the designed reference star. */
-double stray_fdr_drs_photons(const struct stray_fdr_model *m);
+stray_real stray_fdr_drs_photons(const struct stray_fdr_model *m);
 
 /* eq. 2.16: star-detection threshold I_sdt (photo-electrons per window). */
-int stray_fdr_threshold(const struct stray_fdr_model *m, double *i_sdt,
+int stray_fdr_threshold(const struct stray_fdr_model *m, stray_real *i_sdt,
 			struct stray_error *err);
+
+/*
+ * eq. 2.16 in the Gaussian model for a known z = Q^-1(Pr_drs) (from
+ * stray_gauss_q_inv): I_sdt = I_drs + z sqrt(I_drs + b), no root search.
+ * z depends on Pr_drs alone, so a caller whose exposure changes solves it
+ * once and keeps it (stray_fdr_threshold uses this same expression).
+ */
+stray_real stray_fdr_threshold_gauss(const struct stray_fdr_model *m,
+				     stray_real z_drs);
 
 /*
  * eq. 2.17: ln Pr_fd, the probability that one uniformly lit window at
  * attenuation alpha exceeds the threshold i_sdt (from stray_fdr_threshold).
  */
-int stray_fdr_log_pr_fd(const struct stray_fdr_model *m, double alpha,
-			double i_sdt, double *log_pr_fd,
+int stray_fdr_log_pr_fd(const struct stray_fdr_model *m, stray_real alpha,
+			stray_real i_sdt, stray_real *log_pr_fd,
 			struct stray_error *err);
 
 /* eq. 2.18: ln FDR, false detections per image, summed over the map. */
-int stray_fdr_log_rate(const struct stray_fdr_model *m, double alpha,
-		       double i_sdt, double *log_fdr, struct stray_error *err);
+int stray_fdr_log_rate(const struct stray_fdr_model *m, stray_real alpha,
+		       stray_real i_sdt, stray_real *log_fdr,
+		       struct stray_error *err);
 
 /* eq. 2.18: FDR itself (0 where it underflows, see stray_fdr_log_rate). */
-int stray_fdr_rate(const struct stray_fdr_model *m, double alpha,
-		   double *fdr, struct stray_error *err);
+int stray_fdr_rate(const struct stray_fdr_model *m, stray_real alpha,
+		   stray_real *fdr, struct stray_error *err);
 
 /*
  * The attenuation alpha_req at which FDR = rate (fig. 2.7), by a bracketed
  * root search on ln FDR(ln alpha) over alpha in [1e-30, 1e12].  STRAY_ERANGE
  * when the rate is not reached in that span.
  */
-int stray_fdr_alpha_required(const struct stray_fdr_model *m, double rate,
-			     double *alpha_req, struct stray_error *err);
+int stray_fdr_alpha_required(const struct stray_fdr_model *m,
+			     stray_real rate, stray_real *alpha_req,
+			     struct stray_error *err);
 
 #endif /* STRAY_FDR_H */

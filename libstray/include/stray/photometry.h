@@ -7,6 +7,7 @@
 
 #include <stddef.h>
 
+#include "stray/config.h"
 #include "stray/error.h"
 
 /* Physical constants, CODATA 2018 exact values (SI). */
@@ -54,9 +55,10 @@ double stray_flux_to_mag(double f0_ph_s_m2, double flux_ph_s_m2);
 /*
  * Lunar magnitude at phase angle phase_deg (0 = full), from the full-Moon
  * magnitude by Allen's phase law m(p) = m_full + 0.026|p| + 4e-9 p^4
- * (Allen's Astrophysical Quantities, 4th ed., §12.4).
+ * (Allen's Astrophysical Quantities, 4th ed., §12.4).  In the core's real
+ * type (config.h), since the flight module evaluates it every frame.
  */
-double stray_moon_mag_at_phase(double m_full, double phase_deg);
+stray_real stray_moon_mag_at_phase(stray_real m_full, stray_real phase_deg);
 
 /*
  * Photon flux on an aperture facing the centre of a fully sunlit Lambertian
