@@ -14,6 +14,7 @@ PKGS=(
 	libcfitsio-dev libssl-dev
 	libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
 	libembree-dev libassimp-dev
+	libopenmpi-dev openmpi-bin
 	libusb-1.0-0-dev libhidapi-dev libgpiod-dev zlib1g-dev
 	gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm liberfa-dev cppcheck
 )

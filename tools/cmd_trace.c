@@ -21,6 +21,7 @@
 #include "tracer/obj_export.h"
 #include "tracer/path_report.h"
 #include "tracer/scene_load.h"
+#include "trace_run.h"
 
 static const char usage[] =
 	"usage: stray trace --scene SCENE [--angles LIST] [--out C.csv]\n"
@@ -424,7 +425,12 @@ static int run_trace(struct trace_args *a, struct tracer_scene *s,
 		a->o.progress = progress;
 		a->o.progress_user = &last;
 	}
-	rc = tracer_trace(s, &a->o, &r, err);
+	{
+		struct trace_scene_spec spec = { a->scene, a->sets, a->n_sets,
+						 a->lens };
+
+		rc = trace_run(&spec, s, &a->o, &r, err);
+	}
 	if (rc)
 		goto out_free;
 	if (a->out)

@@ -29,6 +29,7 @@ static const struct cmd commands[] = {
 	{ "diagnose", cmd_diagnose, "name the physical causes of a model-measurement discrepancy" },
 	{ "reduce", cmd_reduce, "lens attenuation curve, noise floor and ghosts from a lab sweep" },
 	{ "rig", cmd_rig, "control the lab sweep daemon strayrigd" },
+	{ "sweep", cmd_sweep, "Sun exclusion angle over a grid of baffle designs (resumable)" },
 };
 
 #define N_COMMANDS (sizeof(commands) / sizeof(commands[0]))

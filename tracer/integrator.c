@@ -356,7 +356,7 @@ void *tracer_worker(void *arg)
 		int b;
 
 		pthread_mutex_lock(&w->lock);
-		b = w->next_batch < w->res->n_batches ? w->next_batch++ : -1;
+		b = w->next_batch < w->end_batch ? w->next_batch++ : -1;
 		pthread_mutex_unlock(&w->lock);
 		if (b < 0)
 			break;
@@ -365,8 +365,7 @@ void *tracer_worker(void *arg)
 		w->done_batches++;
 		if (w->o->progress)
 			w->o->progress(w->o->progress_user,
-				       (double)w->done_batches /
-				       w->res->n_batches);
+				       (double)w->done_batches / w->n_run);
 		pthread_mutex_unlock(&w->lock);
 	}
 	pthread_mutex_lock(&w->lock);

@@ -2,6 +2,8 @@
  * trace.c - a trace run: check the options, allocate the result, run the
  * worker threads over the batches, merge per-batch tallies in batch order
  * (bit-identical for any thread count), and the guided two-pass scheme.
+ * The pass over a batch range and the pilot's guide are public
+ * (batches.h) so that mpi/ can run the same trace spread over ranks.
  */
 #include <math.h>
 #include <pthread.h>
@@ -9,6 +11,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "tracer/batches.h"
 #include "tracer/guide.h"
 #include "tracer/integrator.h"
 #include "worker.h"
@@ -173,11 +176,12 @@ static int merge_tables(struct worker_ctx *w)
 	return rc;
 }
 
-/* One pass of o->n_paths paths; with a guide, or filling pilot stats. */
+/* Batches [b0, b0 + nb) of a pass of o->n_paths paths; with a guide, or
+ * filling pilot stats. */
 static int run_pass(const struct tracer_scene *s,
 		    const struct tracer_trace_opts *o, struct tracer_result *res,
 		    const struct tracer_guide *guide, double *pilot_s2,
-		    struct stray_error *err)
+		    int b0, int nb, struct stray_error *err)
 {
 	struct worker_ctx w;
 	size_t j;
@@ -189,6 +193,9 @@ static int run_pass(const struct tracer_scene *s,
 	w.res = res;
 	w.guide = guide;
 	w.pilot_s2 = pilot_s2;
+	w.next_batch = b0;
+	w.end_batch = b0 + nb;
+	w.n_run = nb;
 	rc = alloc_result(o, res);
 	if (!rc)
 		rc = alloc_extras(s, o, res, &w.batch_maps);
@@ -217,47 +224,109 @@ out_free:
 	return rc;
 }
 
+int tracer_pilot_wanted(const struct tracer_trace_opts *o)
+{
+	return o->guide && o->n_paths / 10 >= 1000;
+}
+
 /*
  * The pilot: a tenth of the paths (own random streams, 8 batches) scores
  * the guide's cells; its paths are not part of the estimate.
  */
+void tracer_pilot_opts(const struct tracer_trace_opts *o,
+		       struct tracer_trace_opts *po)
+{
+	*po = *o;
+	po->n_batches = TRACER_PILOT_BATCHES;
+	po->n_paths = o->n_paths / 10 > 200000 ? 200000 : o->n_paths / 10;
+	po->seed = o->seed ^ 0x5DEECE66Dull;
+	po->record_paths = 0;
+	po->dump_paths = 0;
+	po->map_n = 0;
+}
+
+int tracer_guide_from_pilot(struct tracer_guide *g,
+			    const struct tracer_result *pilot,
+			    const double *s2)
+{
+	struct tracer_guide_stats st = { pilot->n_theta, NULL };
+	size_t per = TRACER_GUIDE_CELLS * pilot->n_theta, i, j;
+	double *p = malloc(pilot->n_theta * sizeof(double));
+	int b;
+
+	st.s2 = calloc(per, sizeof(double));
+	if (!p || !st.s2) {
+		free(p);
+		free(st.s2);
+		return STRAY_ENOMEM;
+	}
+	for (b = 0; b < pilot->n_batches; b++)	/* batch order: bit-identical */
+		for (i = 0; i < per; i++)
+			st.s2[i] += s2[(size_t)b * per + i];
+	for (j = 0; j < pilot->n_theta; j++) {
+		double sg;
+
+		tracer_result_power(pilot, j, -1, &p[j], &sg);
+	}
+	tracer_guide_build(g, &st, p);
+	free(st.s2);
+	free(p);
+	return STRAY_OK;
+}
+
 static int build_guide(const struct tracer_scene *s,
 		       const struct tracer_trace_opts *o,
 		       struct tracer_guide *g, struct stray_error *err)
 {
-	struct tracer_trace_opts po = *o;
-	struct tracer_guide_stats st = { o->n_theta, NULL };
+	struct tracer_trace_opts po;
 	struct tracer_result pr;
-	double *s2, *p;
-	size_t per = TRACER_GUIDE_CELLS * o->n_theta, i, j;
-	int b, rc;
+	double *s2;
+	int rc;
 
-	po.n_batches = 8;
-	po.n_paths = o->n_paths / 10 > 200000 ? 200000 : o->n_paths / 10;
-	po.seed = o->seed ^ 0x5DEECE66Dull;
-	po.record_paths = 0;
-	po.dump_paths = 0;
-	po.map_n = 0;
-	s2 = calloc(per * 8, sizeof(double));
-	st.s2 = calloc(per, sizeof(double));
-	p = malloc(o->n_theta * sizeof(double));
-	rc = s2 && st.s2 && p ? run_pass(s, &po, &pr, NULL, s2, err) :
+	tracer_pilot_opts(o, &po);
+	s2 = calloc(TRACER_GUIDE_CELLS * o->n_theta * po.n_batches,
+		    sizeof(double));
+	rc = s2 ? run_pass(s, &po, &pr, NULL, s2, 0, po.n_batches, err) :
 	     stray_error_set(err, STRAY_ENOMEM, "guide", "out of memory");
 	if (!rc) {
-		for (b = 0; b < 8; b++)	/* batch order: bit-identical */
-			for (i = 0; i < per; i++)
-				st.s2[i] += s2[(size_t)b * per + i];
-		for (j = 0; j < o->n_theta; j++) {
-			double sg;
-
-			tracer_result_power(&pr, j, -1, &p[j], &sg);
-		}
-		tracer_guide_build(g, &st, p);
+		if (tracer_guide_from_pilot(g, &pr, s2))
+			rc = stray_error_set(err, STRAY_ENOMEM, "guide",
+					     "out of memory");
 		tracer_result_free(&pr);
 	}
 	free(s2);
-	free(st.s2);
-	free(p);
+	return rc;
+}
+
+int tracer_trace_check(const struct tracer_scene *s,
+		       const struct tracer_trace_opts *o,
+		       struct stray_error *err)
+{
+	return check_opts(s, o, err);
+}
+
+int tracer_trace_batches(const struct tracer_scene *s,
+			 const struct tracer_trace_opts *o,
+			 const struct tracer_guide *guide, int first_batch,
+			 int n_batches, double *pilot_s2,
+			 struct tracer_result *res, struct stray_error *err)
+{
+	double t0 = now_s();
+	int rc = check_opts(s, o, err);
+
+	if (rc)
+		return rc;
+	if (o->record_paths || o->dump_paths || o->map_n)
+		return stray_error_set(err, STRAY_EINVAL, "trace",
+			"path records, dumps and maps need the whole trace");
+	if (first_batch < 0 || n_batches < 1 ||
+	    n_batches > o->n_batches - first_batch)
+		return stray_error_set_value(err, STRAY_EINVAL, "batches",
+			"range outside the trace's batches", first_batch);
+	rc = run_pass(s, o, res, guide, pilot_s2, first_batch, n_batches,
+		      err);
+	if (!rc)
+		res->seconds = now_s() - t0;
 	return rc;
 }
 
@@ -271,13 +340,13 @@ int tracer_trace(const struct tracer_scene *s,
 
 	if (rc)
 		return rc;
-	if (o->guide && o->n_paths / 10 >= 1000) {
+	if (tracer_pilot_wanted(o)) {
 		g = malloc(sizeof(*g));
 		rc = g ? build_guide(s, o, g, err) :
 		     stray_error_set(err, STRAY_ENOMEM, "guide", "out of memory");
 	}
 	if (!rc)
-		rc = run_pass(s, o, res, g, NULL, err);
+		rc = run_pass(s, o, res, g, NULL, 0, o->n_batches, err);
 	if (!rc)
 		res->seconds = now_s() - t0;
 	free(g);

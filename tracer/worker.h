@@ -20,7 +20,8 @@ struct worker_ctx {
 	const struct tracer_guide *guide;	/* main pass: sample by it */
 	double *pilot_s2;		/* pilot pass: [batch][cell][theta] */
 	pthread_mutex_t lock;
-	int next_batch, done_batches;
+	int next_batch, end_batch, done_batches;	/* batches [first, end) */
+	int n_run;			/* end - first, for progress */
 	int failed;
 };
 

@@ -1,0 +1,54 @@
+/*
+ * farm.h - a master/worker task farm over MPI for the tracer.
+ *
+ * Rank 0 runs the command; each trace it asks for is cut into pieces
+ * (piece.h: angle chunk x batch) that are handed out one or two at a time
+ * to whichever rank is free (dynamic load balancing: high-angle chunks
+ * and slow ranks simply take fewer), while a thread on rank 0 works
+ * through the same queue.  The results land in their own rows, so the
+ * merged statistics sum batches in batch order, never arrival order: the
+ * output is bit-identical to a one-process run with the same seed.
+ * Only rank 0 calls MPI (MPI_THREAD_FUNNELED).
+ */
+#ifndef STRAY_MPI_FARM_H
+#define STRAY_MPI_FARM_H
+
+#include <stdint.h>
+
+#include "trace_run.h"
+
+struct farm_config {
+	int angle_chunks;	/* angle chunks per batch; 0: automatic */
+	double task_timeout_s;	/* silence from a busy rank that is fatal */
+};
+
+extern struct farm_config farm_config;
+
+/* What the last trace sent and received, for `make bench`. */
+struct farm_stats {
+	uint64_t tasks, pilot_tasks;	/* main pass, pilot pass */
+	uint64_t task_bytes;	/* main pass: piece and result messages */
+	uint64_t pilot_bytes;	/* pilot pass: the same (results carry s2) */
+	uint64_t job_bytes;	/* job descriptions and guides */
+	uint64_t remote_tasks;	/* main-pass pieces done by other ranks */
+	uint64_t remote_pilot;	/* pilot pieces done by other ranks */
+};
+
+extern struct farm_stats farm_last;
+
+/* Rank 0: the trace_run hook. */
+int farm_trace(const struct trace_scene_spec *spec,
+	       const struct tracer_scene *s,
+	       const struct tracer_trace_opts *o, struct tracer_result *res,
+	       struct stray_error *err);
+
+/* Rank 0: 1 once a rank was lost or failed (the job must be aborted). */
+int farm_broken(void);
+
+/* Rank 0: let the other ranks return from farm_serve. */
+void farm_quit(void);
+
+/* Ranks > 0: serve jobs and pieces until rank 0 says quit; 0 or 1. */
+int farm_serve(void);
+
+#endif /* STRAY_MPI_FARM_H */

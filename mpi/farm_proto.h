@@ -1,0 +1,48 @@
+/*
+ * farm_proto.h - private to the farm: message tags, the job description
+ * every rank rebuilds its scene from, and the polling wait.
+ */
+#ifndef STRAY_MPI_FARM_PROTO_H
+#define STRAY_MPI_FARM_PROTO_H
+
+#include <stddef.h>
+
+#include "farm.h"
+#include "piece.h"
+
+enum farm_tag {
+	TAG_JOB = 1,	/* bytes: farm_job packed */
+	TAG_GUIDE,	/* bytes: struct tracer_guide */
+	TAG_TASK,	/* int[4]: struct piece */
+	TAG_RESULT,	/* double[piece_payload_len] */
+	TAG_ERROR,	/* char[]: one line from a failed rank */
+	TAG_ENDJOB,	/* empty */
+	TAG_QUIT	/* empty */
+};
+
+#define FARM_SETS_MAX 64
+
+/* A trace as a rank other than 0 needs it; strings point into the buffer. */
+struct farm_job {
+	struct tracer_trace_opts o;
+	const char *scene, *lens;	/* lens: NULL when none */
+	const char *sets[FARM_SETS_MAX];
+	int n_sets;
+};
+
+/* Pack spec and o into a new buffer (caller frees); NULL when out of memory. */
+char *farm_job_pack(const struct trace_scene_spec *spec,
+		    const struct tracer_trace_opts *o, size_t *len);
+
+/* Unpack into j; its pointers point into buf (kept by the caller);
+ * theta_deg too.  STRAY_EINVAL on a malformed buffer. */
+int farm_job_unpack(char *buf, size_t len, struct farm_job *j,
+		    struct stray_error *err);
+
+/* Monotonic seconds. */
+double farm_now(void);
+
+/* Sleep between polls: long enough to leave the core to the tracer. */
+void farm_nap(void);
+
+#endif /* STRAY_MPI_FARM_PROTO_H */

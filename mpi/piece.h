@@ -1,0 +1,54 @@
+/*
+ * piece.h - one task of a distributed trace: some batches of a pass at a
+ * contiguous subset of the angles (tracer/batches.h says why such a
+ * piece computes exactly the numbers of the whole trace), packed as a
+ * flat array of doubles (the MPI message), and put back into the
+ * assembled result.  No MPI here: the unit tests run it in one process.
+ */
+#ifndef STRAY_MPI_PIECE_H
+#define STRAY_MPI_PIECE_H
+
+#include <stddef.h>
+
+#include "tracer/batches.h"
+
+enum piece_pass { PIECE_PILOT = 0, PIECE_MAIN = 1 };
+
+struct piece {
+	int pass;		/* enum piece_pass */
+	int batch;
+	int theta_first, theta_n;	/* angles [first, first + n) */
+};
+
+/* Doubles in a piece's payload (the pilot's carries its s2 tallies). */
+size_t piece_payload_len(const struct piece *p);
+
+/* Payload: batch_paths, casts, connections, energy[TRACER_ENERGY_N],
+ * power[theta_n][TRACER_ORDERS], then (pilot) s2[cells][theta_n]. */
+#define PIECE_HEAD (3 + TRACER_ENERGY_N)
+
+/*
+ * Trace piece p of the pass whose options are po (all angles; the pilot's
+ * options for PIECE_PILOT) with guide g (NULL for the pilot) into out
+ * (piece_payload_len doubles).
+ */
+int piece_run(const struct tracer_scene *s,
+	      const struct tracer_trace_opts *po,
+	      const struct tracer_guide *g, const struct piece *p,
+	      double *out, struct stray_error *err);
+
+/* An empty result of pass po (all angles, all batches) to assemble into;
+ * s2 (pilot, may be NULL) gets [batches][cells][n_theta] zeros. */
+int piece_result_alloc(const struct tracer_trace_opts *po,
+		       struct tracer_result *r, double **s2);
+
+/* Put a piece's payload into its rows of r (and s2). */
+void piece_apply(const struct piece *p, const double *payload,
+		 struct tracer_result *r, double *s2);
+
+/* The pieces of a pass in the order handed out: per batch, angle chunks
+ * from the last (high angles: most connections) down; n_chunks >= 1. */
+size_t piece_plan(int pass, int n_batches, size_t n_theta, int n_chunks,
+		  struct piece *out);
+
+#endif /* STRAY_MPI_PIECE_H */

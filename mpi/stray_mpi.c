@@ -1,0 +1,170 @@
+/*
+ * stray_mpi.c - `stray-mpi`: `stray trace` and `stray sweep` with their
+ * traces spread over MPI ranks (farm.h).
+ *
+ *   mpirun -n 4 stray-mpi trace --scene ref4 --out c.csv
+ *   mpirun -n 4 stray-mpi sweep --scene ref4 --grid edge_radius=0,0.05 ...
+ *   stray-mpi trace ...      (no mpirun: a singleton, one rank)
+ *
+ * A binary of its own rather than MPI inside `stray`: MPI_Init starts
+ * Open MPI's runtime (slow, and its allocations are reported as leaks by
+ * LeakSanitizer, which would fail every `stray` test of the sanitizer
+ * pass), and `stray` stays installable where there is no MPI.
+ * Rank 0 runs the command; the others serve pieces until it is done.
+ */
+#include <getopt.h>
+#include <mpi.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "commands.h"
+#include "farm.h"
+
+static const char usage[] =
+	"usage: mpirun -n N stray-mpi [--angle-chunks K] [--task-timeout S]\n"
+	"                             trace|sweep [<args>]\n"
+	"\n"
+	"  trace, sweep        as 'stray trace' and 'stray sweep', the traces\n"
+	"                      spread over the ranks; same seed, same bits\n"
+	"  --angle-chunks K    split each batch's angles in K pieces\n"
+	"                      (default: only when batches < 4 x ranks)\n"
+	"  --task-timeout S    a rank silent for S s with work is lost: abort\n"
+	"                      with one line (default 300)\n"
+	"  --stats             after each trace, one stderr line: pieces, bytes\n"
+	"                      per piece, pieces done by other ranks\n";
+
+static int show_stats;
+
+static int usage_error(const char *what, const char *text)
+{
+	fprintf(stderr, "stray-mpi: %s%s (see 'stray-mpi --help')\n", what,
+		text);
+	return CLI_USAGE;
+}
+
+/* A number in [lo, hi] (an integer when integral), or -1. */
+static double parse_number(const char *text, double lo, double hi,
+			   int integral)
+{
+	char *end;
+	double v = strtod(text, &end);
+
+	if (end == text || *end != '\0' || !(v >= lo && v <= hi) ||
+	    (integral && v != (int)v))
+		return -1.0;
+	return v;
+}
+
+static int parse_global(int argc, char **argv)
+{
+	static const struct option opts[] = {
+		{ "angle-chunks", required_argument, NULL, 'c' },
+		{ "task-timeout", required_argument, NULL, 't' },
+		{ "stats", no_argument, NULL, 's' },
+		{ "help", no_argument, NULL, 'h' },
+		{ NULL, 0, NULL, 0 }
+	};
+	double v;
+	int opt;
+
+	opterr = 0;
+	while ((opt = getopt_long(argc, argv, "+h", opts, NULL)) != -1) {
+		if (opt == 'h') {
+			fputs(usage, stdout);
+			return -1;
+		}
+		if (opt == 's') {
+			show_stats = 1;
+			continue;
+		}
+		if (opt != 'c' && opt != 't')
+			return usage_error("unknown option ", argv[optind - 1]);
+		v = opt == 'c' ? parse_number(optarg, 1, 4096, 1) :
+		    parse_number(optarg, 1e-3, 1e6, 0);
+		if (v < 0.0)
+			return usage_error(opt == 'c' ?
+				"--angle-chunks must be an integer in [1, 4096]: " :
+				"--task-timeout must be in [0.001, 1e6] s: ", optarg);
+		if (opt == 'c')
+			farm_config.angle_chunks = (int)v;
+		else
+			farm_config.task_timeout_s = v;
+	}
+	if (optind >= argc)
+		return usage_error("give a command: trace or sweep", "");
+	return CLI_OK;
+}
+
+/* The farm, and its traffic on stderr with --stats (make bench reads it). */
+static int farm_trace_stats(const struct trace_scene_spec *spec,
+			    const struct tracer_scene *s,
+			    const struct tracer_trace_opts *o,
+			    struct tracer_result *res, struct stray_error *err)
+{
+	int rc = farm_trace(spec, s, o, res, err), size;
+
+	MPI_Comm_size(MPI_COMM_WORLD, &size);
+	if (!rc && show_stats && farm_last.tasks)
+		fprintf(stderr, "stray-mpi: stats: ranks %d pieces %llu "
+			"remote_pieces %llu bytes_per_remote_piece %.1f "
+			"pilot_pieces %llu pilot_bytes_per_remote_piece %.1f "
+			"job_bytes %llu seconds %.4f\n", size,
+			(unsigned long long)farm_last.tasks,
+			(unsigned long long)farm_last.remote_tasks,
+			farm_last.remote_tasks ? (double)farm_last.task_bytes /
+			farm_last.remote_tasks : 0.0,
+			(unsigned long long)farm_last.pilot_tasks,
+			farm_last.remote_pilot ? (double)farm_last.pilot_bytes /
+			farm_last.remote_pilot : 0.0,
+			(unsigned long long)farm_last.job_bytes,
+			res->seconds);
+	return rc;
+}
+
+static int run_command(int argc, char **argv)
+{
+	int rc = parse_global(argc, argv);
+	int (*cmd)(int, char **) = NULL;
+
+	if (rc)
+		return rc < 0 ? CLI_OK : rc;
+	if (strcmp(argv[optind], "trace") == 0)
+		cmd = cmd_trace;
+	else if (strcmp(argv[optind], "sweep") == 0)
+		cmd = cmd_sweep;
+	else
+		return usage_error("not distributed (use trace or sweep): ",
+				   argv[optind]);
+	argc -= optind;
+	argv += optind;
+	optind = 0;
+	trace_run = farm_trace_stats;
+	return cmd(argc, argv);
+}
+
+int main(int argc, char **argv)
+{
+	int provided, rank, rc = 0;
+
+	if (MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided) !=
+	    MPI_SUCCESS) {
+		fputs("stray-mpi: MPI_Init failed\n", stderr);
+		return CLI_FAIL;
+	}
+	MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+	cli.prog = "stray-mpi";
+	if (rank != 0) {
+		rc = farm_serve();
+	} else {
+		rc = run_command(argc, argv);
+		if (fflush(stdout) != 0 && !rc)
+			rc = CLI_FAIL;
+		if (farm_broken())	/* a rank is lost or busy: end them all */
+			MPI_Abort(MPI_COMM_WORLD, rc ? rc : CLI_FAIL);
+		farm_quit();
+	}
+	MPI_Finalize();
+	return rc;
+}

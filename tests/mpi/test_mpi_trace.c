@@ -1,0 +1,110 @@
+/*
+ * test_mpi_trace.c - mpirun on localhost with 2, 3 and 4 ranks
+ * (oversubscribed on 2 cores) gives the bytes of a one-process run with
+ * the same seed: `stray trace` curves with a lens, angle chunks and the
+ * pilot guide, and a `stray sweep` table.  Every command has a timeout.
+ */
+#include <signal.h>
+
+#include "mpi_run.h"
+
+#define TRACE_ARGS "trace --scene ref4 --set segments=96 --angles 0:80:8 " \
+	"--rays 30000 --seed 7 --lens lens.csv"
+#define SWEEP_ARGS "sweep --scene ref4 --set segments=96 " \
+	"--grid bevel_face=lower,upper --grid reflectance=0.04,0.08 " \
+	"--angles 0:88:4 --alpha-at 20,40 --rays 20000"
+
+static void write_lens(void)
+{
+	assert_int_equal(shell("printf '# kind: lens\\ntheta_deg,alpha\\n"
+			       "0,1\\n20,0.6\\n40,0.2\\n90,0.05\\n' > lens.csv"),
+			 0);
+}
+
+static void test_mpi_trace_identical(void **state)
+{
+	static const struct { int n; const char *extra; } runs[] = {
+		{ 2, "" }, { 3, "--angle-chunks 3" }, { 4, "--angle-chunks 2" },
+	};
+	char out[32];
+	size_t i;
+
+	(void)state;
+	write_lens();
+	assert_int_equal(shell("timeout 60 %s " TRACE_ARGS " --threads 1 "
+			       "--out one.csv", bin("stray")), 0);
+	/* the same binary without mpirun: a singleton, one rank */
+	assert_int_equal(shell("timeout 60 %s " TRACE_ARGS " --out single.csv",
+			       bin("stray-mpi")), 0);
+	assert_true(same_bytes("one.csv", "single.csv"));
+	for (i = 0; i < sizeof(runs) / sizeof(runs[0]); i++) {
+		snprintf(out, sizeof(out), "n%d.csv", runs[i].n);
+		assert_int_equal(shell("timeout 90 mpirun --oversubscribe -n %d "
+				       "%s --stats %s " TRACE_ARGS " --out %s "
+				       "2> n%d.err", runs[i].n,
+				       bin("stray-mpi"), runs[i].extra, out,
+				       runs[i].n), 0);
+		if (!same_bytes("one.csv", out))
+			fail_msg("%d ranks: %s differs from one.csv",
+				 runs[i].n, out);
+	}
+	/* the other ranks did take pieces (a real distribution) */
+	assert_false(file_has("n4.err", "remote_pieces 0 "));
+	assert_true(file_has("n4.err", "stray-mpi: stats: ranks 4"));
+}
+
+/* A different seed changes the bytes: the comparison can fail. */
+static void test_mpi_trace_seed_matters(void **state)
+{
+	(void)state;
+	write_lens();
+	assert_int_equal(shell("timeout 90 mpirun --oversubscribe -n 2 %s "
+			       TRACE_ARGS " --seed 8 --out seed8.csv",
+			       bin("stray-mpi")), 0);
+	assert_int_equal(shell("timeout 60 %s " TRACE_ARGS " --out seed7.csv",
+			       bin("stray")), 0);
+	assert_false(same_bytes("seed7.csv", "seed8.csv"));
+}
+
+static void test_mpi_sweep_identical(void **state)
+{
+	(void)state;
+	assert_int_equal(shell("timeout 120 %s " SWEEP_ARGS " --state st1 "
+			       "--out sweep1.csv > sweep1.txt 2>&1",
+			       bin("stray")), 0);
+	assert_int_equal(shell("timeout 120 mpirun --oversubscribe -n 3 %s "
+			       SWEEP_ARGS " --state st3 --out sweep3.csv "
+			       "--json > sweep3.json 2> sweep3.err",
+			       bin("stray-mpi")), 0);
+	assert_true(same_bytes("sweep1.csv", "sweep3.csv"));
+	assert_true(same_bytes("st1/design_0003.csv", "st3/design_0003.csv"));
+	assert_true(file_has("sweep3.json", "\"best\":"));
+}
+
+/* Paths, dumps and maps are not distributed: one clear line, exit 2. */
+static void test_mpi_refuses_path_records(void **state)
+{
+	(void)state;
+	assert_int_equal(shell("timeout 60 mpirun --oversubscribe -n 2 %s "
+			       "trace --scene ref4 --rays 2000 --angles 0,30 "
+			       "--top 3 > top.out 2> top.err",
+			       bin("stray-mpi")), 2);
+	assert_true(file_has("top.err", "need one rank"));
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_mpi_trace_identical),
+		cmocka_unit_test(test_mpi_trace_seed_matters),
+		cmocka_unit_test(test_mpi_sweep_identical),
+		cmocka_unit_test(test_mpi_refuses_path_records),
+	};
+	int rc;
+
+	mpi_test_setup();
+	rc = cmocka_run_group_tests(tests, NULL, NULL);
+	if (rc == 0)
+		shell("cd / && rm -rf %s", scratch);
+	return rc;
+}
