@@ -3,21 +3,23 @@
 # Idempotent: installs only what is missing, and says nothing when all is
 # there.  Run as root or with sudo available.
 set -eu
+
 PKGS=(
 	build-essential pkg-config python3
-	libcmocka-dev
-	libcsv-dev
-	libcjson-dev
-	libplplot-dev plplot-driver-cairo
-	clang libclang-rt-14-dev
-	chromium
-	libcfitsio-dev libssl-dev
+	libcmocka-dev			# unit tests
+	libcsv-dev libcjson-dev		# CSV fields, JSON sensors and output
+	libplplot-dev plplot-driver-cairo	# plots (PNG through cairo)
+	clang libclang-rt-14-dev	# libFuzzer targets of the parsers
+	chromium			# the report test opens it headless
+	libcfitsio-dev libssl-dev	# FITS frames, SHA-256 of the manifest
 	libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
-	libembree-dev libassimp-dev
-	libopenmpi-dev openmpi-bin
-	libusb-1.0-0-dev libhidapi-dev libgpiod-dev zlib1g-dev
-	gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm liberfa-dev cppcheck
+	libembree-dev libassimp-dev	# ray queries, OBJ/STL import
+	libopenmpi-dev openmpi-bin	# stray-mpi
+	libusb-1.0-0-dev libhidapi-dev libgpiod-dev zlib1g-dev	# rig
+	gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm	# flight build
+	liberfa-dev cppcheck		# ephemeris reference, flight-code checks
 )
+
 missing=()
 for p in "${PKGS[@]}"; do
 	case "$p" in \#*) continue ;; esac
@@ -25,6 +27,7 @@ for p in "${PKGS[@]}"; do
 		missing+=("$p")
 done
 [ ${#missing[@]} -eq 0 ] && exit 0
+
 echo "install-deps: installing ${missing[*]}"
 SUDO=""
 [ "$(id -u)" -ne 0 ] && SUDO="sudo"
