@@ -45,6 +45,17 @@ int cli_parse_double(const char *cmd, const char *opt, const char *text,
 	return CLI_OK;
 }
 
+int cli_parse_count(const char *cmd, const char *opt, const char *text,
+		    double lo, double hi, double *out)
+{
+	if (cli_parse_double(cmd, opt, text, out))
+		return CLI_USAGE;
+	if (*out < lo || *out > hi || *out != floor(*out))
+		return cli_usage_error(cmd, "option '--%s': '%s' must be an integer in [%.0f, %.0f]",
+				       opt, text, lo, hi);
+	return CLI_OK;
+}
+
 int cli_json_emit(cJSON *obj)
 {
 	char *text = cJSON_Print(obj);

@@ -30,6 +30,10 @@ int cli_usage_error(const char *cmd, const char *fmt, ...)
 int cli_parse_double(const char *cmd, const char *opt, const char *text,
 		     double *out);
 
+/* Parse a whole number in [lo, hi]; on failure print and return 2. */
+int cli_parse_count(const char *cmd, const char *opt, const char *text,
+		    double lo, double hi, double *out);
+
 /* Print a JSON object to stdout (pretty) and free it; returns 0 or 1. */
 int cli_json_emit(cJSON *obj);
 

@@ -70,10 +70,7 @@ static const struct option sweep_opts[] = {
 	{ "plot", required_argument, NULL, 'P' },
 	{ "angles", required_argument, NULL, 'a' },
 	{ "alpha-at", required_argument, NULL, 'A' },
-	{ "rays", required_argument, NULL, 'n' },
-	{ "seed", required_argument, NULL, 'k' },
-	{ "threads", required_argument, NULL, 't' },
-	{ "batches", required_argument, NULL, 'b' },
+	TRACE_RUN_LONG_OPTIONS,
 	{ "lens", required_argument, NULL, 'l' },
 	{ "set", required_argument, NULL, 'S' },
 	{ "json", no_argument, NULL, 'j' },
@@ -82,23 +79,9 @@ static const struct option sweep_opts[] = {
 	{ NULL, 0, NULL, 0 }
 };
 
-static int parse_int(const char *opt, const char *text, double lo,
-		     double hi, double *v)
-{
-	if (cli_parse_double("sweep", opt, text, v))
-		return CLI_USAGE;
-	if (*v < lo || *v > hi || *v != floor(*v))
-		return cli_usage_error("sweep", "option '--%s': '%s' must be "
-				       "an integer in [%.0f, %.0f]", opt, text,
-				       lo, hi);
-	return CLI_OK;
-}
-
 /* Numbers and strings; 1 when opt is neither. */
 static int parse_value(int opt, char *arg, struct sweep_args *a, int *rc)
 {
-	double v = 0.0;
-
 	switch (opt) {
 	case 's': a->scene = arg; return 0;
 	case 'd': a->state = arg; return 0;
@@ -108,15 +91,7 @@ static int parse_value(int opt, char *arg, struct sweep_args *a, int *rc)
 	case 'A': a->at_list = arg; return 0;
 	case 'l': a->lens = arg; return 0;
 	case 'j': cli.json = 1; return 0;
-	case 'n': *rc = parse_int("rays", arg, 2, 1e12, &v);
-		a->o.n_paths = (uint64_t)v; return 0;
-	case 'k': *rc = parse_int("seed", arg, 0, 9e15, &v);
-		a->o.seed = (uint64_t)v; return 0;
-	case 't': *rc = parse_int("threads", arg, 1, 256, &v);
-		a->o.threads = (int)v; return 0;
-	case 'b': *rc = parse_int("batches", arg, 2, 4096, &v);
-		a->o.n_batches = (int)v; return 0;
-	default: return 1;
+	default: return trace_run_option("sweep", opt, arg, &a->o, rc);
 	}
 }
 
@@ -374,13 +349,10 @@ int cmd_sweep(int argc, char **argv)
 	struct sweep_args a;
 	struct fdr_setup fs;
 	struct stray_error err;
-	long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
 	int rc;
 
 	memset(&a, 0, sizeof(a));
-	tracer_trace_defaults(&a.o);
-	a.o.n_paths = 300000;
-	a.o.threads = ncpu > 0 && ncpu <= 256 ? (int)ncpu : 1;
+	trace_run_defaults(&a.o, 300000);
 	fdr_setup_init(&fs);
 	rc = parse_args(argc, argv, &a, &fs);
 	if (rc)

@@ -67,27 +67,11 @@ struct trace_args {
 	struct tracer_trace_opts o;
 };
 
-static int parse_count(const char *opt, const char *text, double lo,
-		       double hi, double *v)
-{
-	int rc = cli_parse_double("trace", opt, text, v);
-
-	if (rc)
-		return rc;
-	if (*v < lo || *v > hi || *v != floor(*v))
-		return cli_usage_error("trace", "option '--%s': '%s' must be an "
-				       "integer in [%.0f, %.0f]", opt, text, lo, hi);
-	return CLI_OK;
-}
-
 static const struct option trace_opts[] = {
 	{ "scene", required_argument, NULL, 's' },
 	{ "angles", required_argument, NULL, 'a' },
 	{ "out", required_argument, NULL, 'o' },
-	{ "rays", required_argument, NULL, 'n' },
-	{ "seed", required_argument, NULL, 'k' },
-	{ "threads", required_argument, NULL, 't' },
-	{ "batches", required_argument, NULL, 'b' },
+	TRACE_RUN_LONG_OPTIONS,
 	{ "lens", required_argument, NULL, 'l' },
 	{ "set", required_argument, NULL, 'S' },
 	{ "export-obj", required_argument, NULL, 'x' },
@@ -116,22 +100,14 @@ static int parse_number(int opt, const char *text, struct trace_args *a,
 		*rc = cli_parse_double("trace", "map-angle", text,
 				       &a->map_angle);
 		return 0;
-	case 'C': *rc = parse_count("dump-count", text, 1, 1e6, &v);
+	case 'C': *rc = cli_parse_count("trace", "dump-count", text, 1, 1e6, &v);
 		a->dump_count = (int)v; return 0;
-	case 'Z': *rc = parse_count("map-size", text, 1, 4096, &v);
+	case 'Z': *rc = cli_parse_count("trace", "map-size", text, 1, 4096, &v);
 		a->map_size = (int)v; return 0;
-	case 'n': *rc = parse_count("rays", text, 2, 1e12, &v);
-		a->o.n_paths = (uint64_t)v; return 0;
-	case 'k': *rc = parse_count("seed", text, 0, 9e15, &v);
-		a->o.seed = (uint64_t)v; return 0;
-	case 't': *rc = parse_count("threads", text, 1, 256, &v);
-		a->o.threads = (int)v; return 0;
-	case 'b': *rc = parse_count("batches", text, 2, 4096, &v);
-		a->o.n_batches = (int)v; return 0;
-	case 'T': *rc = parse_count("top", text, 1, 1000, &v);
+	case 'T': *rc = cli_parse_count("trace", "top", text, 1, 1000, &v);
 		a->top = (int)v; return 0;
 	default:
-		return 1;
+		return trace_run_option("trace", opt, text, &a->o, rc);
 	}
 }
 
@@ -459,13 +435,10 @@ int cmd_trace(int argc, char **argv)
 	struct trace_args a;
 	struct tracer_scene s;
 	struct stray_error err;
-	long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
 	int rc;
 
 	memset(&a, 0, sizeof(a));
-	tracer_trace_defaults(&a.o);
-	a.o.n_paths = 1500000;	/* about 1 % at every default angle */
-	a.o.threads = ncpu > 0 && ncpu <= 256 ? (int)ncpu : 1;
+	trace_run_defaults(&a.o, 1500000);	/* about 1 % at every angle */
 	a.dump_count = 100;
 	a.map_size = 64;
 	rc = parse_args(argc, argv, &a);
