@@ -67,3 +67,14 @@ fuzz: fuzz-tracer
 
 # The virtual photometer draws its noise from the tracer's Philox streams.
 $(B)/obj/tools/cmd_photometer.o: EXTRA_CFLAGS += -Itracer/include
+
+# make test replays it for a fixed number of runs, like the others.
+.PHONY: fuzz-tracer-smoke
+fuzz-tracer-smoke: $(TRACER_FUZZ)
+	@echo "== fuzz_tracer_args ($(FUZZ_RUNS) runs, seed 1)"
+	@rm -rf build/fuzz/smoke-tracer && mkdir -p build/fuzz/smoke-tracer
+	@$(TRACER_FUZZ) -runs=$(FUZZ_RUNS) -seed=1 build/fuzz/smoke-tracer \
+		tests/tracer/fuzz_seeds > build/fuzz/fuzz_tracer_args.log 2>&1 \
+		|| { cat build/fuzz/fuzz_tracer_args.log; exit 1; }
+	@grep -E '^#[0-9]+.*DONE' build/fuzz/fuzz_tracer_args.log | tail -n 1
+fuzz-smoke: fuzz-tracer-smoke
