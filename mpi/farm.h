@@ -20,6 +20,9 @@
 struct farm_config {
 	int angle_chunks;	/* angle chunks per batch; 0: automatic */
 	double task_timeout_s;	/* silence from a busy rank that is fatal */
+	/* path records may be farmed: the caller reads them in an order of
+	 * its own (diagnose sorts them), not the table's slot order */
+	int paths_any_order;
 };
 
 extern struct farm_config farm_config;

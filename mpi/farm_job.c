@@ -1,6 +1,7 @@
 /*
  * farm_job.c - the job description sent to every rank: the scene as the
- * command line gave it (name, --set list, lens path) and the trace's
+ * command line gave it (name, --set list, lens path, edits after
+ * loading: trace_run.h) and the trace's
  * options, so that each rank builds the same scene itself.
  */
 #include <stdlib.h>
@@ -12,8 +13,9 @@
 struct job_head {
 	uint64_t n_paths, seed;
 	double rr_weight;
+	double beam_shift_z, abg_g;	/* the scene's edits after loading */
 	int32_t n_batches, rr_depth, max_depth, guide;
-	int32_t n_theta, n_sets, has_lens, pad;
+	int32_t n_theta, n_sets, has_lens, record_paths;
 };
 
 static size_t str_size(const char *s)
@@ -33,6 +35,8 @@ char *farm_job_pack(const struct trace_scene_spec *spec,
 	h.n_paths = o->n_paths;
 	h.seed = o->seed;
 	h.rr_weight = o->rr_weight;
+	h.beam_shift_z = spec->beam_shift_z;
+	h.abg_g = spec->abg_g;
 	h.n_batches = o->n_batches;
 	h.rr_depth = o->rr_depth;
 	h.max_depth = o->max_depth;
@@ -40,6 +44,7 @@ char *farm_job_pack(const struct trace_scene_spec *spec,
 	h.n_theta = (int32_t)o->n_theta;
 	h.n_sets = spec->n_sets;
 	h.has_lens = spec->lens != NULL;
+	h.record_paths = o->record_paths != 0;
 	n += str_size(spec->scene) + str_size(spec->lens);
 	for (i = 0; i < spec->n_sets; i++)
 		n += str_size(spec->sets[i]);
@@ -96,6 +101,9 @@ int farm_job_unpack(char *buf, size_t len, struct farm_job *j,
 	j->o.rr_depth = h.rr_depth;
 	j->o.max_depth = h.max_depth;
 	j->o.guide = h.guide;
+	j->o.record_paths = h.record_paths;
+	j->beam_shift_z = h.beam_shift_z;
+	j->abg_g = h.abg_g;
 	j->o.n_theta = (size_t)h.n_theta;
 	/* the buffer is malloc'ed: suitably aligned for doubles */
 	j->o.theta_deg = (const double *)(void *)(buf + sizeof(h));

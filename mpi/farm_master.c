@@ -11,7 +11,7 @@
 
 #include "farm_proto.h"
 
-struct farm_config farm_config = { 0, 300.0 };
+struct farm_config farm_config = { 0, 300.0, 0 };
 struct farm_stats farm_last;
 
 #define PREFETCH 2	/* pieces queued per rank: no idle gap between two */
@@ -28,6 +28,7 @@ struct pass_run {
 	size_t n_plan, next, done;
 	struct tracer_result *r;
 	double *s2;
+	struct tracer_path_table *tables;	/* per batch (record_paths) */
 	pthread_mutex_t lock;
 	int failed;
 	struct stray_error err;
@@ -56,6 +57,18 @@ static long take(struct pass_run *p)
 	return k;
 }
 
+/* A piece's payload into the result (under p->lock). */
+static int apply(struct pass_run *p, const struct piece *pc,
+		 const double *payload, struct stray_error *err)
+{
+	piece_apply(pc, payload, p->r, p->s2);
+	if (p->tables && piece_apply_paths(pc, payload, p->tables))
+		return stray_error_set(err, STRAY_ENOMEM, "paths",
+				       "out of memory recording paths");
+	p->done++;
+	return STRAY_OK;
+}
+
 static void *local_worker(void *arg)
 {
 	struct pass_run *p = arg;
@@ -64,22 +77,18 @@ static void *local_worker(void *arg)
 
 	while ((k = take(p)) >= 0) {
 		const struct piece *pc = &p->plan[k];
-		double *nb = realloc(buf, piece_payload_len(pc) *
-				     sizeof(double));
 		struct stray_error e;
+		size_t len;
 		int rc;
 
 		stray_error_clear(&e);
-		rc = nb ? piece_run(p->s, p->po, p->g, pc, nb, &e) :
-		     stray_error_set(&e, STRAY_ENOMEM, "piece", "out of memory");
-		buf = nb ? nb : buf;
+		rc = piece_run_alloc(p->s, p->po, p->g, pc, &buf, &len, &e);
 		pthread_mutex_lock(&p->lock);
+		if (!rc)
+			rc = apply(p, pc, buf, &e);
 		if (rc) {
 			p->failed = 1;
 			p->err = e;
-		} else {
-			piece_apply(pc, buf, p->r, p->s2);
-			p->done++;
 		}
 		pthread_mutex_unlock(&p->lock);
 	}
@@ -134,7 +143,7 @@ static int receive(struct pass_run *p, struct rank_state *ranks,
 {
 	struct rank_state *rs = &ranks[st->MPI_SOURCE];
 	const struct piece *pc;
-	int count;
+	int count, rc;
 
 	if (st->MPI_TAG == TAG_ERROR) {
 		char line[200] = "";
@@ -151,7 +160,7 @@ static int receive(struct pass_run *p, struct rank_state *ranks,
 		return stray_error_set_value(&p->err, STRAY_EIO, "mpi",
 			"unexpected message from rank", st->MPI_SOURCE);
 	pc = &p->plan[rs->queue[0]];
-	if ((size_t)count != piece_payload_len(pc))
+	if (!piece_payload_ok(pc, p->tables != NULL, NULL, (size_t)count))
 		return stray_error_set_value(&p->err, STRAY_EIO, "mpi",
 			"result of the wrong size from rank", st->MPI_SOURCE);
 	if ((size_t)count > *cap) {
@@ -165,14 +174,18 @@ static int receive(struct pass_run *p, struct rank_state *ranks,
 	}
 	MPI_Recv(*buf, count, MPI_DOUBLE, st->MPI_SOURCE, TAG_RESULT,
 		 MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+	if (!piece_payload_ok(pc, p->tables != NULL, *buf, (size_t)count))
+		return stray_error_set_value(&p->err, STRAY_EIO, "mpi",
+			"malformed result from rank", st->MPI_SOURCE);
 	*(pc->pass == PIECE_PILOT ? &farm_last.pilot_bytes :
 	  &farm_last.task_bytes) += (uint64_t)count * sizeof(double);
 	(*(pc->pass == PIECE_PILOT ? &farm_last.remote_pilot :
 	   &farm_last.remote_tasks))++;
 	pthread_mutex_lock(&p->lock);
-	piece_apply(pc, *buf, p->r, p->s2);
-	p->done++;
+	rc = apply(p, pc, *buf, &p->err);
 	pthread_mutex_unlock(&p->lock);
+	if (rc)
+		return rc;
 	memmove(rs->queue, rs->queue + 1, (size_t)(rs->n - 1) * sizeof(size_t));
 	rs->n--;
 	rs->last_heard = farm_now();
@@ -246,6 +259,33 @@ static int chunks_for(const struct tracer_trace_opts *po, int size)
 	return c < 1 ? 1 : c;
 }
 
+/* The batches' path records into the result in batch order, as
+ * tracer_trace() merges them: the same sums, bit for bit. */
+static int merge_tables(struct pass_run *p, struct tracer_result *r,
+			struct stray_error *err)
+{
+	int b;
+
+	for (b = 0; b < p->po->n_batches; b++)
+		if (tracer_paths_merge(&r->paths, &p->tables[b])) {
+			tracer_result_free(r);
+			return stray_error_set(err, STRAY_ENOMEM, "paths",
+				"out of memory recording paths");
+		}
+	return STRAY_OK;
+}
+
+static void free_tables(struct pass_run *p)
+{
+	int b;
+
+	if (!p->tables)
+		return;
+	for (b = 0; b < p->po->n_batches; b++)
+		tracer_paths_free(&p->tables[b]);
+	free(p->tables);
+}
+
 static int run_pass(const struct tracer_scene *s,
 		    const struct tracer_trace_opts *po,
 		    const struct tracer_guide *g, int pass,
@@ -275,6 +315,14 @@ static int run_pass(const struct tracer_scene *s,
 				       "out of memory");
 	}
 	p.s2 = pass == PIECE_PILOT ? *s2 : NULL;
+	if (po->record_paths &&
+	    !(p.tables = calloc((size_t)po->n_batches, sizeof(*p.tables)))) {
+		free(p.plan);
+		free(ranks);
+		tracer_result_free(r);
+		return stray_error_set(err, STRAY_ENOMEM, "mpi",
+				       "out of memory");
+	}
 	p.n_plan = piece_plan(pass, po->n_batches, po->n_theta, chunks, p.plan);
 	*(pass == PIECE_PILOT ? &farm_last.pilot_tasks : &farm_last.tasks) +=
 		p.n_plan;
@@ -296,6 +344,9 @@ static int run_pass(const struct tracer_scene *s,
 		rc = err->code ? err->code : STRAY_EIO;
 		tracer_result_free(r);
 	}
+	if (p.tables && !rc)
+		rc = merge_tables(&p, r, err);
+	free_tables(&p);
 	pthread_mutex_destroy(&p.lock);
 	free(p.plan);
 	free(ranks);
@@ -351,7 +402,8 @@ int farm_trace(const struct trace_scene_spec *spec,
 
 	MPI_Comm_size(MPI_COMM_WORLD, &size);
 	memset(&farm_last, 0, sizeof(farm_last));
-	if (o->record_paths || o->dump_paths || o->map_n) {
+	if ((o->record_paths && !farm_config.paths_any_order) ||
+	    o->dump_paths || o->map_n) {
 		if (size == 1)	/* one rank: the whole trace, threads and all */
 			return tracer_trace(s, o, res, err);
 		return stray_error_set(err, STRAY_EINVAL, "mpi",

@@ -28,6 +28,7 @@ struct farm_job {
 	const char *scene, *lens;	/* lens: NULL when none */
 	const char *sets[FARM_SETS_MAX];
 	int n_sets;
+	double beam_shift_z, abg_g;	/* trace_scene_edit's */
 };
 
 /* Pack spec and o into a new buffer (caller frees); NULL when out of memory. */

@@ -57,6 +57,13 @@ static void start_job(struct worker *w, int len)
 	if (!rc)
 		rc = tracer_scene_load(w->job.scene, w->job.sets,
 				       w->job.n_sets, &w->scene, &err);
+	if (!rc) {	/* the edits rank 0 made after loading */
+		struct trace_scene_spec ed = { w->job.scene, w->job.sets,
+			w->job.n_sets, w->job.lens, w->job.beam_shift_z,
+			w->job.abg_g };
+
+		trace_scene_edit(&ed, &w->scene);
+	}
 	if (!rc && w->job.lens)
 		rc = tracer_lens_load(w->job.lens, &w->lens, &err);
 	if (!rc)
@@ -74,7 +81,7 @@ static void run_task(struct worker *w)
 	struct stray_error err;
 	struct piece p;
 	int msg[4];
-	double *nb;
+	size_t len = 0;
 
 	MPI_Recv(msg, 4, MPI_INT, 0, TAG_TASK, MPI_COMM_WORLD,
 		 MPI_STATUS_IGNORE);
@@ -88,25 +95,19 @@ static void run_task(struct worker *w)
 	po = w->job.o;
 	if (p.pass == PIECE_PILOT)
 		tracer_pilot_opts(&w->job.o, &po);
-	nb = realloc(w->payload, piece_payload_len(&p) * sizeof(double));
-	if (!nb) {
-		stray_error_set(&err, STRAY_ENOMEM, "piece", "out of memory");
-	} else {
-		w->payload = nb;
-		if (p.pass != PIECE_PILOT && po.guide && !w->have_guide &&
-		    tracer_pilot_wanted(&po))
-			stray_error_set(&err, STRAY_EINVAL, "guide",
-					"piece before the guide");
-		else
-			piece_run(&w->scene, &po, w->have_guide ? &w->guide :
-				  NULL, &p, w->payload, &err);
-	}
+	if (p.pass != PIECE_PILOT && po.guide && !w->have_guide &&
+	    tracer_pilot_wanted(&po))
+		stray_error_set(&err, STRAY_EINVAL, "guide",
+				"piece before the guide");
+	else
+		piece_run_alloc(&w->scene, &po, w->have_guide ? &w->guide :
+				NULL, &p, &w->payload, &len, &err);
 	if (err.code) {
 		w->failed = 1;
 		send_error(&err);
 		return;
 	}
-	MPI_Send(w->payload, (int)piece_payload_len(&p), MPI_DOUBLE, 0,
+	MPI_Send(w->payload, (int)len, MPI_DOUBLE, 0,
 		 TAG_RESULT, MPI_COMM_WORLD);
 }
 

@@ -1,4 +1,5 @@
-# mpi: `stray-mpi`, the traces of `stray trace` and `stray sweep` spread
+# mpi: `stray-mpi`, the traces of `stray trace`, `stray sweep` and
+# `stray diagnose` spread
 # over MPI ranks (issue 9; Open MPI from Debian).  A binary of its own
 # (see mpi/stray_mpi.c for why): the tools objects that trace and sweep
 # need, and the farm in place of stray.c's main.
@@ -9,7 +10,8 @@ STRAY_MPI_BIN := $(B)/bin/stray-mpi
 MPI_PIECE_OBJ := $(B)/obj/mpi/piece.o
 MPI_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard mpi/*.c))
 MPI_TOOLS_OBJ := $(patsubst %,$(B)/obj/tools/%.o,cli cmd_trace cmd_sweep \
-	design_grid design_report fdr_setup plot trace_run)
+	design_grid design_report fdr_setup plot trace_run cmd_diagnose) \
+	$(DIAG_OBJ)
 
 $(MPI_OBJ): EXTRA_CFLAGS += -Impi -Itools -Itracer/include \
 	-I/usr/include/cjson $(MPI_CFLAGS) -D_DEFAULT_SOURCE
@@ -40,7 +42,8 @@ $(B)/tests/mpi/test_pieces: $(B)/obj/tests/mpi/test_pieces.o \
 		$(STRAY_LDLIBS)
 TESTS += $(B)/tests/mpi/test_pieces
 
-MPI_TESTS := $(B)/tests/mpi/test_mpi_trace $(B)/tests/mpi/test_mpi_faults
+MPI_TESTS := $(B)/tests/mpi/test_mpi_trace $(B)/tests/mpi/test_mpi_faults \
+	$(B)/tests/mpi/test_mpi_diagnose
 $(MPI_TESTS): $(B)/tests/mpi/%: $(B)/obj/tests/mpi/%.o $(STRAY_MPI_BIN)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_BASE) -o $@ $< $(CMOCKA_LIBS)

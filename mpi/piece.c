@@ -34,16 +34,42 @@ static void pack(const struct piece *p, const struct tracer_result *r,
 				s2[(b * TRACER_GUIDE_CELLS + c) * n + j];
 }
 
-int piece_run(const struct tracer_scene *s,
-	      const struct tracer_trace_opts *po,
-	      const struct tracer_guide *g, const struct piece *p,
-	      double *out, struct stray_error *err)
+/* A batch's path records (r->paths: that batch alone) after the fixed
+ * part; theta_index shifted from the piece's angles to the sweep's. */
+static void pack_paths(const struct piece *p, const struct tracer_result *r,
+		       double *out)
+{
+	const struct tracer_path_table *t = &r->paths;
+	size_t i, m = 0;
+
+	out[0] = (double)t->n;
+	for (i = 0; i < t->cap; i++) {
+		const struct tracer_path_entry *e = &t->e[i];
+		double *q = out + 1 + m * PIECE_PATH_FIELDS;
+
+		if (!e->used)
+			continue;
+		q[0] = (double)e->theta_index + p->theta_first;
+		q[1] = (double)(e->seq >> 32);
+		q[2] = (double)(e->seq & 0xffffffffu);
+		q[3] = e->value;
+		q[4] = e->n_paths;
+		m++;
+	}
+}
+
+static int run_into(const struct tracer_scene *s,
+		    const struct tracer_trace_opts *po,
+		    const struct tracer_guide *g, const struct piece *p,
+		    double **out, size_t *len, double *fixed,
+		    struct stray_error *err)
 {
 	struct tracer_trace_opts o = *po;
 	struct tracer_result r;
 	double *s2 = NULL;
 	int rc;
 
+	memset(&r, 0, sizeof(r));
 	if (p->theta_first < 0 || p->theta_n < 1 ||
 	    (size_t)p->theta_first + (size_t)p->theta_n > po->n_theta)
 		return stray_error_set_value(err, STRAY_EINVAL, "piece",
@@ -61,11 +87,86 @@ int piece_run(const struct tracer_scene *s,
 	}
 	rc = tracer_trace_batches(s, &o, p->pass == PIECE_PILOT ? NULL : g,
 				  p->batch, 1, s2, &r, err);
-	if (!rc) {
-		pack(p, &r, s2, out);
-		tracer_result_free(&r);
+	if (!rc && !fixed) {	/* piece_run_alloc: size the payload */
+		size_t n = piece_payload_len(p) + (o.record_paths ?
+			1 + r.paths.n * PIECE_PATH_FIELDS : 0);
+		double *nb = realloc(*out, n * sizeof(double));
+
+		if (!nb)
+			rc = stray_error_set(err, STRAY_ENOMEM, "piece",
+					     "out of memory");
+		else {
+			*out = fixed = nb;
+			*len = n;
+		}
 	}
+	if (!rc) {
+		pack(p, &r, s2, fixed);
+		if (o.record_paths && len)
+			pack_paths(p, &r, fixed + piece_payload_len(p));
+	}
+	tracer_result_free(&r);
 	free(s2);
+	return rc;
+}
+
+int piece_run(const struct tracer_scene *s,
+	      const struct tracer_trace_opts *po,
+	      const struct tracer_guide *g, const struct piece *p,
+	      double *out, struct stray_error *err)
+{
+	struct tracer_trace_opts o = *po;
+
+	o.record_paths = 0;	/* a fixed payload has no room for them */
+	return run_into(s, &o, g, p, NULL, NULL, out, err);
+}
+
+int piece_run_alloc(const struct tracer_scene *s,
+		    const struct tracer_trace_opts *po,
+		    const struct tracer_guide *g, const struct piece *p,
+		    double **out, size_t *len, struct stray_error *err)
+{
+	return run_into(s, po, g, p, out, len, NULL, err);
+}
+
+int piece_payload_ok(const struct piece *p, int record_paths,
+		     const double *payload, size_t len)
+{
+	size_t head = piece_payload_len(p);
+
+	if (!record_paths || p->pass == PIECE_PILOT)
+		return len == head;
+	if (len < head + 1 || (len - head - 1) % PIECE_PATH_FIELDS)
+		return 0;
+	return !payload ||
+	       payload[head] == (double)((len - head - 1) / PIECE_PATH_FIELDS);
+}
+
+int piece_apply_paths(const struct piece *p, const double *payload,
+		      struct tracer_path_table *tables)
+{
+	const double *q = payload + piece_payload_len(p);
+	size_t n = (size_t)q[0], i;
+	struct tracer_path_table flat;
+	int rc;
+
+	if (!n)
+		return STRAY_OK;
+	flat.cap = flat.n = n;
+	flat.e = calloc(n, sizeof(*flat.e));
+	if (!flat.e)
+		return STRAY_ENOMEM;
+	for (i = 0; i < n; i++) {	/* a table merge reads slot by slot */
+		const double *f = q + 1 + i * PIECE_PATH_FIELDS;
+
+		flat.e[i].used = 1;
+		flat.e[i].theta_index = (uint32_t)f[0];
+		flat.e[i].seq = (uint64_t)f[1] << 32 | (uint64_t)f[2];
+		flat.e[i].value = f[3];
+		flat.e[i].n_paths = f[4];
+	}
+	rc = tracer_paths_merge(&tables[p->batch], &flat);
+	free(flat.e);
 	return rc;
 }
 

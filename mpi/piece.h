@@ -37,6 +37,32 @@ int piece_run(const struct tracer_scene *s,
 	      const struct tracer_guide *g, const struct piece *p,
 	      double *out, struct stray_error *err);
 
+/*
+ * As piece_run, into a payload it (re)allocates: *len doubles.  With
+ * po->record_paths the fixed part is followed by the batch's path
+ * records of these angles: their count, then per record theta_index
+ * (of the whole sweep), seq's high and low 32 bits, value, n_paths.
+ */
+#define PIECE_PATH_FIELDS 5
+int piece_run_alloc(const struct tracer_scene *s,
+		    const struct tracer_trace_opts *po,
+		    const struct tracer_guide *g, const struct piece *p,
+		    double **out, size_t *len, struct stray_error *err);
+
+/* Payload length checks: 1 when len doubles can be piece p's payload of
+ * a pass with (record_paths) or without path records. */
+int piece_payload_ok(const struct piece *p, int record_paths,
+		     const double *payload, size_t len);
+
+/*
+ * The path records of a payload into tables[p->batch] (one table per
+ * batch; a batch's chunks hold different angles).  Once every piece is
+ * in, tracer_paths_merge the tables into the result in batch order:
+ * the sums of tracer_trace(), though not its table's slot order.
+ */
+int piece_apply_paths(const struct piece *p, const double *payload,
+		      struct tracer_path_table *tables);
+
 /* An empty result of pass po (all angles, all batches) to assemble into;
  * s2 (pilot, may be NULL) gets [batches][cells][n_theta] zeros. */
 int piece_result_alloc(const struct tracer_trace_opts *po,

@@ -1,9 +1,10 @@
 /*
- * stray_mpi.c - `stray-mpi`: `stray trace` and `stray sweep` with their
- * traces spread over MPI ranks (farm.h).
+ * stray_mpi.c - `stray-mpi`: `stray trace`, `stray sweep` and `stray
+ * diagnose` with their traces spread over MPI ranks (farm.h).
  *
  *   mpirun -n 4 stray-mpi trace --scene ref4 --out c.csv
  *   mpirun -n 4 stray-mpi sweep --scene ref4 --grid edge_radius=0,0.05 ...
+ *   mpirun -n 4 stray-mpi diagnose measured.csv --scene ref4 ...
  *   stray-mpi trace ...      (no mpirun: a singleton, one rank)
  *
  * A binary of its own rather than MPI inside `stray`: MPI_Init starts
@@ -24,10 +25,11 @@
 
 static const char usage[] =
 	"usage: mpirun -n N stray-mpi [--angle-chunks K] [--task-timeout S]\n"
-	"                             trace|sweep [<args>]\n"
+	"                             trace|sweep|diagnose [<args>]\n"
 	"\n"
-	"  trace, sweep        as 'stray trace' and 'stray sweep', the traces\n"
-	"                      spread over the ranks; same seed, same bits\n"
+	"  trace, sweep,       as 'stray trace', 'stray sweep' and 'stray\n"
+	"  diagnose            diagnose', the traces spread over the ranks;\n"
+	"                      same seed, same bits\n"
 	"  --angle-chunks K    split each batch's angles in K pieces\n"
 	"                      (default: only when batches < 4 x ranks)\n"
 	"  --task-timeout S    a rank silent for S s with work is lost: abort\n"
@@ -93,7 +95,8 @@ static int parse_global(int argc, char **argv)
 			farm_config.task_timeout_s = v;
 	}
 	if (optind >= argc)
-		return usage_error("give a command: trace or sweep", "");
+		return usage_error("give a command: trace, sweep or diagnose",
+				   "");
 	return CLI_OK;
 }
 
@@ -134,9 +137,13 @@ static int run_command(int argc, char **argv)
 		cmd = cmd_trace;
 	else if (strcmp(argv[optind], "sweep") == 0)
 		cmd = cmd_sweep;
-	else
-		return usage_error("not distributed (use trace or sweep): ",
-				   argv[optind]);
+	else if (strcmp(argv[optind], "diagnose") == 0) {
+		cmd = cmd_diagnose;
+		/* its path records are read in key order (trace_cache.c) */
+		farm_config.paths_any_order = 1;
+	} else
+		return usage_error("not distributed (use trace, sweep or "
+				   "diagnose): ", argv[optind]);
 	argc -= optind;
 	argv += optind;
 	optind = 0;

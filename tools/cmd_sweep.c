@@ -202,7 +202,8 @@ static int trace_design(const struct sweep_args *a, const char *const *sets,
 			const char *key, const char *path,
 			struct stray_curve *c, struct stray_error *err)
 {
-	struct trace_scene_spec spec = { a->scene, sets, n_sets, a->lens };
+	struct trace_scene_spec spec = { a->scene, sets, n_sets, a->lens,
+					 0.0, 0.0 };
 	struct tracer_trace_opts o = a->o;
 	struct tracer_scene s;
 	struct tracer_result r;

@@ -403,7 +403,7 @@ static int run_trace(struct trace_args *a, struct tracer_scene *s,
 	}
 	{
 		struct trace_scene_spec spec = { a->scene, a->sets, a->n_sets,
-						 a->lens };
+						 a->lens, 0.0, 0.0 };
 
 		rc = trace_run(&spec, s, &a->o, &r, err);
 	}

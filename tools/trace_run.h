@@ -14,7 +14,15 @@ struct trace_scene_spec {
 	const char *const *sets;	/* --set key=value overrides */
 	int n_sets;
 	const char *lens;		/* lens table path, or NULL */
+	/* edits after loading that no --set says (stray diagnose's causes),
+	 * made by trace_scene_edit before the commit; 0: none */
+	double beam_shift_z;	/* beam centre moved by -this along z, m */
+	double abg_g;		/* > 0: Lambertian groups become ABg, this g */
 };
+
+/* spec's edits to a loaded, not yet committed scene. */
+void trace_scene_edit(const struct trace_scene_spec *spec,
+		      struct tracer_scene *s);
 
 typedef int (*trace_run_fn)(const struct trace_scene_spec *spec,
 			    const struct tracer_scene *s,

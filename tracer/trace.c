@@ -316,9 +316,11 @@ int tracer_trace_batches(const struct tracer_scene *s,
 
 	if (rc)
 		return rc;
-	if (o->record_paths || o->dump_paths || o->map_n)
+	/* path records are kept: each batch's table is merged alone, so a
+	 * piece's entries are that batch's sums (mpi/ merges them in order) */
+	if (o->dump_paths || o->map_n)
 		return stray_error_set(err, STRAY_EINVAL, "trace",
-			"path records, dumps and maps need the whole trace");
+			"dumps and maps need the whole trace");
 	if (first_batch < 0 || n_batches < 1 ||
 	    n_batches > o->n_batches - first_batch)
 		return stray_error_set_value(err, STRAY_EINVAL, "batches",

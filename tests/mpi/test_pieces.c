@@ -147,6 +147,74 @@ static void test_pieces_guide_matters(void **state)
 	tracer_scene_free(&s);
 }
 
+/* Path records (stray-mpi diagnose): pieces in a scrambled order, their
+ * records merged per batch, then in batch order, hold the sums of the
+ * whole trace's table, bit for bit (slots may differ). */
+static void test_pieces_path_records(void **state)
+{
+	const double th[] = { 0, 10, 25, 40, 60, 80 };
+	struct tracer_path_table tables[8];
+	struct tracer_trace_opts o, po;
+	struct tracer_scene s;
+	struct tracer_result whole, pilot, parts;
+	struct tracer_guide g;
+	struct stray_error err;
+	struct piece plan[8 * 3];
+	double *s2 = NULL, *buf = NULL;
+	size_t n, i, len;
+
+	(void)state;
+	ref4(&s);
+	tracer_trace_defaults(&o);
+	o.theta_deg = th;
+	o.n_theta = 6;
+	o.n_paths = 12000;
+	o.n_batches = 8;
+	o.record_paths = 1;
+	stray_error_clear(&err);
+	assert_int_equal(tracer_trace(&s, &o, &whole, &err), 0);
+	tracer_pilot_opts(&o, &po);
+	run_scrambled(&s, &po, NULL, PIECE_PILOT, 3, &pilot, &s2);
+	assert_int_equal(tracer_guide_from_pilot(&g, &pilot, s2), 0);
+	memset(tables, 0, sizeof(tables));
+	n = piece_plan(PIECE_MAIN, o.n_batches, o.n_theta, 3, plan);
+	assert_int_equal(piece_result_alloc(&o, &parts, NULL), 0);
+	for (i = 0; i < n; i++) {
+		const struct piece *p = &plan[(i * 7 + 3) % n];
+
+		assert_int_equal(piece_run_alloc(&s, &o, &g, p, &buf, &len,
+						 &err), 0);
+		assert_true(piece_payload_ok(p, 1, buf, len));
+		assert_false(piece_payload_ok(p, 1, buf, len - 1));
+		piece_apply(p, buf, &parts, NULL);
+		assert_int_equal(piece_apply_paths(p, buf, tables), 0);
+	}
+	for (i = 0; i < 8; i++) {
+		assert_int_equal(tracer_paths_merge(&parts.paths, &tables[i]),
+				 0);
+		tracer_paths_free(&tables[i]);
+	}
+	assert_true(whole.paths.n > 10);	/* scatter sequences recorded */
+	assert_int_equal(whole.paths.n, parts.paths.n);
+	for (i = 0; i < whole.paths.cap; i++) {
+		const struct tracer_path_entry *a = &whole.paths.e[i], *b;
+
+		if (!a->used)
+			continue;
+		b = tracer_paths_find(&parts.paths, a->theta_index, a->seq);
+		assert_non_null(b);
+		assert_memory_equal(&a->value, &b->value, sizeof(double));
+		assert_memory_equal(&a->value_b2, &b->value_b2, sizeof(double));
+		assert_memory_equal(&a->n_paths, &b->n_paths, sizeof(double));
+	}
+	free(buf);
+	free(s2);
+	tracer_result_free(&whole);
+	tracer_result_free(&pilot);
+	tracer_result_free(&parts);
+	tracer_scene_free(&s);
+}
+
 /* Bad pieces are refused with an error, never traced out of range. */
 static void test_pieces_bad_range(void **state)
 {
@@ -180,6 +248,7 @@ int main(void)
 		cmocka_unit_test(test_pieces_batches_only),
 		cmocka_unit_test(test_pieces_angle_chunks),
 		cmocka_unit_test(test_pieces_guide_matters),
+		cmocka_unit_test(test_pieces_path_records),
 		cmocka_unit_test(test_pieces_bad_range),
 	};
 

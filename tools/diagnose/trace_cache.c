@@ -20,38 +20,7 @@
 #include "stray/errfmt.h"
 #include "tracer/integrator.h"
 #include "tracer/scene_load.h"
-
-#define ABG_B 0.01	/* knee of the ABg lobe (cause_abg_scatter.c) */
-
-/* A so that the normal-incidence integrated scatter of A/(B + r^g) over
- * the unit beta disk is 1 (cos(theta) d omega = d beta), so rho stays the
- * hemispherical reflectance: 1 / (2 pi int_0^1 r / (B + r^g) dr). */
-static double abg_norm(double g)
-{
-	double sum = 0.0;
-	int i, n = 4000;
-
-	for (i = 0; i < n; i++) {	/* midpoint rule, smooth integrand */
-		double r = (i + 0.5) / n;
-
-		sum += r / (ABG_B + pow(r, g));
-	}
-	return 1.0 / (2.0 * M_PI * sum / n);
-}
-
-static void set_abg(struct tracer_scene *s, double g)
-{
-	size_t k;
-	double a = abg_norm(g);
-
-	for (k = 0; k < s->mesh.n_group; k++)
-		if (s->material[k].ops == &tracer_brdf_lambert_ops) {
-			s->material[k].ops = &tracer_brdf_abg_ops;
-			s->material[k].abg.a = a;
-			s->material[k].abg.b = ABG_B;
-			s->material[k].abg.g = g;
-		}
-}
+#include "trace_run.h"
 
 /* The scene's `--set` list for a geometry key (NaN: the scene's own). */
 static int geometry_sets(const struct diag_eval *e, const double *geo,
@@ -131,14 +100,31 @@ static size_t direct_rows(struct diag_trace *t, const struct tracer_result *r,
 	return m;
 }
 
-/* The path table reduced to (angle, n interior, v, var) rows. */
+static int cmp_entry(const void *a, const void *b)
+{
+	const struct tracer_path_entry *x =
+		*(const struct tracer_path_entry *const *)a;
+	const struct tracer_path_entry *y =
+		*(const struct tracer_path_entry *const *)b;
+
+	if (x->theta_index != y->theta_index)
+		return x->theta_index < y->theta_index ? -1 : 1;
+	return (x->seq > y->seq) - (x->seq < y->seq);
+}
+
+/*
+ * The path table reduced to (angle, n interior, v, var) rows, in key
+ * order: the rows are summed in this order, and a table merged from a
+ * distributed trace (mpi/) holds the same entries in other slots.
+ */
 static int reduce_paths(struct diag_trace *t, const struct tracer_result *r,
 			const struct tracer_scene *s, struct stray_error *err)
 {
 	const struct tracer_path_table *pt = &r->paths;
+	const struct tracer_path_entry **sorted;
 	int interior[TRACER_GROUP_MAX], g[TRACER_SEQ_MAX];
 	double rho[TRACER_GROUP_MAX], B = r->n_batches;
-	size_t i, m = 0;
+	size_t i, m = 0, n_used = 0;
 
 	size_t cap = pt->n + r->n_theta;
 
@@ -147,16 +133,21 @@ static int reduce_paths(struct diag_trace *t, const struct tracer_result *r,
 	t->n_int = malloc(cap * sizeof(*t->n_int));
 	t->v = malloc(cap * sizeof(*t->v));
 	t->var = malloc(cap * sizeof(*t->var));
-	if (!t->j || !t->n_int || !t->v || !t->var)
+	sorted = malloc((pt->n + 1) * sizeof(*sorted));
+	if (!t->j || !t->n_int || !t->v || !t->var || !sorted) {
+		free(sorted);
 		return stray_error_set(err, STRAY_ENOMEM, "diagnose",
 				       "out of memory for the path table");
-	for (i = 0; i < pt->cap; i++) {
-		const struct tracer_path_entry *pe = &pt->e[i];
+	}
+	for (i = 0; i < pt->cap; i++)
+		if (pt->e[i].used && n_used < pt->n)
+			sorted[n_used++] = &pt->e[i];
+	qsort(sorted, n_used, sizeof(*sorted), cmp_entry);
+	for (i = 0; i < n_used; i++) {
+		const struct tracer_path_entry *pe = sorted[i];
 		int n, k, n_int = 0;
 		double ext = 1.0, var;
 
-		if (!pe->used)
-			continue;
 		n = tracer_seq_unpack(pe->seq, g);
 		for (k = 0; k < n; k++) {
 			if (g[k] >= 0 && g[k] < TRACER_GROUP_MAX &&
@@ -174,6 +165,7 @@ static int reduce_paths(struct diag_trace *t, const struct tracer_result *r,
 		t->var[m] = (var > 0.0 ? var : 0.0) * ext * ext;
 		m++;
 	}
+	free(sorted);
 	m = direct_rows(t, r, m);
 	t->n_e = m;
 	return STRAY_OK;
@@ -256,14 +248,20 @@ static int trace_geometry(struct diag_eval *e, struct diag_trace *t,
 	struct tracer_result r;
 	int n = geometry_sets(e, t->geo, buf, sets), rc;
 
+	/* the ABg lobe (cause_abg_scatter.c) and the beam axis through the
+	 * pivot (cause_pivot_offset.c) are edits after loading: in the spec
+	 * too, so that stray-mpi's ranks build this scene */
+	struct trace_scene_spec spec = { e->scene, sets, n, NULL, 0.0, 0.0 };
+
+	if (!isnan(t->geo[DIAG_GEO_ABG_G]) && t->geo[DIAG_GEO_ABG_G] > 0.0)
+		spec.abg_g = t->geo[DIAG_GEO_ABG_G];
+	if (!isnan(t->geo[DIAG_GEO_PIVOT]))
+		spec.beam_shift_z = t->geo[DIAG_GEO_PIVOT];
 	memset(&r, 0, sizeof(r));
 	tracer_scene_init(&s);
 	rc = tracer_scene_load(e->scene, sets, n, &s, err);
-	if (!rc && !isnan(t->geo[DIAG_GEO_ABG_G]) &&
-	    t->geo[DIAG_GEO_ABG_G] > 0.0)
-		set_abg(&s, t->geo[DIAG_GEO_ABG_G]);
-	if (!rc && !isnan(t->geo[DIAG_GEO_PIVOT]))	/* beam axis via pivot */
-		s.beam.center.z -= t->geo[DIAG_GEO_PIVOT];
+	if (!rc)
+		trace_scene_edit(&spec, &s);
 	if (!rc)
 		rc = tracer_scene_commit(&s, err);
 	if (!rc) {
@@ -274,7 +272,7 @@ static int trace_geometry(struct diag_eval *e, struct diag_trace *t,
 		o.seed = e->seed;
 		o.threads = e->threads;
 		o.record_paths = 1;
-		rc = tracer_trace(&s, &o, &r, err);
+		rc = trace_run(&spec, &s, &o, &r, err);
 	}
 	if (!rc) {
 		e->trace_seconds += r.seconds;

@@ -37,7 +37,9 @@ void tracer_pilot_opts(const struct tracer_trace_opts *o,
  * o->n_batches rows, the others left zero.  guide: the main pass's guide,
  * or NULL (pilot pass, or unguided).  pilot_s2: NULL, or for the pilot
  * pass [o->n_batches][TRACER_GUIDE_CELLS][o->n_theta] zeroed by the
- * caller.  No path records, dumps or maps.
+ * caller.  With o->record_paths, res->paths holds those batches' path
+ * records merged in batch order (one batch: its own sums).  No dumps or
+ * maps.
  */
 int tracer_trace_batches(const struct tracer_scene *s,
 			 const struct tracer_trace_opts *o,
