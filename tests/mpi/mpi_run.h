@@ -108,4 +108,20 @@ static inline long rank_pid(int rank)
 	return found;
 }
 
+/* Run a test group in a fresh scratch folder, removed when all pass. */
+#define mpi_run_group(tests) mpi_run_group_n(#tests, tests, \
+	sizeof(tests) / sizeof((tests)[0]))
+
+static int mpi_run_group_n(const char *name, const struct CMUnitTest *tests,
+			   size_t n)
+{
+	int rc;
+
+	mpi_test_setup();
+	rc = _cmocka_run_group_tests(name, tests, n, NULL, NULL);
+	if (rc == 0)
+		shell("cd / && rm -rf %s", scratch);
+	return rc;
+}
+
 #endif /* STRAY_TESTS_MPI_RUN_H */

@@ -139,11 +139,6 @@ int main(void)
 		cmocka_unit_test(test_mpi_stalled_rank),
 		cmocka_unit_test(test_mpi_killed_rank),
 	};
-	int rc;
 
-	mpi_test_setup();
-	rc = cmocka_run_group_tests(tests, NULL, NULL);
-	if (rc == 0)
-		shell("cd / && rm -rf %s", scratch);
-	return rc;
+	return mpi_run_group(tests);
 }

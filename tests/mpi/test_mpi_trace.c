@@ -100,11 +100,6 @@ int main(void)
 		cmocka_unit_test(test_mpi_sweep_identical),
 		cmocka_unit_test(test_mpi_refuses_path_records),
 	};
-	int rc;
 
-	mpi_test_setup();
-	rc = cmocka_run_group_tests(tests, NULL, NULL);
-	if (rc == 0)
-		shell("cd / && rm -rf %s", scratch);
-	return rc;
+	return mpi_run_group(tests);
 }

@@ -95,11 +95,6 @@ int main(void)
 		cmocka_unit_test(test_sweep_bad_input),
 		cmocka_unit_test(test_sweep_resume_checks_key),
 	};
-	int rc;
 
-	mpi_test_setup();
-	rc = cmocka_run_group_tests(tests, NULL, NULL);
-	if (rc == 0)
-		shell("cd / && rm -rf %s", scratch);
-	return rc;
+	return mpi_run_group(tests);
 }
