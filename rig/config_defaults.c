@@ -73,5 +73,5 @@ void rig_config_defaults(struct rig_config *cfg)
 	cfg->sweep.t_init_s = 0.1;
 	cfg->sweep.peak_target = 0.8;
 	cfg->sweep.retries = 3;
-	rig_vlab_defaults(&cfg->vlab);
+	rig_sim_config_defaults(&cfg->sim);
 }

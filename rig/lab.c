@@ -9,29 +9,75 @@
 
 #include "rig/lab.h"
 
+/* ---- the device table: how each enum rig_device opens and closes ---- */
+static int stage_open(struct rig_lab *lab, struct rig_error *err)
+{
+	return rig_stage_open(&lab->stage, lab->hal, &lab->cfg->stage, err);
+}
+
+static void stage_close(struct rig_lab *lab)
+{
+	rig_stage_close(&lab->stage);
+}
+
+static int wheel_open(struct rig_lab *lab, struct rig_error *err)
+{
+	return rig_wheel_open(&lab->wheel, lab->hal, &lab->cfg->wheel, err);
+}
+
+static void wheel_close(struct rig_lab *lab)
+{
+	rig_wheel_close(&lab->wheel);
+}
+
+static int camera_open(struct rig_lab *lab, struct rig_error *err)
+{
+	return rig_camera_open(&lab->camera, lab->hal, &lab->cfg->camera,
+			       err);
+}
+
+static void camera_close(struct rig_lab *lab)
+{
+	lab->crc_rereads += lab->camera.crc_rereads;
+	rig_camera_close(&lab->camera);
+}
+
+static int monitor_open(struct rig_lab *lab, struct rig_error *err)
+{
+	return rig_monitor_open(&lab->monitor, lab->hal, &lab->cfg->monitor,
+				err);
+}
+
+static void monitor_close(struct rig_lab *lab)
+{
+	rig_monitor_close(&lab->monitor);
+}
+
+static int lines_open(struct rig_lab *lab, struct rig_error *err)
+{
+	return rig_lines_open(&lab->lines, lab->hal, lab->cfg->lines, err);
+}
+
+static void lines_close(struct rig_lab *lab)
+{
+	rig_lines_close(&lab->lines);
+}
+
+static const struct {
+	int (*open)(struct rig_lab *lab, struct rig_error *err);
+	void (*close)(struct rig_lab *lab);
+} devices[RIG_DEV_COUNT] = {
+	[RIG_DEV_STAGE] = { stage_open, stage_close },
+	[RIG_DEV_WHEEL] = { wheel_open, wheel_close },
+	[RIG_DEV_CAMERA] = { camera_open, camera_close },
+	[RIG_DEV_MONITOR] = { monitor_open, monitor_close },
+	[RIG_DEV_GPIO] = { lines_open, lines_close },
+};
+
 static int open_dev(struct rig_lab *lab, int dev, struct rig_error *err)
 {
-	const struct rig_config *c = lab->cfg;
-	int rc;
+	int rc = devices[dev].open(lab, err);
 
-	switch (dev) {
-	case RIG_SIM_STAGE:
-		rc = rig_stage_open(&lab->stage, lab->hal, &c->stage, err);
-		break;
-	case RIG_SIM_WHEEL:
-		rc = rig_wheel_open(&lab->wheel, lab->hal, &c->wheel, err);
-		break;
-	case RIG_SIM_CAMERA:
-		rc = rig_camera_open(&lab->camera, lab->hal, &c->camera, err);
-		break;
-	case RIG_SIM_MONITOR:
-		rc = rig_monitor_open(&lab->monitor, lab->hal, &c->monitor,
-				      err);
-		break;
-	default:
-		rc = rig_lines_open(&lab->lines, lab->hal, c->lines, err);
-		break;
-	}
 	if (rc == RIG_OK)
 		lab->open_mask |= 1 << dev;
 	return rc;
@@ -42,17 +88,7 @@ static void close_dev(struct rig_lab *lab, int dev)
 	if (!(lab->open_mask & (1 << dev)))
 		return;
 	lab->open_mask &= ~(1 << dev);
-	if (dev == RIG_SIM_STAGE)
-		rig_stage_close(&lab->stage);
-	else if (dev == RIG_SIM_WHEEL)
-		rig_wheel_close(&lab->wheel);
-	else if (dev == RIG_SIM_CAMERA) {
-		lab->crc_rereads += lab->camera.crc_rereads;
-		rig_camera_close(&lab->camera);
-	} else if (dev == RIG_SIM_MONITOR)
-		rig_monitor_close(&lab->monitor);
-	else
-		rig_lines_close(&lab->lines);
+	devices[dev].close(lab);
 }
 
 int rig_lab_open(struct rig_lab *lab, const struct rig_config *cfg,
@@ -65,11 +101,11 @@ int rig_lab_open(struct rig_lab *lab, const struct rig_config *cfg,
 	lab->hal = hal;
 	lab->theta_deg = NAN;
 	/* Lines first, so the lab is made safe before anything moves. */
-	rc = open_dev(lab, RIG_SIM_GPIO, err);
+	rc = open_dev(lab, RIG_DEV_GPIO, err);
 	if (rc == RIG_OK)
 		rc = rig_lines_safe(&lab->lines, err);
-	for (dev = 0; rc == RIG_OK && dev < RIG_SIM_GPIO; dev++)
-		if (dev != RIG_SIM_MONITOR || cfg->monitor.enabled)
+	for (dev = 0; rc == RIG_OK && dev < RIG_DEV_GPIO; dev++)
+		if (dev != RIG_DEV_MONITOR || cfg->monitor.enabled)
 			rc = open_dev(lab, dev, err);
 	if (rc != RIG_OK)
 		rig_lab_close(lab);
@@ -80,7 +116,7 @@ void rig_lab_close(struct rig_lab *lab)
 {
 	int dev;
 
-	for (dev = 0; dev < RIG_SIM_DEVICE_COUNT; dev++)
+	for (dev = 0; dev < RIG_DEV_COUNT; dev++)
 		close_dev(lab, dev);
 }
 
@@ -88,12 +124,12 @@ int rig_lab_safe(struct rig_lab *lab, struct rig_error *err)
 {
 	int rc = RIG_OK, r2;
 
-	if (lab->open_mask & (1 << RIG_SIM_GPIO))
+	if (lab->open_mask & (1 << RIG_DEV_GPIO))
 		rc = rig_lines_safe(&lab->lines, err);
 	else
 		rc = rig_error_set(err, RIG_EDISCONNECT,
 				   "gpio: lines not open; lab state unknown");
-	if (lab->open_mask & (1 << RIG_SIM_STAGE)) {
+	if (lab->open_mask & (1 << RIG_DEV_STAGE)) {
 		r2 = rig_stage_stop(&lab->stage, err);
 		if (rc == RIG_OK)
 			rc = r2;
@@ -110,7 +146,7 @@ int rig_lab_reconnect(struct rig_lab *lab, int dev, struct rig_error *err)
 	rig_hal_sleep(lab->hal, 1.0);	/* let the bus settle / replug */
 	rig_error_clear(&tmp);
 	rc = open_dev(lab, dev, &tmp);
-	if (rc == RIG_OK && dev == RIG_SIM_STAGE) {
+	if (rc == RIG_OK && dev == RIG_DEV_STAGE) {
 		lab->theta_deg = NAN;
 		rc = rig_stage_home(&lab->stage, &tmp);
 	}
@@ -157,7 +193,7 @@ static int home_op(struct rig_lab *lab, void *arg, struct rig_error *e)
 
 int rig_lab_home(struct rig_lab *lab, struct rig_error *err)
 {
-	int rc = with_retries(lab, RIG_SIM_STAGE, home_op, NULL, err);
+	int rc = with_retries(lab, RIG_DEV_STAGE, home_op, NULL, err);
 
 	if (rc == RIG_OK)
 		lab->theta_deg = 0;
@@ -190,7 +226,7 @@ int rig_lab_move(struct rig_lab *lab, double theta_deg, struct rig_error *err)
 			"stage: angle %g deg outside limits [%g, %g] deg",
 			theta_deg, s->min_deg, s->max_deg);
 	lab->theta_deg = NAN;
-	rc = with_retries(lab, RIG_SIM_STAGE, move_op, &theta_deg, err);
+	rc = with_retries(lab, RIG_DEV_STAGE, move_op, &theta_deg, err);
 	if (rc == RIG_OK)
 		lab->theta_deg = theta_deg;
 	return rc;
@@ -203,9 +239,9 @@ static int wheel_op(struct rig_lab *lab, void *arg, struct rig_error *e)
 
 int rig_lab_wheel(struct rig_lab *lab, int slot, struct rig_error *err)
 {
-	if (lab->wheel.slot == slot && (lab->open_mask & 1 << RIG_SIM_WHEEL))
+	if (lab->wheel.slot == slot && (lab->open_mask & 1 << RIG_DEV_WHEEL))
 		return RIG_OK;
-	return with_retries(lab, RIG_SIM_WHEEL, wheel_op, &slot, err);
+	return with_retries(lab, RIG_DEV_WHEEL, wheel_op, &slot, err);
 }
 
 int rig_lab_illuminate(struct rig_lab *lab, int frame_type,
@@ -244,7 +280,7 @@ int rig_lab_capture(struct rig_lab *lab, double t_exp_s,
 {
 	struct capture_arg a = { t_exp_s, img };
 
-	return with_retries(lab, RIG_SIM_CAMERA, capture_op, &a, err);
+	return with_retries(lab, RIG_DEV_CAMERA, capture_op, &a, err);
 }
 
 static int monitor_op(struct rig_lab *lab, void *arg, struct rig_error *e)
@@ -254,5 +290,5 @@ static int monitor_op(struct rig_lab *lab, void *arg, struct rig_error *e)
 
 int rig_lab_monitor(struct rig_lab *lab, double *level, struct rig_error *err)
 {
-	return with_retries(lab, RIG_SIM_MONITOR, monitor_op, level, err);
+	return with_retries(lab, RIG_DEV_MONITOR, monitor_op, level, err);
 }

@@ -7,8 +7,8 @@ RIG_SRC := $(filter-out rig/daemon/strayrigd.c,\
 RIG_OBJ := $(RIG_SRC:%.c=$(B)/obj/%.o)
 RIG_LIB := $(B)/lib/librig.a
 RIG_BIN := $(B)/bin/strayrigd
-RIG_CFLAGS := -Irig/include -I/usr/include/libusb-1.0 -I/usr/include/hidapi \
-	-I/usr/include/cjson
+RIG_CFLAGS := -Irig/include -Irig/sim/include -I/usr/include/libusb-1.0 \
+	-I/usr/include/hidapi -I/usr/include/cjson
 RIG_LDLIBS := -lcfitsio -lusb-1.0 -lhidapi-libusb -lgpiod -lcrypto -lz \
 	-lcjson -lcsv -lm
 
@@ -82,6 +82,7 @@ build/fuzz/fuzz_rig_control: tests/fuzz/fuzz_rig_control.c \
 	$(CLANG) $(RIG_FUZZ_CFLAGS) -o $@ $^ -lcjson -lm
 
 build/fuzz/fuzz_rig_config: tests/fuzz/fuzz_rig_config.c rig/config.c \
-		rig/config_defaults.c rig/sim/vlab.c rig/status.c
+		rig/config_defaults.c rig/config_json.c rig/devices.c \
+		rig/sim/sim_config.c rig/sim/vlab.c rig/status.c
 	@mkdir -p $(dir $@)
 	$(CLANG) $(RIG_FUZZ_CFLAGS) -o $@ $^ -lcjson -lm

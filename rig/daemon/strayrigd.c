@@ -75,7 +75,8 @@ static int run_sweep(struct rig_daemon *d, const char *dir, int resume,
 		"injected\n", rc == RIG_OK ? "complete" : "stopped",
 		(long)d->sweep.mf.n, d->sweep.taken, p.elapsed_s,
 		d->lab.recoveries, d->lab.crc_rereads +
-		d->lab.camera.crc_rereads, d->is_sim ? d->sim.faults_fired : 0);
+		d->lab.camera.crc_rereads,
+		d->is_sim ? rig_sim_faults_fired(&d->sim) : 0);
 	return rc;
 }
 

@@ -1,103 +1,208 @@
 /*
- * sim.c - the simulator backend's ops table: routes each open device to
- * its device-side model, keeps the virtual clock and applies faults.
- * A transfer to a device that the fault schedule has unplugged returns
- * EDISCONNECT, as libusb's LIBUSB_ERROR_NO_DEVICE does.
+ * sim.c - the simulator backend's ops table over its device table: each
+ * open finds its device by bus id in the table, and each transfer goes
+ * to that device's model.  A transfer to a device that the fault
+ * schedule has unplugged returns EDISCONNECT, as libusb's
+ * LIBUSB_ERROR_NO_DEVICE does.  The lab state one model needs of the
+ * others (the camera: stage angle, ND slot, lines) is gathered here.
  */
-#include <signal.h>
-#include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "rig/sim.h"
 #include "rig/status.h"
 
-/* Device handles are tags pointing into the sim. */
-static int tag[RIG_SIM_DEVICE_COUNT + RIG_LINE_COUNT];
+enum sim_bus { SIM_USB, SIM_HID, SIM_GPIO };
+
+/* One entry per enum rig_device. */
+struct sim_device {
+	enum sim_bus bus;
+	/* Does the vid:pid name this device (USB and HID)? */
+	int (*is)(const struct rig_config *c, uint16_t vid, uint16_t pid);
+	void (*open)(struct rig_sim *sim);	/* reset its transfer state */
+	int (*write)(struct rig_sim *sim, const uint8_t *buf, size_t len);
+	int (*read)(struct rig_sim *sim, uint8_t *buf, size_t cap,
+		    size_t *got, unsigned timeout_ms);
+};
+
+static void lab_view(const struct rig_sim *sim, struct sim_lab_view *lab)
+{
+	lab->theta_deg = rig_sim_angle_deg(sim);
+	lab->nd_trans = rig_sim_wheel_trans(&sim->wheel, &sim->core);
+	lab->lamp_on = rig_sim_lamp_on(sim);
+	lab->beam_blocked = rig_sim_beam_blocked(sim);
+	lab->shutter_open = rig_sim_shutter_open(sim);
+}
+
+/* ---- stage ---- */
+static int stage_is(const struct rig_config *c, uint16_t vid, uint16_t pid)
+{
+	return vid == c->stage.usb.vid && pid == c->stage.usb.pid;
+}
+
+static void stage_open(struct rig_sim *sim)
+{
+	rig_sim_stage_reset(&sim->stage);
+}
+
+static int stage_write(struct rig_sim *sim, const uint8_t *buf, size_t len)
+{
+	return rig_sim_stage_write(&sim->stage, &sim->core, buf, len);
+}
+
+static int stage_read(struct rig_sim *sim, uint8_t *buf, size_t cap,
+		      size_t *got, unsigned timeout_ms)
+{
+	return rig_sim_stage_read(&sim->stage, &sim->core, buf, cap, got,
+				  timeout_ms);
+}
+
+/* ---- ND wheel ---- */
+static int wheel_is(const struct rig_config *c, uint16_t vid, uint16_t pid)
+{
+	return vid == c->wheel.vid && pid == c->wheel.pid;
+}
+
+static void wheel_open(struct rig_sim *sim)
+{
+	rig_sim_wheel_reset(&sim->wheel);
+}
+
+static int wheel_write(struct rig_sim *sim, const uint8_t *buf, size_t len)
+{
+	return rig_sim_wheel_write(&sim->wheel, &sim->core, buf, len);
+}
+
+static int wheel_read(struct rig_sim *sim, uint8_t *buf, size_t cap,
+		      size_t *got, unsigned timeout_ms)
+{
+	return rig_sim_wheel_read(&sim->wheel, &sim->core, buf, cap, got,
+				  timeout_ms);
+}
+
+/* ---- camera ---- */
+static int camera_is(const struct rig_config *c, uint16_t vid, uint16_t pid)
+{
+	return vid == c->camera.usb.vid && pid == c->camera.usb.pid;
+}
+
+static void camera_open(struct rig_sim *sim)
+{
+	rig_sim_camera_reset(&sim->cam);
+}
+
+static int camera_write(struct rig_sim *sim, const uint8_t *buf, size_t len)
+{
+	struct sim_lab_view lab;
+
+	lab_view(sim, &lab);
+	return rig_sim_camera_write(&sim->cam, &sim->core, &lab, buf, len);
+}
+
+static int camera_read(struct rig_sim *sim, uint8_t *buf, size_t cap,
+		       size_t *got, unsigned timeout_ms)
+{
+	return rig_sim_camera_read(&sim->cam, &sim->core, buf, cap, got,
+				   timeout_ms);
+}
+
+/* ---- lamp monitor ---- */
+static int monitor_is(const struct rig_config *c, uint16_t vid,
+		      uint16_t pid)
+{
+	return vid == c->monitor.vid && pid == c->monitor.pid;
+}
+
+static void monitor_open(struct rig_sim *sim)
+{
+	rig_sim_monitor_reset(&sim->mon);
+}
+
+static int monitor_write(struct rig_sim *sim, const uint8_t *buf,
+			 size_t len)
+{
+	return rig_sim_monitor_write(&sim->mon, &sim->core,
+				     rig_sim_lamp_on(sim), buf, len);
+}
+
+static int monitor_read(struct rig_sim *sim, uint8_t *buf, size_t cap,
+			size_t *got, unsigned timeout_ms)
+{
+	return rig_sim_monitor_read(&sim->mon, &sim->core, buf, cap, got,
+				    timeout_ms);
+}
+
+/* The device table.  GPIO lines are opened by name and set or read, not
+ * written as bytes: rig_sim_lines_* below. */
+static const struct sim_device devices[RIG_DEV_COUNT] = {
+	[RIG_DEV_STAGE] = { SIM_USB, stage_is, stage_open, stage_write,
+			    stage_read },
+	[RIG_DEV_WHEEL] = { SIM_HID, wheel_is, wheel_open, wheel_write,
+			    wheel_read },
+	[RIG_DEV_CAMERA] = { SIM_USB, camera_is, camera_open, camera_write,
+			     camera_read },
+	[RIG_DEV_MONITOR] = { SIM_HID, monitor_is, monitor_open,
+			      monitor_write, monitor_read },
+	[RIG_DEV_GPIO] = { SIM_GPIO, NULL, NULL, NULL, NULL },
+};
+
+/* Device handles are tags pointing into this array: one per device, then
+ * one per GPIO line. */
+static int tag[RIG_DEV_COUNT + RIG_LINE_COUNT];
 
 static int dev_of(const void *dev)
 {
 	int i = (int)((const int *)dev - tag);
 
-	return i >= RIG_SIM_GPIO ? RIG_SIM_GPIO : i;
+	return i >= RIG_DEV_GPIO ? RIG_DEV_GPIO : i;
 }
 
-int rig_sim_fault_active(struct rig_sim *sim, int dev, int kind)
+static int line_of(const void *dev)
 {
-	unsigned n = sim->events[dev];
-	int i;
-
-	for (i = 0; i < sim->cfg->n_faults; i++) {
-		const struct rig_fault *f = &sim->cfg->faults[i];
-
-		if (f->device == dev && f->kind == kind && n >= f->at &&
-		    n < f->at + f->count)
-			return 1;
-	}
-	return 0;
+	return (int)((const int *)dev - tag) - RIG_DEV_GPIO;
 }
 
-void rig_sim_disconnect(struct rig_sim *sim, int dev, unsigned reopen_fails)
+static int open_on_bus(struct rig_sim *sim, enum sim_bus bus, uint16_t vid,
+		       uint16_t pid, void **dev)
 {
-	sim->gone[dev] = 1;
-	sim->open_fail[dev] = reopen_fails;
-}
+	int d, rc;
 
-int rig_sim_event(struct rig_sim *sim, int dev, double *value)
-{
-	unsigned n = ++sim->events[dev];
-	int i;
-
-	for (i = 0; i < sim->cfg->n_faults; i++) {
-		const struct rig_fault *f = &sim->cfg->faults[i];
-
-		/* A disconnect or kill happens once; its count is the
-		 * number of re-opens that fail (the time to replug). */
-		unsigned last = f->kind == RIG_FAULT_DISCONNECT ||
-				f->kind == RIG_FAULT_KILL ? f->at
-							  : f->at + f->count - 1;
-
-		if (f->device != dev || n < f->at || n > last)
+	for (d = 0; d < RIG_DEV_COUNT; d++) {
+		if (devices[d].bus != bus ||
+		    !devices[d].is(sim->core.cfg, vid, pid))
 			continue;
-		sim->fault_hits[i]++;
-		sim->faults_fired++;
-		if (value)
-			*value = f->value;
-		if (f->kind == RIG_FAULT_KILL)
-			raise(SIGKILL);
-		if (f->kind == RIG_FAULT_DISCONNECT)
-			rig_sim_disconnect(sim, dev, f->count);
-		return f->kind;
-	}
-	return -1;
-}
-
-static int sim_open_dev(struct rig_sim *sim, int dev, void **out)
-{
-	if (sim->open_fail[dev] > 0) {
-		sim->open_fail[dev]--;
-		return RIG_EDISCONNECT;
-	}
-	sim->gone[dev] = 0;
-	*out = &tag[dev];
-	return RIG_OK;
-}
-
-static int s_usb_open(void *self, const struct rig_usb_id *id, void **dev)
-{
-	struct rig_sim *sim = self;
-	const struct rig_config *c = sim->cfg;
-
-	if (id->vid == c->stage.usb.vid && id->pid == c->stage.usb.pid) {
-		memset(sim->stage.in, 0, sizeof(sim->stage.in));
-		sim->stage.in_len = sim->stage.out_len = 0;
-		return sim_open_dev(sim, RIG_SIM_STAGE, dev);
-	}
-	if (id->vid == c->camera.usb.vid && id->pid == c->camera.usb.pid) {
-		sim->cam.queued = 0;
-		return sim_open_dev(sim, RIG_SIM_CAMERA, dev);
+		devices[d].open(sim);
+		rc = rig_sim_core_open(&sim->core, d);
+		if (rc == RIG_OK)
+			*dev = &tag[d];
+		return rc;
 	}
 	return RIG_EDISCONNECT;
+}
+
+static int dev_write(struct rig_sim *sim, void *dev, const uint8_t *buf,
+		     size_t len)
+{
+	int d = dev_of(dev);
+
+	if (sim->core.gone[d])
+		return RIG_EDISCONNECT;
+	return devices[d].write(sim, buf, len);
+}
+
+static int dev_read(struct rig_sim *sim, void *dev, uint8_t *buf,
+		    size_t cap, size_t *got, unsigned timeout_ms)
+{
+	int d = dev_of(dev);
+
+	if (sim->core.gone[d])
+		return RIG_EDISCONNECT;
+	return devices[d].read(sim, buf, cap, got, timeout_ms);
+}
+
+/* ---- the HAL ops ---- */
+static int s_usb_open(void *self, const struct rig_usb_id *id, void **dev)
+{
+	return open_on_bus(self, SIM_USB, id->vid, id->pid, dev);
 }
 
 static int s_usb_control(void *self, void *dev, uint8_t type, uint8_t req,
@@ -106,34 +211,21 @@ static int s_usb_control(void *self, void *dev, uint8_t type, uint8_t req,
 	struct rig_sim *sim = self;
 
 	(void)type, (void)req, (void)value, (void)index, (void)timeout_ms;
-	return sim->gone[dev_of(dev)] ? RIG_EDISCONNECT : RIG_OK;
+	return sim->core.gone[dev_of(dev)] ? RIG_EDISCONNECT : RIG_OK;
 }
 
 static int s_usb_write(void *self, void *dev, uint8_t ep, const uint8_t *buf,
 		       size_t len, unsigned timeout_ms)
 {
-	struct rig_sim *sim = self;
-	int d = dev_of(dev);
-
 	(void)ep, (void)timeout_ms;
-	if (sim->gone[d])
-		return RIG_EDISCONNECT;
-	return d == RIG_SIM_STAGE ? rig_sim_stage_write(sim, buf, len)
-				  : rig_sim_camera_write(sim, buf, len);
+	return dev_write(self, dev, buf, len);
 }
 
 static int s_usb_read(void *self, void *dev, uint8_t ep, uint8_t *buf,
 		      size_t cap, size_t *got, unsigned timeout_ms)
 {
-	struct rig_sim *sim = self;
-	int d = dev_of(dev);
-
 	(void)ep;
-	if (sim->gone[d])
-		return RIG_EDISCONNECT;
-	return d == RIG_SIM_STAGE
-		       ? rig_sim_stage_read(sim, buf, cap, got, timeout_ms)
-		       : rig_sim_camera_read(sim, buf, cap, got, timeout_ms);
+	return dev_read(self, dev, buf, cap, got, timeout_ms);
 }
 
 static void s_close(void *self, void *dev)
@@ -144,95 +236,55 @@ static void s_close(void *self, void *dev)
 static int s_hid_open(void *self, uint16_t vid, uint16_t pid,
 		      const char *serial, void **dev)
 {
-	struct rig_sim *sim = self;
-
 	(void)serial;
-	if (vid == sim->cfg->monitor.vid && pid == sim->cfg->monitor.pid) {
-		sim->mon.have_report = 0;
-		return sim_open_dev(sim, RIG_SIM_MONITOR, dev);
-	}
-	if (vid != sim->cfg->wheel.vid || pid != sim->cfg->wheel.pid)
-		return RIG_EDISCONNECT;
-	sim->wheel.have_report = 0;
-	return sim_open_dev(sim, RIG_SIM_WHEEL, dev);
+	return open_on_bus(self, SIM_HID, vid, pid, dev);
 }
 
 static int s_hid_write(void *self, void *dev, const uint8_t *buf, size_t len)
 {
-	struct rig_sim *sim = self;
-	int d = dev_of(dev);
-
-	if (sim->gone[d])
-		return RIG_EDISCONNECT;
-	return d == RIG_SIM_MONITOR ? rig_sim_monitor_write(sim, buf, len)
-				    : rig_sim_wheel_write(sim, buf, len);
+	return dev_write(self, dev, buf, len);
 }
 
 static int s_hid_read(void *self, void *dev, uint8_t *buf, size_t cap,
 		      size_t *got, unsigned timeout_ms)
 {
-	struct rig_sim *sim = self;
-	int d = dev_of(dev);
-
-	if (sim->gone[d])
-		return RIG_EDISCONNECT;
-	return d == RIG_SIM_MONITOR
-		       ? rig_sim_monitor_read(sim, buf, cap, got, timeout_ms)
-		       : rig_sim_wheel_read(sim, buf, cap, got, timeout_ms);
+	return dev_read(self, dev, buf, cap, got, timeout_ms);
 }
 
 static int s_gpio_open(void *self, const struct rig_gpio_id *id, void **dev)
 {
 	struct rig_sim *sim = self;
-	int i;
+	int line, rc = rig_sim_lines_open(&sim->lines, &sim->core, id, &line);
 
-	for (i = 0; i < RIG_LINE_COUNT; i++)
-		if (strcmp(id->line, sim->cfg->lines[i].line) == 0 &&
-		    strcmp(id->chip, sim->cfg->lines[i].chip) == 0) {
-			if (sim->open_fail[RIG_SIM_GPIO] > 0) {
-				sim->open_fail[RIG_SIM_GPIO]--;
-				return RIG_EDISCONNECT;
-			}
-			sim->gone[RIG_SIM_GPIO] = 0;
-			sim->gpio[i] = id->initial ? 1 : 0;
-			*dev = &tag[RIG_SIM_GPIO + i];
-			return RIG_OK;
-		}
-	return RIG_EDISCONNECT;
+	if (rc == RIG_OK)
+		*dev = &tag[RIG_DEV_GPIO + line];
+	return rc;
 }
 
 static int s_gpio_set(void *self, void *dev, int value)
 {
 	struct rig_sim *sim = self;
-	int line = (int)((int *)dev - tag) - RIG_SIM_GPIO;
 
-	if (sim->gone[RIG_SIM_GPIO])
-		return RIG_EDISCONNECT;
-	/* A stalled line driver ignores the write (read-back catches it). */
-	if (rig_sim_event(sim, RIG_SIM_GPIO, NULL) != RIG_FAULT_STALL)
-		sim->gpio[line] = value ? 1 : 0;
-	return sim->gone[RIG_SIM_GPIO] ? RIG_EDISCONNECT : RIG_OK;
+	return rig_sim_lines_set(&sim->lines, &sim->core, line_of(dev),
+				 value);
 }
 
 static int s_gpio_get(void *self, void *dev, int *value)
 {
 	struct rig_sim *sim = self;
-	int line = (int)((int *)dev - tag) - RIG_SIM_GPIO;
 
-	if (sim->gone[RIG_SIM_GPIO])
-		return RIG_EDISCONNECT;
-	*value = sim->gpio[line];
-	return RIG_OK;
+	return rig_sim_lines_get(&sim->lines, &sim->core, line_of(dev),
+				 value);
 }
 
 static double s_now(void *self)
 {
-	return ((struct rig_sim *)self)->t_s;
+	return ((struct rig_sim *)self)->core.t_s;
 }
 
 static void s_sleep(void *self, double s)
 {
-	((struct rig_sim *)self)->t_s += s;
+	((struct rig_sim *)self)->core.t_s += s;
 }
 
 static const struct rig_hal_ops sim_ops = {
@@ -257,15 +309,10 @@ static const struct rig_hal_ops sim_ops = {
 int rig_sim_init(struct rig_sim *sim, const struct rig_config *cfg,
 		 struct rig_hal *hal)
 {
-	int i;
-
 	memset(sim, 0, sizeof(*sim));
-	sim->cfg = cfg;
+	rig_sim_core_init(&sim->core, cfg);
 	sim->wheel.slot = sim->wheel.target = 0;
-	/* Power-on levels: every line inactive... which for an active-low
-	 * line means physically high. */
-	for (i = 0; i < RIG_LINE_COUNT; i++)
-		sim->gpio[i] = cfg->lines[i].active_low ? 1 : 0;
+	rig_sim_lines_init(&sim->lines, &sim->core);
 	hal->ops = &sim_ops;
 	hal->self = sim;
 	return RIG_OK;
@@ -273,32 +320,32 @@ int rig_sim_init(struct rig_sim *sim, const struct rig_config *cfg,
 
 void rig_sim_fini(struct rig_sim *sim)
 {
-	free(sim->cam.clean);
-	free(sim->cam.wire);
-	sim->cam.clean = sim->cam.wire = NULL;
-}
-
-static int logical(const struct rig_sim *sim, int line)
-{
-	return sim->gpio[line] ^ (sim->cfg->lines[line].active_low ? 1 : 0);
+	rig_sim_camera_fini(&sim->cam);
 }
 
 int rig_sim_lamp_on(const struct rig_sim *sim)
 {
-	return logical(sim, RIG_LINE_LAMP);
+	return rig_sim_lines_logical(&sim->lines, &sim->core, RIG_LINE_LAMP);
 }
 
 int rig_sim_beam_blocked(const struct rig_sim *sim)
 {
-	return logical(sim, RIG_LINE_BEAM_BLOCK);
+	return rig_sim_lines_logical(&sim->lines, &sim->core,
+				     RIG_LINE_BEAM_BLOCK);
 }
 
 int rig_sim_shutter_open(const struct rig_sim *sim)
 {
-	return logical(sim, RIG_LINE_SHUTTER);
+	return rig_sim_lines_logical(&sim->lines, &sim->core,
+				     RIG_LINE_SHUTTER);
 }
 
 double rig_sim_angle_deg(const struct rig_sim *sim)
 {
-	return sim->stage.pos / sim->cfg->stage.counts_per_deg;
+	return rig_sim_stage_angle_deg(&sim->stage, &sim->core);
+}
+
+unsigned rig_sim_faults_fired(const struct rig_sim *sim)
+{
+	return sim->core.faults_fired;
 }

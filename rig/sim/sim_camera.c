@@ -1,17 +1,17 @@
 /*
  * sim_camera.c - device side of the camera frame link (framelink.h).
  * A TRIGGER exposes on the virtual clock, renders the frame from the
- * virtual lab with the lab state the other simulators hold (stage angle,
- * ND slot, GPIO lines), encodes it with its CRC32 and queues it on the
- * bulk IN endpoint.  Faults: a CRC fault flips one payload byte of that
- * transmission (value >= 1: re-sends too); timeout or stall loses the
- * frame; disconnect unplugs the camera.
+ * virtual lab with the lab state the backend passes in (stage angle, ND
+ * slot, GPIO lines: struct sim_lab_view), encodes it with its CRC32 and
+ * queues it on the bulk IN endpoint.  Faults: a CRC fault flips one
+ * payload byte of that transmission (value >= 1: re-sends too); timeout
+ * or stall loses the frame; disconnect unplugs the camera.
  */
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
-#include "rig/sim.h"
+#include "rig/sim_devices.h"
 #include "rig/status.h"
 #include "rig/vlab.h"
 
@@ -40,9 +40,9 @@ static void real_delay(double s)
 	nanosleep(&ts, NULL);
 }
 
-static int render(struct rig_sim *sim, uint32_t seq)
+static int render(struct sim_camera *c, const struct rig_sim_core *core,
+		  const struct sim_lab_view *lab, uint32_t seq)
 {
-	struct sim_camera *c = &sim->cam;
 	struct rig_fl_header h;
 	struct rig_vlab_state st;
 	size_t npx = (size_t)c->window.n_rows * c->window.n_cols;
@@ -63,14 +63,14 @@ static int render(struct rig_sim *sim, uint32_t seq)
 		free(px);
 		return RIG_ENOMEM;
 	}
-	st.theta_deg = rig_sim_angle_deg(sim);
+	st.theta_deg = lab->theta_deg;
 	st.t_exp_s = c->exposure_us * 1e-6;
-	st.nd_trans = sim->cfg->wheel.trans[sim->wheel.slot];
-	st.t_s = sim->t_s;
-	st.lamp_on = rig_sim_lamp_on(sim);
-	st.beam_blocked = rig_sim_beam_blocked(sim);
-	st.shutter_open = rig_sim_shutter_open(sim);
-	rig_vlab_render(&sim->cfg->vlab, &st, c->window.rows, h.n_rows,
+	st.nd_trans = lab->nd_trans;
+	st.t_s = core->t_s;
+	st.lamp_on = lab->lamp_on;
+	st.beam_blocked = lab->beam_blocked;
+	st.shutter_open = lab->shutter_open;
+	rig_vlab_render(&core->cfg->sim.vlab, &st, c->window.rows, h.n_rows,
 			h.col0, h.n_cols, ++c->frames, px);
 	c->len = rig_fl_frame_encode(&h, c->window.rows, px, c->clean, c->cap);
 	free(px);
@@ -86,31 +86,32 @@ static void send_copy(struct sim_camera *c, int corrupt)
 	c->queued = 1;
 }
 
-static int trigger(struct rig_sim *sim, uint32_t seq)
+static int trigger(struct sim_camera *c, struct rig_sim_core *core,
+		   const struct sim_lab_view *lab, uint32_t seq)
 {
-	struct sim_camera *c = &sim->cam;
 	double persist = 0;
-	int kind = rig_sim_event(sim, RIG_SIM_CAMERA, &persist), rc;
+	int kind = rig_sim_core_event(core, RIG_DEV_CAMERA, &persist), rc;
 
 	c->queued = 0;
-	if (sim->gone[RIG_SIM_CAMERA])
+	if (core->gone[RIG_DEV_CAMERA])
 		return RIG_EDISCONNECT;
 	if (c->window.n_rows == 0 || c->exposure_us == 0)
 		return RIG_OK;	/* not configured: no frame comes */
-	sim->t_s += c->exposure_us * 1e-6 + READOUT_S;
-	real_delay(sim->cfg->sim_real_delay_s);
+	core->t_s += c->exposure_us * 1e-6 + READOUT_S;
+	real_delay(core->cfg->sim.real_delay_s);
 	if (kind == RIG_FAULT_TIMEOUT || kind == RIG_FAULT_STALL)
 		return RIG_OK;
-	rc = render(sim, seq);
+	rc = render(c, core, lab, seq);
 	if (rc == RIG_OK)
 		send_copy(c, kind == RIG_FAULT_CRC);
 	c->corrupt_resends = (kind == RIG_FAULT_CRC && persist >= 1);
 	return rc;
 }
 
-int rig_sim_camera_write(struct rig_sim *sim, const uint8_t *buf, size_t len)
+int rig_sim_camera_write(struct sim_camera *c, struct rig_sim_core *core,
+			 const struct sim_lab_view *lab, const uint8_t *buf,
+			 size_t len)
 {
-	struct sim_camera *c = &sim->cam;
 	struct rig_fl_cmd cmd;
 
 	if (rig_fl_cmd_decode(buf, len, &cmd) != RIG_OK)
@@ -123,7 +124,7 @@ int rig_sim_camera_write(struct rig_sim *sim, const uint8_t *buf, size_t len)
 		c->window = cmd;
 		break;
 	case RIG_FL_TRIGGER:
-		return trigger(sim, cmd.arg);
+		return trigger(c, core, lab, cmd.arg);
 	case RIG_FL_RESEND:
 		if (c->len > 0)
 			send_copy(c, c->corrupt_resends);
@@ -134,14 +135,14 @@ int rig_sim_camera_write(struct rig_sim *sim, const uint8_t *buf, size_t len)
 	return RIG_OK;
 }
 
-int rig_sim_camera_read(struct rig_sim *sim, uint8_t *buf, size_t cap,
-		    size_t *got, unsigned timeout_ms)
+int rig_sim_camera_read(struct sim_camera *c, struct rig_sim_core *core,
+			uint8_t *buf, size_t cap, size_t *got,
+			unsigned timeout_ms)
 {
-	struct sim_camera *c = &sim->cam;
 	size_t n;
 
 	if (!c->queued) {
-		sim->t_s += timeout_ms * 1e-3;
+		core->t_s += timeout_ms * 1e-3;
 		return RIG_ETIMEOUT;
 	}
 	n = c->len - c->sent < cap ? c->len - c->sent : cap;
@@ -151,4 +152,16 @@ int rig_sim_camera_read(struct rig_sim *sim, uint8_t *buf, size_t cap,
 		c->queued = 0;
 	*got = n;
 	return RIG_OK;
+}
+
+void rig_sim_camera_reset(struct sim_camera *c)
+{
+	c->queued = 0;
+}
+
+void rig_sim_camera_fini(struct sim_camera *c)
+{
+	free(c->clean);
+	free(c->wire);
+	c->clean = c->wire = NULL;
 }

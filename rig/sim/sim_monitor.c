@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "rig/monitor_report.h"
-#include "rig/sim.h"
+#include "rig/sim_devices.h"
 #include "rig/status.h"
 #include "rig/vlab.h"
 
@@ -25,9 +25,9 @@ static double noise(uint32_t n)
 	return ((double)(h & 0xffff) / 65535.0 - 0.5) * 2 * NOISE_FRAC;
 }
 
-int rig_sim_monitor_write(struct rig_sim *sim, const uint8_t *buf, size_t len)
+int rig_sim_monitor_write(struct sim_monitor *m, struct rig_sim_core *core,
+			  int lamp_on, const uint8_t *buf, size_t len)
 {
-	struct sim_monitor *m = &sim->mon;
 	struct rig_monitor_in in;
 	double pa;
 	uint8_t seq;
@@ -35,14 +35,15 @@ int rig_sim_monitor_write(struct rig_sim *sim, const uint8_t *buf, size_t len)
 
 	if (rig_monitor_out_decode(buf, len, &seq) != RIG_OK)
 		return RIG_OK;
-	kind = rig_sim_event(sim, RIG_SIM_MONITOR, NULL);
-	if (sim->gone[RIG_SIM_MONITOR])
+	kind = rig_sim_core_event(core, RIG_DEV_MONITOR, NULL);
+	if (core->gone[RIG_DEV_MONITOR])
 		return RIG_EDISCONNECT;
 	if (kind == RIG_FAULT_TIMEOUT || kind == RIG_FAULT_STALL)
 		return RIG_OK;
-	pa = rig_sim_lamp_on(sim)
-		     ? sim->cfg->monitor.nominal_pa *
-			       rig_vlab_lamp_factor(&sim->cfg->vlab, sim->t_s)
+	pa = lamp_on
+		     ? core->cfg->monitor.nominal_pa *
+			       rig_vlab_lamp_factor(&core->cfg->sim.vlab,
+						    core->t_s)
 		     : DARK_PA;
 	pa *= 1 + noise(++m->reads);
 	memset(&in, 0, sizeof(in));
@@ -55,17 +56,22 @@ int rig_sim_monitor_write(struct rig_sim *sim, const uint8_t *buf, size_t len)
 	return RIG_OK;
 }
 
-int rig_sim_monitor_read(struct rig_sim *sim, uint8_t *buf, size_t cap,
-		     size_t *got, unsigned timeout_ms)
+int rig_sim_monitor_read(struct sim_monitor *m, struct rig_sim_core *core,
+			 uint8_t *buf, size_t cap, size_t *got,
+			 unsigned timeout_ms)
 {
-	struct sim_monitor *m = &sim->mon;
 
 	if (!m->have_report || cap < RIG_MONITOR_REPORT_LEN) {
-		sim->t_s += timeout_ms * 1e-3;
+		core->t_s += timeout_ms * 1e-3;
 		return RIG_ETIMEOUT;
 	}
 	memcpy(buf, m->report, RIG_MONITOR_REPORT_LEN);
 	*got = RIG_MONITOR_REPORT_LEN;
 	m->have_report = 0;
 	return RIG_OK;
+}
+
+void rig_sim_monitor_reset(struct sim_monitor *m)
+{
+	m->have_report = 0;
 }

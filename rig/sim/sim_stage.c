@@ -9,29 +9,28 @@
 
 #include "rig/apt.h"
 #include "rig/bytes.h"
-#include "rig/sim.h"
+#include "rig/sim_devices.h"
 #include "rig/status.h"
 
 #define SPEED_DEG_S 10.0
 #define FTDI_PACKET 64
 #define FTDI_LATENCY_S 0.016	/* FTDI default latency timer */
 
-static int32_t current_pos(const struct rig_sim *sim)
+static int32_t current_pos(const struct sim_stage *s,
+			   const struct rig_sim_core *core)
 {
-	const struct sim_stage *s = &sim->stage;
 	double f;
 
 	if (!s->moving || s->stalled)
 		return s->pos;
-	f = (sim->t_s - s->t0) / (s->t1 - s->t0);
+	f = (core->t_s - s->t0) / (s->t1 - s->t0);
 	if (f > 1)
 		f = 1;
 	return (int32_t)lround(s->from + f * (double)(s->target - s->from));
 }
 
-static void queue(struct rig_sim *sim, const struct rig_apt_msg *m)
+static void queue(struct sim_stage *s, const struct rig_apt_msg *m)
 {
-	struct sim_stage *s = &sim->stage;
 	size_t n = rig_apt_encode(m, s->out + s->out_len,
 				  sizeof(s->out) - s->out_len);
 
@@ -39,7 +38,7 @@ static void queue(struct rig_sim *sim, const struct rig_apt_msg *m)
 }
 
 /* Status block: channel, position, encoder count, status bits. */
-static void queue_status(struct rig_sim *sim, uint16_t id)
+static void queue_status(struct sim_stage *s, uint16_t id)
 {
 	struct rig_apt_msg m;
 
@@ -49,52 +48,52 @@ static void queue_status(struct rig_sim *sim, uint16_t id)
 	m.source = RIG_APT_USB_UNIT;
 	m.data_len = RIG_APT_STATUS_LEN;
 	rig_put_u16(m.data, RIG_APT_CHAN1);
-	rig_put_u32(m.data + 2, (uint32_t)sim->stage.pos);
-	rig_put_u32(m.data + 6, (uint32_t)sim->stage.pos);
-	queue(sim, &m);
+	rig_put_u32(m.data + 2, (uint32_t)s->pos);
+	rig_put_u32(m.data + 6, (uint32_t)s->pos);
+	queue(s, &m);
 }
 
-static void start_motion(struct rig_sim *sim, int32_t to)
+static void start_motion(struct sim_stage *s,
+			 const struct rig_sim_core *core, int32_t to)
 {
-	struct sim_stage *s = &sim->stage;
 	double deg = fabs((double)(to - s->pos)) /
-		     sim->cfg->stage.counts_per_deg;
+		     core->cfg->stage.counts_per_deg;
 
 	s->from = s->pos;
 	s->target = to;
-	s->t0 = sim->t_s;
-	s->t1 = sim->t_s + deg / SPEED_DEG_S + 0.05;
+	s->t0 = core->t_s;
+	s->t1 = core->t_s + deg / SPEED_DEG_S + 0.05;
 	s->moving = 1;
 }
 
-static void handle_move(struct rig_sim *sim, const struct rig_apt_msg *m)
+static void handle_move(struct sim_stage *s, struct rig_sim_core *core,
+			const struct rig_apt_msg *m)
 {
-	struct sim_stage *s = &sim->stage;
 	double miss = 0;
-	int kind = rig_sim_event(sim, RIG_SIM_STAGE, &miss);
+	int kind = rig_sim_core_event(core, RIG_DEV_STAGE, &miss);
 	int32_t to = (int32_t)rig_get_u32(m->data + 2);
 
 	if (kind == RIG_FAULT_MISS)
-		to -= (int32_t)lround(miss * sim->cfg->stage.counts_per_deg);
+		to -= (int32_t)lround(miss * core->cfg->stage.counts_per_deg);
 	s->homing = 0;
 	s->stalled = kind == RIG_FAULT_STALL || kind == RIG_FAULT_TIMEOUT;
-	start_motion(sim, to);
+	start_motion(s, core, to);
 }
 
-static void handle(struct rig_sim *sim, const struct rig_apt_msg *m)
+static void handle(struct sim_stage *s, struct rig_sim_core *core,
+		   const struct rig_apt_msg *m)
 {
-	struct sim_stage *s = &sim->stage;
 	struct rig_apt_msg r;
 
 	switch (m->id) {
 	case RIG_APT_MOT_MOVE_HOME:
 		s->homing = 1;
 		s->stalled = 0;
-		start_motion(sim, 0);
+		start_motion(s, core, 0);
 		break;
 	case RIG_APT_MOT_MOVE_ABSOLUTE:
 		if (m->data_len >= 6)
-			handle_move(sim, m);
+			handle_move(s, core, m);
 		break;
 	case RIG_APT_MOT_REQ_POSCOUNTER:
 		memset(&r, 0, sizeof(r));
@@ -103,22 +102,22 @@ static void handle(struct rig_sim *sim, const struct rig_apt_msg *m)
 		r.source = RIG_APT_USB_UNIT;
 		r.data_len = 6;
 		rig_put_u16(r.data, RIG_APT_CHAN1);
-		rig_put_u32(r.data + 2, (uint32_t)current_pos(sim));
-		queue(sim, &r);
+		rig_put_u32(r.data + 2, (uint32_t)current_pos(s, core));
+		queue(s, &r);
 		break;
 	case RIG_APT_MOT_MOVE_STOP:
-		s->pos = current_pos(sim);
+		s->pos = current_pos(s, core);
 		s->moving = s->stalled = 0;
-		queue_status(sim, RIG_APT_MOT_MOVE_STOPPED);
+		queue_status(s, RIG_APT_MOT_MOVE_STOPPED);
 		break;
 	default:
 		break;	/* a real unit ignores what it does not know */
 	}
 }
 
-int rig_sim_stage_write(struct rig_sim *sim, const uint8_t *buf, size_t len)
+int rig_sim_stage_write(struct sim_stage *s, struct rig_sim_core *core,
+			const uint8_t *buf, size_t len)
 {
-	struct sim_stage *s = &sim->stage;
 	struct rig_apt_msg m;
 	size_t used;
 	int rc;
@@ -134,18 +133,16 @@ int rig_sim_stage_write(struct rig_sim *sim, const uint8_t *buf, size_t len)
 		memmove(s->in, s->in + used, s->in_len - used);
 		s->in_len -= used;
 		if (rc == RIG_OK)
-			handle(sim, &m);
-		if (sim->gone[RIG_SIM_STAGE])
+			handle(s, core, &m);
+		if (core->gone[RIG_DEV_STAGE])
 			return RIG_EDISCONNECT;
 	}
 	return RIG_OK;
 }
 
-static void update(struct rig_sim *sim)
+static void update(struct sim_stage *s, const struct rig_sim_core *core)
 {
-	struct sim_stage *s = &sim->stage;
-
-	if (!s->moving || s->stalled || sim->t_s < s->t1)
+	if (!s->moving || s->stalled || core->t_s < s->t1)
 		return;
 	s->pos = s->target;
 	s->moving = 0;
@@ -155,24 +152,24 @@ static void update(struct rig_sim *sim)
 		rig_apt_short(&m, RIG_APT_MOT_MOVE_HOMED, RIG_APT_CHAN1, 0);
 		m.dest = RIG_APT_HOST;
 		m.source = RIG_APT_USB_UNIT;
-		queue(sim, &m);
+		queue(s, &m);
 		s->homing = 0;
 	} else {
-		queue_status(sim, RIG_APT_MOT_MOVE_COMPLETED);
+		queue_status(s, RIG_APT_MOT_MOVE_COMPLETED);
 	}
 }
 
-int rig_sim_stage_read(struct rig_sim *sim, uint8_t *buf, size_t cap,
-		   size_t *got, unsigned timeout_ms)
+int rig_sim_stage_read(struct sim_stage *s, struct rig_sim_core *core,
+		       uint8_t *buf, size_t cap, size_t *got,
+		       unsigned timeout_ms)
 {
-	struct sim_stage *s = &sim->stage;
 	size_t n = 0;
 
 	(void)timeout_ms;
-	update(sim);
+	update(s, core);
 	if (s->out_len == 0) {
 		/* Idle FTDI: status bytes only, once per latency period. */
-		sim->t_s += FTDI_LATENCY_S;
+		core->t_s += FTDI_LATENCY_S;
 		if (cap < 2)
 			return RIG_EINVAL;
 		buf[0] = 0x01;
@@ -198,4 +195,16 @@ int rig_sim_stage_read(struct rig_sim *sim, uint8_t *buf, size_t cap,
 	}
 	*got = n;
 	return RIG_OK;
+}
+
+void rig_sim_stage_reset(struct sim_stage *s)
+{
+	memset(s->in, 0, sizeof(s->in));
+	s->in_len = s->out_len = 0;
+}
+
+double rig_sim_stage_angle_deg(const struct sim_stage *s,
+			       const struct rig_sim_core *core)
+{
+	return s->pos / core->cfg->stage.counts_per_deg;
 }

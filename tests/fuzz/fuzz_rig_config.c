@@ -23,7 +23,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 	if (rig_config_parse(&cfg, "fuzz.json", text, &err) == RIG_OK &&
 	    (cfg.wheel.n_slots < 1 || cfg.wheel.n_slots > 12 ||
 	     cfg.camera.n_rows < 1 || cfg.camera.n_rows > 24 ||
-	     cfg.n_faults > RIG_FAULTS_MAX || cfg.vlab.n_ghosts > 4))
+	     cfg.sim.n_faults > RIG_FAULTS_MAX || cfg.sim.vlab.n_ghosts > 4))
 		__builtin_trap();
 	if (err.code != RIG_OK && strchr(err.msg, '\n'))
 		__builtin_trap();

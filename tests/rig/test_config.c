@@ -7,6 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "rig/config.h"
@@ -41,12 +42,12 @@ static void test_config_values_land(void **state)
 	assert_true(c.lines[RIG_LINE_LAMP].active_low);
 	assert_int_equal(c.camera.n_rows, 3);
 	assert_int_equal(c.sweep.repeats, 5);
-	assert_int_equal(c.vlab.seed, 99);
-	assert_int_equal(c.vlab.n_ghosts, 1);
+	assert_int_equal(c.sim.vlab.seed, 99);
+	assert_int_equal(c.sim.vlab.n_ghosts, 1);
 	assert_int_equal(c.socket_mode, 0660);
-	assert_int_equal(c.n_faults, 1);
-	assert_int_equal(c.faults[0].kind, RIG_FAULT_CRC);
-	assert_int_equal(c.faults[0].at, 3);
+	assert_int_equal(c.sim.n_faults, 1);
+	assert_int_equal(c.sim.faults[0].kind, RIG_FAULT_CRC);
+	assert_int_equal(c.sim.faults[0].at, 3);
 }
 
 static void expect_error(const char *text, const char *needle)
@@ -81,6 +82,34 @@ static void test_config_errors_name_the_key(void **state)
 	expect_error("{\"vlab\":{\"bias_dn\":[1,2,3]}}", "vlab.bias_dn");
 }
 
+/* The fault schedule names devices as enum rig_device does, in order. */
+static void test_config_fault_devices_are_the_device_enum(void **state)
+{
+	static const char *const names[RIG_DEV_COUNT] = {
+		[RIG_DEV_STAGE] = "stage", [RIG_DEV_WHEEL] = "wheel",
+		[RIG_DEV_CAMERA] = "camera", [RIG_DEV_MONITOR] = "monitor",
+		[RIG_DEV_GPIO] = "gpio",
+	};
+	struct rig_config c;
+	struct rig_error err;
+	char text[256];
+	int d;
+
+	(void)state;
+	for (d = 0; d < RIG_DEV_COUNT; d++) {
+		snprintf(text, sizeof(text), "{\"sim\":{\"real_delay_s\":0.5,"
+			 "\"faults\":[{\"device\":\"%s\",\"kind\":\"stall\","
+			 "\"at\":%d}]}}", names[d], d + 2);
+		assert_int_equal(parse(&c, text, &err), RIG_OK);
+		assert_string_equal(rig_device_names[d], names[d]);
+		assert_int_equal(c.sim.n_faults, 1);
+		assert_int_equal(c.sim.faults[0].device, d);
+		assert_int_equal(c.sim.faults[0].kind, RIG_FAULT_STALL);
+		assert_int_equal(c.sim.faults[0].at, d + 2);
+		assert_true(c.sim.real_delay_s == 0.5);
+	}
+}
+
 static void test_config_missing_file(void **state)
 {
 	struct rig_config c;
@@ -99,6 +128,7 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_config_values_land),
 		cmocka_unit_test(test_config_errors_name_the_key),
+		cmocka_unit_test(test_config_fault_devices_are_the_device_enum),
 		cmocka_unit_test(test_config_missing_file),
 	};
 

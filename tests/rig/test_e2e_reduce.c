@@ -63,7 +63,7 @@ static void test_e2e_sweep_reduces_to_lens_curve(void **state)
 	assert_int_equal(rig_config_load(&cfg, conf, &err), RIG_OK);
 	for (i = 0; i < (int)t.n_rows; i++) {
 		const double *row = t.cell + (size_t)i * t.n_cols;
-		double truth = rig_vlab_lens_alpha(&cfg.vlab, row[0],
+		double truth = rig_vlab_lens_alpha(&cfg.sim.vlab, row[0],
 			cfg.camera.rows, cfg.camera.n_rows, cfg.camera.col0,
 			cfg.camera.n_cols);
 		double tol = fmax(5 * row[is], 2e-3 * truth);

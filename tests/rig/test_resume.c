@@ -68,9 +68,9 @@ static unsigned seed(void)
 
 static void test_resume_after_kills_at_device_events(void **state)
 {
-	static const int devs[] = { RIG_SIM_CAMERA, RIG_SIM_CAMERA,
-				    RIG_SIM_STAGE, RIG_SIM_WHEEL,
-				    RIG_SIM_GPIO };
+	static const int devs[] = { RIG_DEV_CAMERA, RIG_DEV_CAMERA,
+				    RIG_DEV_STAGE, RIG_DEV_WHEEL,
+				    RIG_DEV_GPIO };
 	struct rig_config cfg, killer;
 	struct sweep_check c;
 	char *dir = temp_dir();
@@ -81,14 +81,14 @@ static void test_resume_after_kills_at_device_events(void **state)
 	small_config(&cfg);
 	/* First run is fresh; every later one resumes; each is killed. */
 	for (round = 0; round < 5; round++) {
-		struct rig_fault *f = &killer.faults[0];
+		struct rig_fault *f = &killer.sim.faults[0];
 
 		killer = cfg;
-		killer.n_faults = 1;
+		killer.sim.n_faults = 1;
 		f->device = devs[round];
 		f->kind = RIG_FAULT_KILL;
 		f->at = 1 + (unsigned)rand() %
-			(devs[round] == RIG_SIM_CAMERA ? 12 : 3);
+			(devs[round] == RIG_DEV_CAMERA ? 12 : 3);
 		f->count = 1;
 		status = run_child(&killer, dir, round > 0);
 		print_message("round %d: kill at event %u of device %d: %s\n",
@@ -119,8 +119,8 @@ static void test_resume_repairs_torn_tail(void **state)
 	(void)state;
 	small_config(&cfg);
 	killer = cfg;
-	killer.n_faults = 1;
-	killer.faults[0] = (struct rig_fault){ RIG_SIM_CAMERA,
+	killer.sim.n_faults = 1;
+	killer.sim.faults[0] = (struct rig_fault){ RIG_DEV_CAMERA,
 					       RIG_FAULT_KILL, 14, 1, 0 };
 	status = run_child(&killer, dir, 0);
 	assert_true(WIFSIGNALED(status));

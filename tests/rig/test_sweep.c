@@ -79,7 +79,7 @@ static void test_sweep_complete_and_safe(void **state)
 	small_config(&r.cfg);
 	run_sweep(&r);
 	assert_complete(&r);
-	assert_int_equal(r.sim.faults_fired, 0);
+	assert_int_equal(rig_sim_faults_fired(&r.sim), 0);
 	end_run(&r);
 }
 
@@ -154,14 +154,15 @@ static void test_sweep_recovers_lens_curve(void **state)
 
 	(void)state;
 	small_config(&r.cfg);
-	r.cfg.vlab.hot_frac = 0;	/* a plain sum keeps hot pixels in */
+	/* A plain sum keeps hot pixels in. */
+	r.cfg.sim.vlab.hot_frac = 0;
 	run_sweep(&r);
 	assert_complete(&r);
 	assert_int_equal(rig_manifest_open(&mf, r.dir, 1, &r.err), RIG_OK);
 	j0 = true_response(&mf, 0);
 	for (a = 10; a <= 30; a += 10) {
 		const struct rig_camera_cfg *c = &r.cfg.camera;
-		double truth = rig_vlab_lens_alpha(&r.cfg.vlab, a, c->rows,
+		double truth = rig_vlab_lens_alpha(&r.cfg.sim.vlab, a, c->rows,
 						   c->n_rows, c->col0,
 						   c->n_cols);
 		double got = true_response(&mf, a) / j0;	/* eq. 3.7 */
@@ -229,15 +230,15 @@ static void test_sweep_monitor_corrects_lamp_drift(void **state)
 
 	(void)state;
 	small_config(&r.cfg);
-	r.cfg.vlab.hot_frac = 0;
-	r.cfg.vlab.lamp_drift_per_h = 36;
+	r.cfg.sim.vlab.hot_frac = 0;
+	r.cfg.sim.vlab.lamp_drift_per_h = 36;
 	r.cfg.monitor.enabled = 1;
 	run_sweep(&r);
 	assert_complete(&r);
 	assert_int_equal(rig_manifest_open(&mf, r.dir, 1, &r.err), RIG_OK);
 	for (a = 10; a <= 30; a += 10) {
 		const struct rig_camera_cfg *c = &r.cfg.camera;
-		double truth = rig_vlab_lens_alpha(&r.cfg.vlab, a, c->rows,
+		double truth = rig_vlab_lens_alpha(&r.cfg.sim.vlab, a, c->rows,
 						   c->n_rows, c->col0,
 						   c->n_cols);
 		double raw = j_monitored(&mf, a, 0) / j_monitored(&mf, 0, 0);
@@ -281,7 +282,7 @@ static void test_sweep_exposure_below_saturation(void **state)
 static void add_fault(struct rig_config *cfg, int dev, int kind,
 		      unsigned at, unsigned count, double value)
 {
-	struct rig_fault *f = &cfg->faults[cfg->n_faults++];
+	struct rig_fault *f = &cfg->sim.faults[cfg->sim.n_faults++];
 
 	f->device = dev;
 	f->kind = kind;
@@ -296,15 +297,15 @@ static void test_sweep_survives_transient_faults(void **state)
 
 	(void)state;
 	small_config(&r.cfg);
-	add_fault(&r.cfg, RIG_SIM_CAMERA, RIG_FAULT_CRC, 5, 1, 0);
-	add_fault(&r.cfg, RIG_SIM_CAMERA, RIG_FAULT_TIMEOUT, 12, 1, 0);
-	add_fault(&r.cfg, RIG_SIM_CAMERA, RIG_FAULT_DISCONNECT, 20, 2, 0);
-	add_fault(&r.cfg, RIG_SIM_STAGE, RIG_FAULT_MISS, 2, 1, 0.5);
-	add_fault(&r.cfg, RIG_SIM_STAGE, RIG_FAULT_STALL, 4, 1, 0);
-	add_fault(&r.cfg, RIG_SIM_WHEEL, RIG_FAULT_STALL, 2, 1, 0);
+	add_fault(&r.cfg, RIG_DEV_CAMERA, RIG_FAULT_CRC, 5, 1, 0);
+	add_fault(&r.cfg, RIG_DEV_CAMERA, RIG_FAULT_TIMEOUT, 12, 1, 0);
+	add_fault(&r.cfg, RIG_DEV_CAMERA, RIG_FAULT_DISCONNECT, 20, 2, 0);
+	add_fault(&r.cfg, RIG_DEV_STAGE, RIG_FAULT_MISS, 2, 1, 0.5);
+	add_fault(&r.cfg, RIG_DEV_STAGE, RIG_FAULT_STALL, 4, 1, 0);
+	add_fault(&r.cfg, RIG_DEV_WHEEL, RIG_FAULT_STALL, 2, 1, 0);
 	run_sweep(&r);
 	assert_complete(&r);
-	assert_int_equal(r.sim.faults_fired, 6);
+	assert_int_equal(rig_sim_faults_fired(&r.sim), 6);
 	assert_int_equal(r.lab.crc_rereads + r.lab.camera.crc_rereads, 1);
 	assert_true(r.lab.recoveries >= 4);
 	end_run(&r);
@@ -316,7 +317,7 @@ static void test_sweep_stops_safe_on_lasting_disconnect(void **state)
 
 	(void)state;
 	small_config(&r.cfg);
-	add_fault(&r.cfg, RIG_SIM_CAMERA, RIG_FAULT_DISCONNECT, 9, 100, 0);
+	add_fault(&r.cfg, RIG_DEV_CAMERA, RIG_FAULT_DISCONNECT, 9, 100, 0);
 	run_sweep(&r);
 	assert_int_equal(r.rc, RIG_EDISCONNECT);
 	assert_non_null(strstr(r.err.msg, "camera"));
@@ -333,7 +334,7 @@ static void test_sweep_stops_safe_on_persistent_crc(void **state)
 	(void)state;
 	small_config(&r.cfg);
 	/* value >= 1: the re-sends are corrupt too; count covers retries. */
-	add_fault(&r.cfg, RIG_SIM_CAMERA, RIG_FAULT_CRC, 3, 50, 1);
+	add_fault(&r.cfg, RIG_DEV_CAMERA, RIG_FAULT_CRC, 3, 50, 1);
 	run_sweep(&r);
 	assert_int_equal(r.rc, RIG_ECRC);
 	assert_non_null(strstr(r.err.msg, "CRC mismatch"));
@@ -347,7 +348,7 @@ static void test_sweep_stops_on_stage_that_keeps_missing(void **state)
 
 	(void)state;
 	small_config(&r.cfg);
-	add_fault(&r.cfg, RIG_SIM_STAGE, RIG_FAULT_MISS, 2, 100, 0.3);
+	add_fault(&r.cfg, RIG_DEV_STAGE, RIG_FAULT_MISS, 2, 100, 0.3);
 	run_sweep(&r);
 	assert_int_equal(r.rc, RIG_ETARGET);
 	assert_non_null(strstr(r.err.msg, "stage: stopped at"));
@@ -368,9 +369,9 @@ static void test_sweep_active_low_lines_end_safe(void **state)
 		r.cfg.lines[i].active_low = 1;
 	run_sweep(&r);
 	assert_complete(&r);
-	assert_int_equal(r.sim.gpio[RIG_LINE_LAMP], 1);
-	assert_int_equal(r.sim.gpio[RIG_LINE_SHUTTER], 1);
-	assert_int_equal(r.sim.gpio[RIG_LINE_BEAM_BLOCK], 0);
+	assert_int_equal(r.sim.lines.level[RIG_LINE_LAMP], 1);
+	assert_int_equal(r.sim.lines.level[RIG_LINE_SHUTTER], 1);
+	assert_int_equal(r.sim.lines.level[RIG_LINE_BEAM_BLOCK], 0);
 	end_run(&r);
 }
 
@@ -384,7 +385,7 @@ static void test_sweep_stops_on_line_readback(void **state)
 	small_config(&r.cfg);
 	/* Writes 1-3 make the lab safe at open; 4-6 light it: 5 unblocks the
 	 * beam, and is lost. */
-	add_fault(&r.cfg, RIG_SIM_GPIO, RIG_FAULT_STALL, 5, 1, 0);
+	add_fault(&r.cfg, RIG_DEV_GPIO, RIG_FAULT_STALL, 5, 1, 0);
 	run_sweep(&r);
 	assert_int_equal(r.rc, RIG_EDEVICE);
 	assert_non_null(strstr(r.err.msg, "beam_block: set 0 but read back 1"));

@@ -2,39 +2,18 @@
  * config.h - strayrigd's configuration: a JSON file parsed with cJSON.
  * Every key is optional and falls back to rig_config_defaults(), which
  * describes the simulated lab; a key of the wrong type or out of range is
- * an error naming the file and key.  See docs/rig-config.md.
+ * an error naming the file and key.  See docs/rig-config.md.  The
+ * simulator's sections (virtual lab, fault schedule) are its own type,
+ * parsed by rig/sim (sim_config.h).
  */
 #ifndef RIG_CONFIG_H
 #define RIG_CONFIG_H
 
 #include "rig/devices.h"
+#include "rig/sim_config.h"
 #include "rig/status.h"
-#include "rig/vlab.h"
 
 #define RIG_PATH_MAX 512
-#define RIG_FAULTS_MAX 16
-
-enum rig_sim_device { RIG_SIM_STAGE, RIG_SIM_WHEEL, RIG_SIM_CAMERA,
-		      RIG_SIM_MONITOR, RIG_SIM_GPIO, RIG_SIM_DEVICE_COUNT };
-
-enum rig_fault_kind {
-	RIG_FAULT_TIMEOUT,	/* reads time out for `count` events */
-	RIG_FAULT_DISCONNECT,	/* gone; the next `count` opens fail */
-	RIG_FAULT_STALL,	/* accepts commands, never finishes */
-	RIG_FAULT_CRC,		/* camera frames corrupted on the wire */
-	RIG_FAULT_MISS,		/* stage stops `value` deg short */
-	RIG_FAULT_KILL,		/* SIGKILL the process (resume tests) */
-	RIG_FAULT_KIND_COUNT
-};
-
-/* A fault fires at the at-th event of its device (1-based: stage moves,
- * wheel moves, camera triggers, monitor reads, GPIO writes) and lasts `count` events;
- * a disconnect or kill fires once, and `count` re-opens then fail. */
-struct rig_fault {
-	int device, kind;
-	unsigned at, count;
-	double value;
-};
 
 struct rig_sweep_cfg {
 	double theta_start_deg, theta_stop_deg, theta_step_deg;
@@ -56,10 +35,7 @@ struct rig_config {
 	struct rig_camera_cfg camera;
 	struct rig_monitor_cfg monitor;
 	struct rig_sweep_cfg sweep;
-	struct rig_vlab_cfg vlab;
-	double sim_real_delay_s;	/* real sleep per simulated frame */
-	int n_faults;
-	struct rig_fault faults[RIG_FAULTS_MAX];
+	struct rig_sim_config sim;	/* "vlab" and "sim": rig/sim's own */
 };
 
 void rig_config_defaults(struct rig_config *cfg);
@@ -71,9 +47,5 @@ int rig_config_parse(struct rig_config *cfg, const char *name,
 /* Read and parse a file over the defaults. */
 int rig_config_load(struct rig_config *cfg, const char *path,
 		    struct rig_error *err);
-
-/* Parse one fault object {"device","kind","at","count","value"}. */
-int rig_config_fault(const void *json, struct rig_fault *f,
-		     const char *name, struct rig_error *err);
 
 #endif /* RIG_CONFIG_H */

@@ -22,6 +22,14 @@
 
 #define RIG_NAME_MAX 48
 
+/* The lab's devices, one index for the lab's device table (lab.c), the
+ * simulator's (sim.c) and the fault schedule (sim_config.h). */
+enum rig_device { RIG_DEV_STAGE, RIG_DEV_WHEEL, RIG_DEV_CAMERA,
+		  RIG_DEV_MONITOR, RIG_DEV_GPIO, RIG_DEV_COUNT };
+
+/* "stage", "wheel", "camera", "monitor", "gpio": as in the config file. */
+extern const char *const rig_device_names[RIG_DEV_COUNT];
+
 /* ---- rotation stage ---- */
 struct rig_stage_cfg {
 	struct rig_usb_id usb;

@@ -18,7 +18,7 @@ struct rig_lab {
 	struct rig_lines lines;
 	struct rig_camera camera;
 	struct rig_monitor monitor;
-	int open_mask;		/* bit per enum rig_sim_device */
+	int open_mask;		/* bit per enum rig_device */
 	double theta_deg;	/* last commanded and verified; NAN unknown */
 	unsigned recoveries;	/* faults survived by retry or reconnect */
 	unsigned crc_rereads;	/* of camera connections already closed */
