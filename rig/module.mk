@@ -7,8 +7,8 @@ RIG_SRC := $(filter-out rig/daemon/strayrigd.c,\
 RIG_OBJ := $(RIG_SRC:%.c=$(B)/obj/%.o)
 RIG_LIB := $(B)/lib/librig.a
 RIG_BIN := $(B)/bin/strayrigd
-RIG_CFLAGS := -Irig/include -Irig/sim/include -I/usr/include/libusb-1.0 \
-	-I/usr/include/hidapi -I/usr/include/cjson
+RIG_CFLAGS := -Irig/include -I/usr/include/libusb-1.0 -I/usr/include/hidapi \
+	-I/usr/include/cjson
 RIG_LDLIBS := -lcfitsio -lusb-1.0 -lhidapi-libusb -lgpiod -lcrypto -lz \
 	-lcjson -lcsv -lm
 
@@ -23,6 +23,9 @@ $(RIG_BIN): $(B)/obj/rig/daemon/strayrigd.o $(RIG_LIB)
 	$(CC) $(CFLAGS_BASE) -o $@ $< $(RIG_LIB) $(RIG_LDLIBS)
 
 all: $(RIG_BIN)
+
+# The simulator's headers (sim.h, sim_config.h, vlab.h, ...) are its own.
+RIG_CFLAGS += -Irig/sim/include
 
 # Tests: one cmocka binary per source file.  Driver tests wrap the HAL
 # (-Wl,--wrap=rig_hal_*), the end-to-end ones run against the simulators.
