@@ -15,7 +15,7 @@
 
 #include <stdint.h>
 
-#include "trace_run.h"
+#include "tracer/runner.h"
 
 struct farm_config {
 	int angle_chunks;	/* angle chunks per batch; 0: automatic */
@@ -39,8 +39,8 @@ struct farm_stats {
 
 extern struct farm_stats farm_last;
 
-/* Rank 0: the trace_run hook. */
-int farm_trace(const struct trace_scene_spec *spec,
+/* Rank 0: a trace over the ranks (stray-mpi's runner, stray_mpi.c). */
+int farm_trace(const struct tracer_scene_spec *spec,
 	       const struct tracer_scene *s,
 	       const struct tracer_trace_opts *o, struct tracer_result *res,
 	       struct stray_error *err);

@@ -1,7 +1,7 @@
 /*
  * farm_job.c - the job description sent to every rank: the scene as the
  * command line gave it (name, --set list, lens path, edits after
- * loading: trace_run.h) and the trace's
+ * loading: tracer/runner.h) and the trace's
  * options, so that each rank builds the same scene itself.
  */
 #include <stdlib.h>
@@ -23,7 +23,7 @@ static size_t str_size(const char *s)
 	return s ? strlen(s) + 1 : 1;
 }
 
-char *farm_job_pack(const struct trace_scene_spec *spec,
+char *farm_job_pack(const struct tracer_scene_spec *spec,
 		    const struct tracer_trace_opts *o, size_t *len)
 {
 	struct job_head h;

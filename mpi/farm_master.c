@@ -389,7 +389,7 @@ static int make_guide(const struct tracer_scene *s,
 	return send_all(g, (int)sizeof(*g), TAG_GUIDE, err);
 }
 
-int farm_trace(const struct trace_scene_spec *spec,
+int farm_trace(const struct tracer_scene_spec *spec,
 	       const struct tracer_scene *s,
 	       const struct tracer_trace_opts *o, struct tracer_result *res,
 	       struct stray_error *err)

@@ -28,11 +28,11 @@ struct farm_job {
 	const char *scene, *lens;	/* lens: NULL when none */
 	const char *sets[FARM_SETS_MAX];
 	int n_sets;
-	double beam_shift_z, abg_g;	/* trace_scene_edit's */
+	double beam_shift_z, abg_g;	/* tracer_scene_spec_edit's */
 };
 
 /* Pack spec and o into a new buffer (caller frees); NULL when out of memory. */
-char *farm_job_pack(const struct trace_scene_spec *spec,
+char *farm_job_pack(const struct tracer_scene_spec *spec,
 		    const struct tracer_trace_opts *o, size_t *len);
 
 /* Unpack into j; its pointers point into buf (kept by the caller);

@@ -58,11 +58,11 @@ static void start_job(struct worker *w, int len)
 		rc = tracer_scene_load(w->job.scene, w->job.sets,
 				       w->job.n_sets, &w->scene, &err);
 	if (!rc) {	/* the edits rank 0 made after loading */
-		struct trace_scene_spec ed = { w->job.scene, w->job.sets,
+		struct tracer_scene_spec ed = { w->job.scene, w->job.sets,
 			w->job.n_sets, w->job.lens, w->job.beam_shift_z,
 			w->job.abg_g };
 
-		trace_scene_edit(&ed, &w->scene);
+		tracer_scene_spec_edit(&ed, &w->scene);
 	}
 	if (!rc && w->job.lens)
 		rc = tracer_lens_load(w->job.lens, &w->lens, &err);

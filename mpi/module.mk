@@ -1,8 +1,9 @@
 # mpi: `stray-mpi`, the traces of `stray trace`, `stray sweep` and
-# `stray diagnose` spread
-# over MPI ranks (issue 9; Open MPI from Debian).  A binary of its own
-# (see mpi/stray_mpi.c for why): the tools objects that trace and sweep
-# need, and the farm in place of stray.c's main.
+# `stray diagnose` spread over MPI ranks (issue 9; Open MPI from Debian).
+# A binary of its own (see mpi/stray_mpi.c for why): the three commands
+# through their public entry points (tools/entry.h), given the farm as
+# their runner (tracer/runner.h), in place of stray.c's main.  It links
+# the tools objects those commands need and the diagnose library.
 
 MPI_CFLAGS := $(shell pkg-config --cflags ompi-c 2>/dev/null)
 MPI_LDLIBS := $(shell pkg-config --libs ompi-c 2>/dev/null)
@@ -10,19 +11,17 @@ STRAY_MPI_BIN := $(B)/bin/stray-mpi
 MPI_PIECE_OBJ := $(B)/obj/mpi/piece.o
 MPI_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard mpi/*.c))
 MPI_TOOLS_OBJ := $(patsubst %,$(B)/obj/tools/%.o,cli cmd_trace cmd_sweep \
-	design_grid design_report fdr_setup plot trace_run cmd_diagnose) \
-	$(DIAG_OBJ)
+	design_grid design_report fdr_setup plot trace_run) $(DIAG_TOOLS_OBJ)
 
-$(MPI_OBJ): EXTRA_CFLAGS += -Impi -Itools -Itracer/include \
+$(MPI_OBJ): EXTRA_CFLAGS += -Impi -Itools/include -Itracer/include \
 	-I/usr/include/cjson $(MPI_CFLAGS) -D_DEFAULT_SOURCE
-$(B)/obj/tools/trace_run.o $(B)/obj/tools/cmd_sweep.o \
-$(B)/obj/tools/design_report.o: EXTRA_CFLAGS += -Itracer/include
 
-$(STRAY_MPI_BIN): $(MPI_OBJ) $(MPI_TOOLS_OBJ) $(TRACER_LIB) $(STRAY_LIB)
+$(STRAY_MPI_BIN): $(MPI_OBJ) $(MPI_TOOLS_OBJ) $(DIAG_LIB) $(TRACER_LIB) \
+		$(STRAY_LIB)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_BASE) -o $@ $(MPI_OBJ) $(MPI_TOOLS_OBJ) $(TRACER_LIB) \
-		$(STRAY_LIB) $(TRACER_LDLIBS) -lplplot -lcjson $(STRAY_LDLIBS) \
-		$(MPI_LDLIBS) -lpthread
+	$(CC) $(CFLAGS_BASE) -o $@ $(MPI_OBJ) $(MPI_TOOLS_OBJ) $(DIAG_LIB) \
+		$(TRACER_LIB) $(STRAY_LIB) $(TRACER_LDLIBS) -lplplot -lcjson \
+		$(STRAY_LDLIBS) $(MPI_LDLIBS) -lpthread
 
 all: $(STRAY_MPI_BIN)
 

@@ -11,7 +11,9 @@
  * Open MPI's runtime (slow, and its allocations are reported as leaks by
  * LeakSanitizer, which would fail every `stray` test of the sanitizer
  * pass), and `stray` stays installable where there is no MPI.
- * Rank 0 runs the command; the others serve pieces until it is done.
+ * Rank 0 runs the command with the farm as its runner (tracer/runner.h,
+ * the commands' entry points in tools/entry.h); the others serve pieces
+ * until it is done.
  */
 #include <getopt.h>
 #include <mpi.h>
@@ -19,9 +21,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
-#include "commands.h"
 #include "farm.h"
+#include "tools/entry.h"
+#include "tracer/runner.h"
 
 static const char usage[] =
 	"usage: mpirun -n N stray-mpi [--angle-chunks K] [--task-timeout S]\n"
@@ -36,8 +38,6 @@ static const char usage[] =
 	"                      with one line (default 300)\n"
 	"  --stats             after each trace, one stderr line: pieces, bytes\n"
 	"                      per piece, pieces done by other ranks\n";
-
-static int show_stats;
 
 static int usage_error(const char *what, const char *text)
 {
@@ -59,7 +59,12 @@ static double parse_number(const char *text, double lo, double hi,
 	return v;
 }
 
-static int parse_global(int argc, char **argv)
+/* The farm runner's context: print its traffic after each trace. */
+struct farm_run {
+	int show_stats;
+};
+
+static int parse_global(int argc, char **argv, struct farm_run *fr)
 {
 	static const struct option opts[] = {
 		{ "angle-chunks", required_argument, NULL, 'c' },
@@ -78,7 +83,7 @@ static int parse_global(int argc, char **argv)
 			return -1;
 		}
 		if (opt == 's') {
-			show_stats = 1;
+			fr->show_stats = 1;
 			continue;
 		}
 		if (opt != 'c' && opt != 't')
@@ -100,16 +105,18 @@ static int parse_global(int argc, char **argv)
 	return CLI_OK;
 }
 
-/* The farm, and its traffic on stderr with --stats (make bench reads it). */
-static int farm_trace_stats(const struct trace_scene_spec *spec,
-			    const struct tracer_scene *s,
-			    const struct tracer_trace_opts *o,
-			    struct tracer_result *res, struct stray_error *err)
+/* The runner: the farm, and its traffic on stderr with --stats (make
+ * bench reads it). */
+static int run_on_farm(void *ctx, const struct tracer_scene_spec *spec,
+		       const struct tracer_scene *s,
+		       const struct tracer_trace_opts *o,
+		       struct tracer_result *res, struct stray_error *err)
 {
+	const struct farm_run *fr = ctx;
 	int rc = farm_trace(spec, s, o, res, err), size;
 
 	MPI_Comm_size(MPI_COMM_WORLD, &size);
-	if (!rc && show_stats && farm_last.tasks)
+	if (!rc && fr->show_stats && farm_last.tasks)
 		fprintf(stderr, "stray-mpi: stats: ranks %d pieces %llu "
 			"remote_pieces %llu bytes_per_remote_piece %.1f "
 			"pilot_pieces %llu pilot_bytes_per_remote_piece %.1f "
@@ -128,8 +135,10 @@ static int farm_trace_stats(const struct trace_scene_spec *spec,
 
 static int run_command(int argc, char **argv)
 {
-	int rc = parse_global(argc, argv);
-	int (*cmd)(int, char **) = NULL;
+	struct farm_run fr = { 0 };
+	const struct tracer_runner farm = { run_on_farm, &fr };
+	int rc = parse_global(argc, argv, &fr);
+	int (*cmd)(int, char **, const struct tracer_runner *) = NULL;
 
 	if (rc)
 		return rc < 0 ? CLI_OK : rc;
@@ -147,8 +156,7 @@ static int run_command(int argc, char **argv)
 	argc -= optind;
 	argv += optind;
 	optind = 0;
-	trace_run = farm_trace_stats;
-	return cmd(argc, argv);
+	return cmd(argc, argv, &farm);
 }
 
 int main(int argc, char **argv)
@@ -161,7 +169,7 @@ int main(int argc, char **argv)
 		return CLI_FAIL;
 	}
 	MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-	cli.prog = "stray-mpi";
+	cli_set_prog("stray-mpi");
 	if (rank != 0) {
 		rc = farm_serve();
 	} else {

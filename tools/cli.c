@@ -11,6 +11,11 @@
 
 struct cli_global cli;
 
+void cli_set_prog(const char *prog)
+{
+	cli.prog = prog;
+}
+
 int cli_fail(const char *cmd, const struct stray_error *err)
 {
 	char line[1024];

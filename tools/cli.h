@@ -9,8 +9,7 @@
 #include <cJSON.h>
 
 #include "stray/error.h"
-
-enum cli_exit { CLI_OK = 0, CLI_FAIL = 1, CLI_USAGE = 2 };
+#include "tools/entry.h"	/* enum cli_exit, cli_set_prog */
 
 struct cli_global {
 	int json;		/* --json: machine-readable stdout */

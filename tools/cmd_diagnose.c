@@ -2,7 +2,8 @@
  * cmd_diagnose.c - `stray diagnose MEASURED.csv --scene SCENE`: what the
  * simulation gets wrong against a measured curve, which registered
  * physical cause explains it, and the gain (issue 5; thesis §4).
- * The work is in tools/diagnose/ (diag.h).
+ * The work is the diagnose/ library (diagnose/diag_result.h); here the
+ * options, and the report in words, JSON and plots (diag_report.h).
  */
 #include <getopt.h>
 #include <math.h>
@@ -12,7 +13,7 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "diag.h"
+#include "diag_report.h"
 #include "stray/errfmt.h"
 
 static const char usage[] =
@@ -118,7 +119,7 @@ static void list_causes(void)
 	}
 }
 
-int cmd_diagnose(int argc, char **argv)
+int cmd_diagnose(int argc, char **argv, const struct tracer_runner *runner)
 {
 	struct diag_args a = { .rays = 200000, .seed = 1, .threads = 1 };
 	struct stray_error err;
@@ -137,7 +138,7 @@ int cmd_diagnose(int argc, char **argv)
 	}
 	if (diag_data_load(a.measured, &d, &err))
 		return cli_fail("diagnose", &err);
-	diag_eval_init(&e, a.scene, d.theta_deg, d.n);
+	diag_eval_init(&e, a.scene, d.theta_deg, d.n, runner);
 	e.n_paths = (uint64_t)a.rays;
 	e.seed = (uint64_t)a.seed;
 	e.threads = (int)a.threads;

@@ -1,7 +1,7 @@
 /*
  * cmd_sweep.c - `stray sweep`: a grid of baffle designs, each traced
- * (through trace_run: threads, or MPI ranks under stray-mpi) and judged
- * by its Sun exclusion angle (thesis §5.1: the angle past which alpha
+ * (by the caller's runner: threads, or MPI ranks under stray-mpi) and
+ * judged by its Sun exclusion angle (thesis §5.1: the angle past which alpha
  * stays below the alpha_required of the FDR model, eq. 3.x via
  * stray_fdr_alpha_required) and alpha at chosen angles.  Resumable:
  * each finished design's curve is written atomically to the state
@@ -25,6 +25,7 @@
 #include "stray/errfmt.h"
 #include "trace_run.h"
 #include "tracer/angles.h"
+#include "tracer/runner.h"
 #include "tracer/scene_load.h"
 
 static const char usage[] =
@@ -53,6 +54,7 @@ static const char usage[] =
 #define SETS_MAX 64
 
 struct sweep_args {
+	const struct tracer_runner *runner;	/* who runs the traces */
 	const char *scene, *angles, *lens, *state, *out, *plot, *at_list;
 	const char *sets[SETS_MAX];
 	int n_sets;
@@ -202,8 +204,8 @@ static int trace_design(const struct sweep_args *a, const char *const *sets,
 			const char *key, const char *path,
 			struct stray_curve *c, struct stray_error *err)
 {
-	struct trace_scene_spec spec = { a->scene, sets, n_sets, a->lens,
-					 0.0, 0.0 };
+	struct tracer_scene_spec spec = { a->scene, sets, n_sets, a->lens,
+					  0.0, 0.0 };
 	struct tracer_trace_opts o = a->o;
 	struct tracer_scene s;
 	struct tracer_result r;
@@ -216,7 +218,7 @@ static int trace_design(const struct sweep_args *a, const char *const *sets,
 	if (!rc)
 		rc = tracer_scene_commit(&s, err);
 	if (!rc)
-		rc = trace_run(&spec, &s, &o, &r, err);
+		rc = tracer_run(a->runner, &spec, &s, &o, &r, err);
 	tracer_scene_free(&s);
 	if (rc)
 		return rc;
@@ -345,7 +347,7 @@ static int sweep(struct sweep_args *a, struct fdr_setup *fs,
 	return rc;
 }
 
-int cmd_sweep(int argc, char **argv)
+int cmd_sweep(int argc, char **argv, const struct tracer_runner *runner)
 {
 	struct sweep_args a;
 	struct fdr_setup fs;
@@ -353,6 +355,7 @@ int cmd_sweep(int argc, char **argv)
 	int rc;
 
 	memset(&a, 0, sizeof(a));
+	a.runner = runner;
 	trace_run_defaults(&a.o, 300000);
 	fdr_setup_init(&fs);
 	rc = parse_args(argc, argv, &a, &fs);

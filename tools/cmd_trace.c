@@ -20,6 +20,7 @@
 #include "tracer/integrator.h"
 #include "tracer/obj_export.h"
 #include "tracer/path_report.h"
+#include "tracer/runner.h"
 #include "tracer/scene_load.h"
 #include "trace_run.h"
 
@@ -58,6 +59,7 @@ static const char usage[] =
 #define SETS_MAX 64
 
 struct trace_args {
+	const struct tracer_runner *runner;	/* who runs the trace */
 	const char *scene, *angles, *out, *lens, *export_obj, *paths_out;
 	const char *plot, *plot_orders, *dump, *map;
 	double map_angle;
@@ -402,10 +404,10 @@ static int run_trace(struct trace_args *a, struct tracer_scene *s,
 		a->o.progress_user = &last;
 	}
 	{
-		struct trace_scene_spec spec = { a->scene, a->sets, a->n_sets,
-						 a->lens, 0.0, 0.0 };
+		struct tracer_scene_spec spec = { a->scene, a->sets, a->n_sets,
+						  a->lens, 0.0, 0.0 };
 
-		rc = trace_run(&spec, s, &a->o, &r, err);
+		rc = tracer_run(a->runner, &spec, s, &a->o, &r, err);
 	}
 	if (rc)
 		goto out_free;
@@ -430,7 +432,7 @@ out_free:
 	return rc;
 }
 
-int cmd_trace(int argc, char **argv)
+int cmd_trace(int argc, char **argv, const struct tracer_runner *runner)
 {
 	struct trace_args a;
 	struct tracer_scene s;
@@ -438,6 +440,7 @@ int cmd_trace(int argc, char **argv)
 	int rc;
 
 	memset(&a, 0, sizeof(a));
+	a.runner = runner;
 	trace_run_defaults(&a.o, 1500000);	/* about 1 % at every angle */
 	a.dump_count = 100;
 	a.map_size = 64;

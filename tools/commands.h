@@ -1,9 +1,13 @@
 /*
  * commands.h - the subcommands of `stray`, one file each (cmd_<name>.c).
  * To add one: declare it here and add a row to the table in stray.c.
+ * The commands that trace take a runner and are declared in the public
+ * tools/entry.h (stray-mpi runs them too).
  */
 #ifndef STRAY_TOOLS_COMMANDS_H
 #define STRAY_TOOLS_COMMANDS_H
+
+#include "tools/entry.h"
 
 struct cmd {
 	const char *name;
@@ -19,9 +23,6 @@ int cmd_photometer(int argc, char **argv);
 int cmd_orbit(int argc, char **argv);
 int cmd_firmware_table(int argc, char **argv);
 int cmd_reduce(int argc, char **argv);
-int cmd_trace(int argc, char **argv);
-int cmd_diagnose(int argc, char **argv);
 int cmd_rig(int argc, char **argv);
-int cmd_sweep(int argc, char **argv);
 
 #endif /* STRAY_TOOLS_COMMANDS_H */

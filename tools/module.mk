@@ -6,6 +6,9 @@ TOOLS_OBJ := $(TOOLS_SRC:%.c=$(B)/obj/%.o)
 TOOLS_LDLIBS := -lplplot -lcjson
 
 $(TOOLS_OBJ): EXTRA_CFLAGS += -Itools -I/usr/include/cjson -I/usr/include/plplot
+# Public headers: the commands' entry points (tools/entry.h, for stray-mpi)
+# and the tracer's runner that the commands which trace are given.
+$(TOOLS_OBJ): EXTRA_CFLAGS += -Itools/include -Itracer/include
 
 $(STRAY_BIN): $(TOOLS_OBJ) $(STRAY_LIB)
 	@mkdir -p $(dir $@)

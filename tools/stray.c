@@ -9,8 +9,26 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "tracer/runner.h"
 
 #define STRAY_VERSION "0.1.0"
+
+/* The commands that trace, with this process's threads as their runner
+ * (stray-mpi passes its MPI farm instead, mpi/stray_mpi.c). */
+static int trace_local(int argc, char **argv)
+{
+	return cmd_trace(argc, argv, &tracer_runner_local);
+}
+
+static int diagnose_local(int argc, char **argv)
+{
+	return cmd_diagnose(argc, argv, &tracer_runner_local);
+}
+
+static int sweep_local(int argc, char **argv)
+{
+	return cmd_sweep(argc, argv, &tracer_runner_local);
+}
 
 static const struct cmd commands[] = {
 	{ "photometry", cmd_photometry,
@@ -25,11 +43,11 @@ static const struct cmd commands[] = {
 	  "virtual photometer sweep of a baffle (noise, floor) from a true curve" },
 	{ "firmware-table", cmd_firmware_table, "flight table of firmware_fdr (C source and CRC-sealed blob)" },
 	{ "orbit", cmd_orbit, "the flight module along a day of a sun-synchronous orbit" },
-	{ "trace", cmd_trace, "attenuation curve of a baffle by Monte Carlo ray tracing" },
-	{ "diagnose", cmd_diagnose, "name the physical causes of a model-measurement discrepancy" },
+	{ "trace", trace_local, "attenuation curve of a baffle by Monte Carlo ray tracing" },
+	{ "diagnose", diagnose_local, "name the physical causes of a model-measurement discrepancy" },
 	{ "reduce", cmd_reduce, "lens attenuation curve, noise floor and ghosts from a lab sweep" },
 	{ "rig", cmd_rig, "control the lab sweep daemon strayrigd" },
-	{ "sweep", cmd_sweep, "Sun exclusion angle over a grid of baffle designs (resumable)" },
+	{ "sweep", sweep_local, "Sun exclusion angle over a grid of baffle designs (resumable)" },
 };
 
 #define N_COMMANDS (sizeof(commands) / sizeof(commands[0]))

@@ -3,7 +3,7 @@
  * "measured" attenuation curve from the tracer with its own seed and
  * path count, one or more effects the diagnosis is not told about,
  * realistic measurement noise and a measurement floor.  Kept apart from
- * tools/diagnose/: it shares no code with the analysis.
+ * the diagnose/ library: it shares no code with the analysis.
  */
 #ifndef STRAY_TESTS_DIAG_TRUTH_H
 #define STRAY_TESTS_DIAG_TRUTH_H

@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "diag.h"
+#include "diag_report.h"
 #include "plot.h"
 #include "stray/errfmt.h"
 

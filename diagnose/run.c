@@ -19,7 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "diag.h"
+#include "diagnose/diag_result.h"
 #include "stray/errfmt.h"
 
 #define P_FINAL 1e-3	/* the best model must not fail worse than this */

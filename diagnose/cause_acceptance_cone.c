@@ -4,7 +4,7 @@
  * field below 25 deg).  It changes which detector-side paths count, so
  * it is re-traced on a grid of half-angles and interpolated between.
  */
-#include "diag.h"
+#include "diagnose/diag_cause.h"
 
 static const double nodes[] = { 15.0, 20.0, 25.0, 30.0, 40.0, 60.0,
 				90.0 };

@@ -5,7 +5,7 @@
  * Post-processing: an additive level inside an angle window with soft
  * edges.
  */
-#include "diag.h"
+#include "diagnose/diag_cause.h"
 
 /* Starting windows: every run of consecutive measured angles i..j short
  * of the whole curve (that would be a floor), edges half-way to the

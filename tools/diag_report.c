@@ -1,12 +1,12 @@
 /*
- * report.c - the diagnosis in words: the baseline residual by region,
+ * diag_report.c - the diagnosis in words: the baseline residual by region,
  * each cause's evidence, the causes named with their intervals and
  * physical explanation, the gain, and what it changes in orbit.
  */
 #include <math.h>
 #include <stdio.h>
 
-#include "diag.h"
+#include "diag_report.h"
 
 static void print_fit_params(const struct diag_fit *f)
 {

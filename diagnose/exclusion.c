@@ -2,31 +2,39 @@
  * exclusion.c - what a model correction means in orbit: the Sun exclusion
  * angle of the model curve (thesis §5.1, fig. 5.1) for the st16-like
  * sensor, alpha_required from the FDR model at the Sun's photon flux and
- * the sensor's tolerated false-detection rate.
+ * the sensor's tolerated false-detection rate.  The sensor as `stray
+ * exclusion` sees it with no option: its own spectra, the thesis's
+ * Gaussian shot noise, uniform stray light, no detector noise.
  */
 #include <math.h>
 
-#include "diag.h"
-#include "fdr_setup.h"
+#include "diagnose/diag_result.h"
 #include "stray/curve.h"
 #include "stray/errfmt.h"
+#include "stray/fdr.h"
+#include "stray/photometry_io.h"
+#include "stray/sensor.h"
+#include "stray/sensor_io.h"
 
 int diag_sun_exclusion(const double *theta_deg, const double *alpha,
 		       size_t n, double *theta_excl, double *alpha_req,
 		       struct stray_error *err)
 {
-	struct fdr_setup s;
+	struct stray_sensor sensor;
+	struct stray_fluxes flux;
 	struct stray_fdr_model m;
 	struct stray_curve_view v = { n, theta_deg, alpha, NULL };
-	int rc;
+	int rc = stray_sensor_load("st16-like", &sensor, err);
 
-	fdr_setup_init(&s);
-	rc = fdr_setup_load(&s, err);
+	if (!rc)
+		rc = stray_reference_fluxes(&sensor, &flux, err);
 	if (rc)
 		return rc;
-	fdr_setup_model(&s, s.flux.sun, &m);
-	rc = stray_fdr_alpha_required(&m, s.sensor.fdr_tolerated, alpha_req,
-				      err);
+	stray_sensor_fdr_model(&sensor, flux.sun, flux.drs, &m);
+	rc = stray_fdr_model_check(&m, err);
+	if (!rc)
+		rc = stray_fdr_alpha_required(&m, sensor.fdr_tolerated,
+					      alpha_req, err);
 	if (rc)
 		return rc;
 	rc = stray_exclusion_angle(&v, *alpha_req, theta_excl, err);

@@ -1,11 +1,12 @@
 /*
- * diag_eval.h - the evaluator's internals shared by evaluate.c and
- * trace_cache.c: a cached trace reduced for re-weighting.
+ * trace_cache.h - the evaluator's internals shared by evaluate.c and
+ * trace_cache.c: a cached trace reduced for re-weighting (private to
+ * diagnose/).
  */
-#ifndef STRAY_TOOLS_DIAG_EVAL_H
-#define STRAY_TOOLS_DIAG_EVAL_H
+#ifndef DIAGNOSE_TRACE_CACHE_H
+#define DIAGNOSE_TRACE_CACHE_H
 
-#include "diag.h"
+#include "diagnose/diag_eval.h"
 
 struct diag_trace {
 	double geo[DIAG_GEO_N];	/* the key; NaN: the scene's own */
@@ -33,4 +34,4 @@ void diag_trace_cache_free(struct diag_eval *e);
 void diag_trace_power(const struct diag_trace *t, double rho, double *p,
 		      double *var);
 
-#endif /* STRAY_TOOLS_DIAG_EVAL_H */
+#endif /* DIAGNOSE_TRACE_CACHE_H */

@@ -3,7 +3,7 @@
  * on the other (upper, sky-side) face.  A discrete re-trace: one trace of
  * the flipped baffle; counted as one parameter by BIC.
  */
-#include "diag.h"
+#include "diagnose/diag_cause.h"
 
 static void apply(const double *p, struct diag_state *s)
 {

@@ -4,7 +4,7 @@
  * specular direction: re-traced on a grid of slopes g (B fixed, A set so
  * the normal-incidence integrated scatter equals the Lambertian rho).
  */
-#include "diag.h"
+#include "diagnose/diag_cause.h"
 
 static const double nodes[] = { 0.0, 1.0, 2.0, 3.0 };
 

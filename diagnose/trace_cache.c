@@ -16,11 +16,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "diag_eval.h"
+#include "trace_cache.h"
 #include "stray/errfmt.h"
 #include "tracer/integrator.h"
+#include "tracer/runner.h"
 #include "tracer/scene_load.h"
-#include "trace_run.h"
 
 /* The scene's `--set` list for a geometry key (NaN: the scene's own). */
 static int geometry_sets(const struct diag_eval *e, const double *geo,
@@ -251,7 +251,7 @@ static int trace_geometry(struct diag_eval *e, struct diag_trace *t,
 	/* the ABg lobe (cause_abg_scatter.c) and the beam axis through the
 	 * pivot (cause_pivot_offset.c) are edits after loading: in the spec
 	 * too, so that stray-mpi's ranks build this scene */
-	struct trace_scene_spec spec = { e->scene, sets, n, NULL, 0.0, 0.0 };
+	struct tracer_scene_spec spec = { e->scene, sets, n, NULL, 0.0, 0.0 };
 
 	if (!isnan(t->geo[DIAG_GEO_ABG_G]) && t->geo[DIAG_GEO_ABG_G] > 0.0)
 		spec.abg_g = t->geo[DIAG_GEO_ABG_G];
@@ -261,7 +261,7 @@ static int trace_geometry(struct diag_eval *e, struct diag_trace *t,
 	tracer_scene_init(&s);
 	rc = tracer_scene_load(e->scene, sets, n, &s, err);
 	if (!rc)
-		trace_scene_edit(&spec, &s);
+		tracer_scene_spec_edit(&spec, &s);
 	if (!rc)
 		rc = tracer_scene_commit(&s, err);
 	if (!rc) {
@@ -272,7 +272,7 @@ static int trace_geometry(struct diag_eval *e, struct diag_trace *t,
 		o.seed = e->seed;
 		o.threads = e->threads;
 		o.record_paths = 1;
-		rc = trace_run(&spec, &s, &o, &r, err);
+		rc = tracer_run(e->runner, &spec, &s, &o, &r, err);
 	}
 	if (!rc) {
 		e->trace_seconds += r.seconds;

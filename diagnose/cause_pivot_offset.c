@@ -6,7 +6,7 @@
  * the beam centre moved by d along the boresight (one trace serves every
  * angle), on a grid of offsets.
  */
-#include "diag.h"
+#include "diagnose/diag_cause.h"
 
 /* dense where the beam starts to leave the aperture, sparse beyond */
 static const double nodes[] = { 0.0, 1.0, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0,

@@ -5,7 +5,7 @@
  */
 #include <math.h>
 
-#include "diag.h"
+#include "diagnose/diag_cause.h"
 
 static void apply(const double *p, struct diag_state *s)
 {

@@ -4,7 +4,7 @@
  * curved surface that sees the detector: a re-trace cause, traced on a
  * grid of radii with common random numbers and interpolated between.
  */
-#include "diag.h"
+#include "diagnose/diag_cause.h"
 
 static const double nodes[] = { 0.0, 0.03, 0.06, 0.1, 0.15, 0.2,
 				0.3 };

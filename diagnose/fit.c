@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "diag.h"
+#include "diagnose/diag_fit.h"
 #include "stray/errfmt.h"
 
 #define STARTS_MAX 8192

@@ -4,7 +4,7 @@
  * model is read at the shifted angle by log-linear interpolation on a
  * finer traced grid around each measured angle.
  */
-#include "diag.h"
+#include "diagnose/diag_cause.h"
 
 static void apply(const double *p, struct diag_state *s)
 {

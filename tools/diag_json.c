@@ -1,12 +1,12 @@
 /*
- * report_json.c - `stray diagnose --json` (docs/cli.md): `causes` (list of
+ * diag_json.c - `stray diagnose --json` (docs/cli.md): `causes` (list of
  * {name, params}), `rms_before`, `rms_after`, `significant`, and the rest
  * of the diagnosis.
  */
 #include <math.h>
 
 #include "cli.h"
-#include "diag.h"
+#include "diag_report.h"
 
 static cJSON *fit_json(const struct diag_fit *f)
 {

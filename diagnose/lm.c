@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "diag.h"
+#include "diagnose/diag_fit.h"
 #include "stray/errfmt.h"
 
 #define LM_ITER_MAX 40

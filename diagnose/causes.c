@@ -5,7 +5,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "diag.h"
+#include "diagnose/diag_cause.h"
 
 extern const struct diag_cause diag_cause_reflectance,
 	diag_cause_knife_edge_radius, diag_cause_abg_scatter,

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "diag.h"
+#include "diagnose/diag_data.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"
 

@@ -15,16 +15,18 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "diag_eval.h"
+#include "trace_cache.h"
 #include "stray/errfmt.h"
 
 #define LEAK_EDGE_DEG 0.2	/* soft window edge, so the fit has a slope */
 
 void diag_eval_init(struct diag_eval *e, const char *scene,
-		    const double *theta_deg, size_t n)
+		    const double *theta_deg, size_t n,
+		    const struct tracer_runner *runner)
 {
 	memset(e, 0, sizeof(*e));
 	e->scene = scene;
+	e->runner = runner;
 	e->parametric = strcmp(scene, "ref4") == 0;
 	e->n_paths = 200000;
 	e->seed = 1;

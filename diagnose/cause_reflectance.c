@@ -4,7 +4,7 @@
  * the literature gave for black anodise).  A re-weight cause: recorded
  * paths scale as rho^k for k interior scatters (tracer/paths.h).
  */
-#include "diag.h"
+#include "diagnose/diag_cause.h"
 
 static void apply(const double *p, struct diag_state *s)
 {

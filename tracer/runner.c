@@ -1,0 +1,69 @@
+/*
+ * runner.c - the in-process runner and the scene edits a scene
+ * description carries (runner.h).
+ */
+#include <math.h>
+
+#include "tracer/brdf.h"
+#include "tracer/runner.h"
+
+static int run_local(void *ctx, const struct tracer_scene_spec *spec,
+		     const struct tracer_scene *s,
+		     const struct tracer_trace_opts *o,
+		     struct tracer_result *res, struct stray_error *err)
+{
+	(void)ctx;
+	(void)spec;
+	return tracer_trace(s, o, res, err);
+}
+
+const struct tracer_runner tracer_runner_local = { run_local, NULL };
+
+int tracer_run(const struct tracer_runner *r,
+	       const struct tracer_scene_spec *spec,
+	       const struct tracer_scene *s, const struct tracer_trace_opts *o,
+	       struct tracer_result *res, struct stray_error *err)
+{
+	return r->run(r->ctx, spec, s, o, res, err);
+}
+
+#ifndef M_PI	/* math.h hides it under strict C99 */
+#define M_PI 3.14159265358979323846
+#endif
+#define ABG_B 0.01	/* knee of the ABg lobe (diagnose/cause_abg_scatter.c) */
+
+/* A so that the normal-incidence integrated scatter of A/(B + r^g) over
+ * the unit beta disk is 1 (cos(theta) d omega = d beta), so rho stays the
+ * hemispherical reflectance: 1 / (2 pi int_0^1 r / (B + r^g) dr). */
+static double abg_norm(double g)
+{
+	double sum = 0.0;
+	int i, n = 4000;
+
+	for (i = 0; i < n; i++) {	/* midpoint rule, smooth integrand */
+		double r = (i + 0.5) / n;
+
+		sum += r / (ABG_B + pow(r, g));
+	}
+	return 1.0 / (2.0 * M_PI * sum / n);
+}
+
+void tracer_scene_spec_edit(const struct tracer_scene_spec *spec,
+			    struct tracer_scene *s)
+{
+	size_t k;
+
+	if (spec->abg_g > 0.0) {
+		double a = abg_norm(spec->abg_g);
+
+		for (k = 0; k < s->mesh.n_group; k++)
+			if (s->material[k].ops == &tracer_brdf_lambert_ops) {
+				s->material[k].ops = &tracer_brdf_abg_ops;
+				s->material[k].abg.a = a;
+				s->material[k].abg.b = ABG_B;
+				s->material[k].abg.g = spec->abg_g;
+			}
+	}
+	if (spec->beam_shift_z != 0.0)	/* beam axis through the pivot */
+		s->beam.center.z -= spec->beam_shift_z;
+}
