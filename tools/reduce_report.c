@@ -15,12 +15,12 @@
 
 const char *reduce_track_name(size_t i)
 {
-	static const char *const names[SWEEP_TRACKS_MAX] = {
+	static const char *const names[STRAY_REDUCE_TRACKS_MAX] = {
 		"A", "B", "C", "D", "E", "F", "G", "H",
 		"I", "J", "K", "L", "M", "N", "O", "P"
 	};
 
-	return i < SWEEP_TRACKS_MAX ? names[i] : "?";
+	return i < STRAY_REDUCE_TRACKS_MAX ? names[i] : "?";
 }
 
 static int coating_name_ok(const char *name)
@@ -36,7 +36,7 @@ static int coating_name_ok(const char *name)
 }
 
 int reduce_write_zemax(const char *path, const char *name, double wave_um,
-		       const struct sweep_result *r, struct stray_error *err)
+		       const struct stray_reduce_sweep_result *r, struct stray_error *err)
 {
 	struct stray_file_out out;
 	size_t i;
@@ -65,7 +65,7 @@ int reduce_write_zemax(const char *path, const char *name, double wave_um,
 }
 
 int reduce_write_map(const char *path, unsigned n_regions,
-		     const struct sweep_result *r, struct stray_error *err)
+		     const struct stray_reduce_sweep_result *r, struct stray_error *err)
 {
 	size_t n = r->n_rows * r->n_cols;
 	double *scratch;
@@ -95,7 +95,7 @@ int reduce_write_map(const char *path, unsigned n_regions,
 }
 
 static cJSON *track_json(const struct stray_ghost_track *t, size_t i,
-			 const struct sweep_result *r)
+			 const struct stray_reduce_sweep_result *r)
 {
 	cJSON *o = cJSON_CreateObject();
 	cJSON *th = cJSON_AddArrayToObject(o, "theta_deg");
@@ -117,7 +117,7 @@ static cJSON *track_json(const struct stray_ghost_track *t, size_t i,
 	return o;
 }
 
-static cJSON *pixels_json(const struct sweep_result *r, int flag)
+static cJSON *pixels_json(const struct stray_reduce_sweep_result *r, int flag)
 {
 	cJSON *a = cJSON_CreateArray();
 	size_t i;
@@ -135,7 +135,7 @@ static cJSON *pixels_json(const struct sweep_result *r, int flag)
 	return a;
 }
 
-static cJSON *curve_json(const struct sweep_result *r)
+static cJSON *curve_json(const struct stray_reduce_sweep_result *r)
 {
 	cJSON *a = cJSON_CreateArray();
 	size_t i;
@@ -154,7 +154,7 @@ static cJSON *curve_json(const struct sweep_result *r)
 	return a;
 }
 
-static cJSON *drift_json(const struct sweep_result *r)
+static cJSON *drift_json(const struct stray_reduce_sweep_result *r)
 {
 	cJSON *o = cJSON_CreateObject();
 
@@ -168,7 +168,7 @@ static cJSON *drift_json(const struct sweep_result *r)
 	return o;
 }
 
-cJSON *reduce_json(const struct sweep_result *r, const char *out_path)
+cJSON *reduce_json(const struct stray_reduce_sweep_result *r, const char *out_path)
 {
 	cJSON *o = cJSON_CreateObject();
 	cJSON *g = cJSON_AddArrayToObject(o, "ghosts");
@@ -199,7 +199,7 @@ cJSON *reduce_json(const struct sweep_result *r, const char *out_path)
 	return o;
 }
 
-void reduce_print(FILE *out, const struct sweep_result *r,
+void reduce_print(FILE *out, const struct stray_reduce_sweep_result *r,
 		  const char *out_path)
 {
 	size_t i, k;
