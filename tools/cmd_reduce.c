@@ -69,7 +69,8 @@ static int parse_size(const char *opt, const char *text, size_t *out)
 	return CLI_OK;
 }
 
-static int take_option(int opt, struct reduce_args *a, struct stray_reduce_sweep_opts *o)
+static int take_option(int opt, struct reduce_args *a,
+		       struct stray_reduce_sweep_opts *o)
 {
 	struct stray_error err;
 
@@ -81,11 +82,14 @@ static int take_option(int opt, struct reduce_args *a, struct stray_reduce_sweep
 	case 'P': a->plot_dir = optarg; return CLI_OK;
 	case 'm': a->map = optarg; return CLI_OK;
 	case 'R': return parse_size("map-regions", optarg, &a->map_regions);
-	case 'w': return cli_parse_double("reduce", "wave-um", optarg, &a->wave_um);
+	case 'w': return cli_parse_double("reduce", "wave-um", optarg,
+					  &a->wave_um);
 	case 'r': o->response.row_filter = 1; return CLI_OK;
 	case 'V': o->verify_sha256 = 0; return CLI_OK;
-	case 's': return cli_parse_double("reduce", "hot-sigma", optarg, &o->hot_sigma);
-	case 'Z': return cli_parse_double("reduce", "ghost-z", optarg, &o->ghost.min_z);
+	case 's': return cli_parse_double("reduce", "hot-sigma", optarg,
+					  &o->hot_sigma);
+	case 'Z': return cli_parse_double("reduce", "ghost-z", optarg,
+					  &o->ghost.min_z);
 	case 'W': return parse_size("ghost-window", optarg, &o->ghost.window);
 	case 'i':
 		o->keep_image = 1;
@@ -93,7 +97,8 @@ static int take_option(int opt, struct reduce_args *a, struct stray_reduce_sweep
 					&o->image_theta_deg);
 	case 'c':
 		if (stray_bayer_parse(optarg, &o->map, &err) != STRAY_OK)
-			return cli_usage_error("reduce", "option '--channels': '%s':"
+			return cli_usage_error("reduce",
+					       "option '--channels': '%s':"
 					       " %s", optarg, err.reason);
 		return CLI_OK;
 	}

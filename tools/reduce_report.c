@@ -90,7 +90,8 @@ int reduce_write_map(const char *path, unsigned n_regions,
 	fprintf(out.f, "# kind: region map (stray fdr --map)\n"
 		"# theta_deg: %.10g\nfraction,rel_alpha\n", r->image_theta_deg);
 	for (k = 0; k < map.n; k++)
-		fprintf(out.f, "%.10g,%.10g\n", map.fraction[k], map.rel_alpha[k]);
+		fprintf(out.f, "%.10g,%.10g\n", map.fraction[k],
+			map.rel_alpha[k]);
 	return stray_file_commit(&out, err);
 }
 
@@ -111,7 +112,8 @@ static cJSON *track_json(const struct stray_ghost_track *t, size_t i,
 		cJSON_AddItemToArray(th, cli_json_number(p->theta_deg));
 		cJSON_AddItemToArray(col, cli_json_number(p->column +
 							  (double)r->col0));
-		cJSON_AddItemToArray(rel, cli_json_number(p->excess / p->power));
+		cJSON_AddItemToArray(rel,
+				     cli_json_number(p->excess / p->power));
 		cJSON_AddItemToArray(al, cli_json_number(p->excess / r->p0));
 	}
 	return o;
@@ -144,7 +146,8 @@ static cJSON *curve_json(const struct stray_reduce_sweep_result *r)
 		const struct stray_curve_point *p = &r->points[i];
 		cJSON *o = cJSON_CreateObject();
 
-		cJSON_AddItemToObject(o, "theta_deg", cli_json_number(p->theta_deg));
+		cJSON_AddItemToObject(o, "theta_deg",
+				      cli_json_number(p->theta_deg));
 		cJSON_AddItemToObject(o, "alpha", cli_json_number(p->alpha));
 		cJSON_AddItemToObject(o, "sigma", cli_json_number(p->sigma));
 		cJSON_AddItemToObject(o, "noise_floor",
@@ -168,7 +171,8 @@ static cJSON *drift_json(const struct stray_reduce_sweep_result *r)
 	return o;
 }
 
-cJSON *reduce_json(const struct stray_reduce_sweep_result *r, const char *out_path)
+cJSON *reduce_json(const struct stray_reduce_sweep_result *r,
+		   const char *out_path)
 {
 	cJSON *o = cJSON_CreateObject();
 	cJSON *g = cJSON_AddArrayToObject(o, "ghosts");

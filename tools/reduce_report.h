@@ -29,7 +29,8 @@ int reduce_write_map(const char *path, unsigned n_regions,
 		     const struct stray_reduce_sweep_result *r, struct stray_error *err);
 
 /* The --json object (cli.md: `ghosts`, each with theta_deg and column). */
-cJSON *reduce_json(const struct stray_reduce_sweep_result *r, const char *out_path);
+cJSON *reduce_json(const struct stray_reduce_sweep_result *r,
+		   const char *out_path);
 
 /* Human-readable summary on out. */
 void reduce_print(FILE *out, const struct stray_reduce_sweep_result *r,

@@ -111,7 +111,8 @@ static int check_header(const struct workspace *w, const char *path,
 	return STRAY_OK;
 }
 
-static void frame_path(const struct workspace *w, const struct stray_sweep_entry *e,
+static void frame_path(const struct workspace *w,
+		       const struct stray_sweep_entry *e,
 		       char *path, size_t size)
 {
 	snprintf(path, size, "%s/%s", w->dir, e->file);
@@ -135,7 +136,8 @@ static int load_frame(struct workspace *w, const struct stray_sweep_entry *e,
 		if (w->monitor < 0)
 			w->monitor = w->fits.h.has_monitor;
 		else if (w->monitor != w->fits.h.has_monitor)
-			rc = stray_error_at(err, STRAY_EINVAL, path, 0, "MONITOR",
+			rc = stray_error_at(err, STRAY_EINVAL, path, 0,
+					    "MONITOR",
 				"present in some light frames only");
 	}
 	if (rc == STRAY_OK)
@@ -156,7 +158,8 @@ static int load_frame(struct workspace *w, const struct stray_sweep_entry *e,
 }
 
 /* Library errors carry no file: name the frame. */
-static int at_frame(struct workspace *w, const struct stray_sweep_entry *e, int rc,
+static int at_frame(struct workspace *w, const struct stray_sweep_entry *e,
+		    int rc,
 		    struct stray_error *err)
 {
 	char path[4096 + STRAY_SWEEP_FILE_MAX];
@@ -190,7 +193,8 @@ static int setup(struct workspace *w, struct stray_error *err)
 }
 
 /* Pass 1 over the darks: levels per channel and exposure time. */
-static int dark_levels(struct workspace *w, struct stray_reduce_sweep_result *res,
+static int dark_levels(struct workspace *w,
+		       struct stray_reduce_sweep_result *res,
 		       struct stray_error *err)
 {
 	uint32_t *hist = ws_alloc(w, STRAY_DARK_HIST_LEN * sizeof(*hist));
@@ -216,7 +220,8 @@ static int dark_levels(struct workspace *w, struct stray_reduce_sweep_result *re
 	return rc;
 }
 
-static void list_pixels(const struct workspace *w, struct stray_reduce_sweep_result *res)
+static void list_pixels(const struct workspace *w,
+			struct stray_reduce_sweep_result *res)
 {
 	size_t i;
 
@@ -234,7 +239,8 @@ static void list_pixels(const struct workspace *w, struct stray_reduce_sweep_res
 }
 
 /* Pass 2 over the darks: hot and dead pixels. */
-static int dark_pixels(struct workspace *w, struct stray_reduce_sweep_result *res,
+static int dark_pixels(struct workspace *w,
+		       struct stray_reduce_sweep_result *res,
 		       struct stray_error *err)
 {
 	size_t nb = w->n_pix * sizeof(double), i;
@@ -337,7 +343,8 @@ static size_t pair_runs(struct workspace *w, size_t n)
 }
 
 /* Visits: a run of one angle's FULL and AMBIENT frames, or two. */
-static int plan_visits(struct workspace *w, struct stray_reduce_sweep_result *res,
+static int plan_visits(struct workspace *w,
+		       struct stray_reduce_sweep_result *res,
 		       struct stray_error *err)
 {
 	w->plan = calloc(w->man.n, sizeof(*w->plan));
@@ -353,7 +360,8 @@ static int plan_visits(struct workspace *w, struct stray_reduce_sweep_result *re
 	return STRAY_OK;
 }
 
-static int light_buffers(struct workspace *w, struct stray_reduce_sweep_result *res,
+static int light_buffers(struct workspace *w,
+			 struct stray_reduce_sweep_result *res,
 			 struct stray_error *err)
 {
 	size_t ab = stray_accum_bytes(w->n_pix), nc = w->geo.n_cols;
@@ -469,7 +477,8 @@ static int by_theta(const void *a, const void *b)
 }
 
 /* Feed the first visit of every angle, in increasing theta, to a tracker. */
-static int track_ghosts(struct workspace *w, struct stray_reduce_sweep_result *res,
+static int track_ghosts(struct workspace *w,
+			struct stray_reduce_sweep_result *res,
 			struct stray_error *err)
 {
 	struct stray_ghost_tracker t;
@@ -477,9 +486,11 @@ static int track_ghosts(struct workspace *w, struct stray_reduce_sweep_result *r
 	double last = -HUGE_VAL;
 
 	if (!idx)
-		return stray_error_set(err, STRAY_ENOMEM, "ghosts", "no memory");
+		return stray_error_set(err, STRAY_ENOMEM, "ghosts",
+				       "no memory");
 	for (i = 0; i < STRAY_REDUCE_TRACKS_MAX; i++) {
-		res->tracks[i].pt = calloc(res->n_visits, sizeof(*res->tracks[i].pt));
+		res->tracks[i].pt = calloc(res->n_visits,
+					   sizeof(*res->tracks[i].pt));
 		res->tracks[i].cap = res->n_visits;
 		if (!res->tracks[i].pt) {
 			free(idx);
@@ -508,7 +519,8 @@ static int track_ghosts(struct workspace *w, struct stray_reduce_sweep_result *r
 	return STRAY_OK;
 }
 
-static int reduce_all(struct workspace *w, struct stray_reduce_sweep_result *res,
+static int reduce_all(struct workspace *w,
+		      struct stray_reduce_sweep_result *res,
 		      struct stray_error *err)
 {
 	size_t v;

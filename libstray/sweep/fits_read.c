@@ -125,9 +125,11 @@ static int read_rows(struct stray_sweep_fits *f, struct stray_error *err)
 	int status = 0, rc;
 
 	f->h.has_rows = 0;
-	if (fits_read_key_longstr(f->fptr, STRAY_SWEEP_KEY_ROWS, &text, NULL, &status)) {
+	if (fits_read_key_longstr(f->fptr, STRAY_SWEEP_KEY_ROWS, &text, NULL,
+				  &status)) {
 		if (status != KEY_NO_EXIST)
-			return fits_fail(f->path, STRAY_SWEEP_KEY_ROWS, "cannot be read",
+			return fits_fail(f->path, STRAY_SWEEP_KEY_ROWS,
+					 "cannot be read",
 					 status, err);
 		fits_clear_errmsg();
 		for (k = 0; k < f->h.n_rows; k++)	/* full frame */
@@ -135,7 +137,8 @@ static int read_rows(struct stray_sweep_fits *f, struct stray_error *err)
 		return STRAY_OK;
 	}
 	f->h.has_rows = 1;
-	rc = stray_sweep_rows_parse(f->path, text, f->h.det_row, f->h.n_rows, err);
+	rc = stray_sweep_rows_parse(f->path, text, f->h.det_row, f->h.n_rows,
+				    err);
 	fits_free_memory(text, &status);
 	return rc;
 }
@@ -145,13 +148,16 @@ static int read_type(struct stray_sweep_fits *f, struct stray_error *err)
 	char text[FLEN_VALUE];
 	int status = 0;
 
-	if (fits_read_key(f->fptr, TSTRING, STRAY_SWEEP_KEY_FRAMETYP, text, NULL, &status))
-		return fits_fail(f->path, STRAY_SWEEP_KEY_FRAMETYP, status == KEY_NO_EXIST ?
+	if (fits_read_key(f->fptr, TSTRING, STRAY_SWEEP_KEY_FRAMETYP, text,
+			  NULL, &status))
+		return fits_fail(f->path, STRAY_SWEEP_KEY_FRAMETYP,
+				 status == KEY_NO_EXIST ?
 			"required keyword missing" : "cannot be read",
 			status, err);
 	f->h.type = stray_sweep_frametyp_parse(text);
 	if (f->h.type < 0) {
-		stray_error_at(err, STRAY_EPARSE, f->path, 0, STRAY_SWEEP_KEY_FRAMETYP,
+		stray_error_at(err, STRAY_EPARSE, f->path, 0,
+			       STRAY_SWEEP_KEY_FRAMETYP,
 			       "must be DARK, AMBIENT or FULL");
 		stray_error_text(err, text);
 		return STRAY_EPARSE;
@@ -197,7 +203,8 @@ static int read_header(struct stray_sweep_fits *f, struct stray_error *err)
 	    (rc = key_double(f, STRAY_SWEEP_KEY_EXPTIME, &h->exptime_s, err)) ||
 	    (rc = key_double(f, STRAY_SWEEP_KEY_NDTRANS, &h->ndtrans, err)) ||
 	    (rc = key_long(f, STRAY_SWEEP_KEY_SEQNUM, &h->seqnum, 1, err)) ||
-	    (rc = key_long(f, STRAY_SWEEP_KEY_SATLEVEL, &h->satlevel, 1, err)) ||
+	    (rc = key_long(f, STRAY_SWEEP_KEY_SATLEVEL, &h->satlevel, 1,
+			   err)) ||
 	    (rc = key_long(f, STRAY_SWEEP_KEY_COL0, &h->col0, 0, err)) ||
 	    (rc = key_long(f, STRAY_SWEEP_KEY_ROW0, &h->row0, 0, err)) ||
 	    (rc = read_rows(f, err)))
@@ -207,20 +214,25 @@ static int read_header(struct stray_sweep_fits *f, struct stray_error *err)
 	if (key_number(f, STRAY_SWEEP_KEY_MONITOR, &h->monitor, &status) == 0)
 		h->has_monitor = 1;
 	else if (status != KEY_NO_EXIST)
-		return fits_fail(f->path, STRAY_SWEEP_KEY_MONITOR, "is not a number", status,
+		return fits_fail(f->path, STRAY_SWEEP_KEY_MONITOR,
+				 "is not a number", status,
 				 err);
 	fits_clear_errmsg();
 	if (!(h->exptime_s > 0.0))
-		return stray_error_at(err, STRAY_EPARSE, f->path, 0, STRAY_SWEEP_KEY_EXPTIME,
+		return stray_error_at(err, STRAY_EPARSE, f->path, 0,
+				      STRAY_SWEEP_KEY_EXPTIME,
 				      "must be > 0");
 	if (!(h->ndtrans > 0.0 && h->ndtrans <= 1.0))
-		return stray_error_at(err, STRAY_EPARSE, f->path, 0, STRAY_SWEEP_KEY_NDTRANS,
+		return stray_error_at(err, STRAY_EPARSE, f->path, 0,
+				      STRAY_SWEEP_KEY_NDTRANS,
 				      "must be in (0, 1]");
 	if (!(isfinite(h->monitor) && h->monitor > 0.0))
-		return stray_error_at(err, STRAY_EPARSE, f->path, 0, STRAY_SWEEP_KEY_MONITOR,
+		return stray_error_at(err, STRAY_EPARSE, f->path, 0,
+				      STRAY_SWEEP_KEY_MONITOR,
 				      "must be finite and > 0");
 	if (h->satlevel < 1 || h->satlevel > 65536)
-		return stray_error_at(err, STRAY_EPARSE, f->path, 0, STRAY_SWEEP_KEY_SATLEVEL,
+		return stray_error_at(err, STRAY_EPARSE, f->path, 0,
+				      STRAY_SWEEP_KEY_SATLEVEL,
 				      "must be in 1..65536");
 	return STRAY_OK;
 }
@@ -279,7 +291,8 @@ int stray_sweep_fits_read(struct stray_sweep_fits *f, uint16_t *pix,
 	LONGLONG head, data, end;
 
 	/* cfitsio's memory driver does not bound its reads: check first. */
-	if (f->mem && (fits_get_hduaddrll(f->fptr, &head, &data, &end, &status) ||
+	if (f->mem && (fits_get_hduaddrll(f->fptr, &head, &data, &end,
+					  &status) ||
 		       (LONGLONG)f->mem_size < data + 2LL * n))
 		return fits_fail(f->path, "data",
 			"truncated: fewer pixels than NAXIS1 x NAXIS2", status,

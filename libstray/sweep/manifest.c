@@ -160,7 +160,8 @@ static int take_entry(const char *name, long line, const struct fields *r,
 		return bad_cell(name, line, columns[COL_EXP], "must be > 0",
 				r->f[idx[COL_EXP]], err);
 	if (!(e->ndtrans > 0.0 && e->ndtrans <= 1.0))
-		return bad_cell(name, line, columns[COL_ND], "must be in (0, 1]",
+		return bad_cell(name, line, columns[COL_ND],
+				"must be in (0, 1]",
 				r->f[idx[COL_ND]], err);
 	if (seq < 0 || seq > 1e9 || seq != floor(seq))
 		return bad_cell(name, line, columns[COL_SEQ],
@@ -197,7 +198,8 @@ static int push(struct stray_sweep_manifest *m, size_t *cap, const char *name,
 		struct stray_sweep_entry *e = realloc(m->e, nc * sizeof(*e));
 
 		if (!e)
-			return stray_error_at(err, STRAY_ENOMEM, name, line, 0, 0);
+			return stray_error_at(err, STRAY_ENOMEM, name, line, 0,
+					      0);
 		m->e = e;
 		*cap = nc;
 	}

@@ -274,8 +274,10 @@ void rig_sweep_progress(const struct rig_sweep *sw, struct rig_progress *p)
 	 * until their exposures are known. */
 	for (k = 0; k < sw->n_angles; k++) {
 		double theta = sw->angles[k];
-		int nf = stray_sweep_manifest_count(&sw->mf, theta, STRAY_SWEEP_FULL, NULL);
-		int na = stray_sweep_manifest_count(&sw->mf, theta, STRAY_SWEEP_AMBIENT, NULL);
+		int nf = stray_sweep_manifest_count(&sw->mf, theta,
+						    STRAY_SWEEP_FULL, NULL);
+		int na = stray_sweep_manifest_count(&sw->mf, theta,
+						    STRAY_SWEEP_AMBIENT, NULL);
 		double td[2];
 
 		p->total += reps * 2 + (nf >= reps && na >= reps

@@ -37,7 +37,8 @@ static void frame(const uint8_t *data, size_t size)
 	uint16_t *pix;
 
 	stray_error_clear(&err);
-	if (stray_sweep_fits_open_mem("fuzz.fits", data, size, &f, &err) == STRAY_OK) {
+	if (stray_sweep_fits_open_mem("fuzz.fits", data, size, &f,
+				      &err) == STRAY_OK) {
 		if (!(f.h.exptime_s > 0.0 && f.h.ndtrans > 0.0 &&
 		      f.h.ndtrans <= 1.0 && f.h.n_rows >= 1 &&
 		      f.h.n_rows <= STRAY_SWEEP_ROWS_MAX))

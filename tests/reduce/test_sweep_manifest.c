@@ -26,7 +26,8 @@ static int parse(const char *text, struct stray_sweep_manifest *m,
 		 struct stray_error *err)
 {
 	stray_error_clear(err);
-	return stray_sweep_manifest_parse("manifest.csv", text, strlen(text), m, err);
+	return stray_sweep_manifest_parse("manifest.csv", text, strlen(text), m,
+					  err);
 }
 
 static void test_manifest_good_rows(void **state)

@@ -86,7 +86,8 @@ static inline int fits_key_mismatch(const char *path,
 }
 
 /* Count how many rows of (angle, type) have seqnum k. */
-static inline int n_with_seq(const struct stray_sweep_manifest *mf, double a, int type,
+static inline int n_with_seq(const struct stray_sweep_manifest *mf, double a,
+			     int type,
 			     int k)
 {
 	size_t i;
@@ -112,7 +113,8 @@ static inline int check_angle(const struct stray_sweep_manifest *mf, double a,
 	    stray_sweep_manifest_count(mf, a, STRAY_SWEEP_AMBIENT, &am) != reps)
 		return bad + 1;
 	n_dark = fabs(f->exptime_s - am->exptime_s) < 1e-9 ? 1 : 2;
-	bad += stray_sweep_manifest_count(mf, a, STRAY_SWEEP_DARK, NULL) != reps * n_dark;
+	bad += stray_sweep_manifest_count(mf, a, STRAY_SWEEP_DARK,
+					  NULL) != reps * n_dark;
 	for (k = 0; k < reps * n_dark; k++) {
 		size_t i;
 		double want = k < reps ? f->exptime_s : am->exptime_s;
@@ -202,7 +204,8 @@ static inline struct sweep_check check_sweep(const char *dir,
 
 		for (k = 0; k < n_angles; k++)
 			for (i = 0; i < STRAY_SWEEP_FRAMETYP_COUNT; i++)
-				in_plan += stray_sweep_manifest_count(&mf, angles[k],
+				in_plan += stray_sweep_manifest_count(&mf,
+								      angles[k],
 							      (int)i, NULL);
 		if (in_plan != c.rows) {
 			fprintf(stderr, "check: %d rows, %ld in plan\n",

@@ -109,7 +109,8 @@ static double frame_sum(const char *dir, const char *file)
 }
 
 /* Mean over the group's repeats of the summed frame, and its t, nd. */
-static double group_sum(const struct stray_sweep_manifest *mf, double a, int type,
+static double group_sum(const struct stray_sweep_manifest *mf, double a,
+			int type,
 			double t_exp_s, double *t_out, double *nd_out)
 {
 	size_t i;
@@ -193,13 +194,15 @@ static double frame_monitor(const char *dir, const char *file)
 }
 
 /* eq. 3.6 with each lit frame's light divided by its lamp level. */
-static double j_monitored(const struct stray_sweep_manifest *mf, double a, int norm)
+static double j_monitored(const struct stray_sweep_manifest *mf, double a,
+			  int norm)
 {
 	double j = 0, t, nd, dummy, dark[2];
 	int type, k;
 	size_t i;
 
-	for (k = 0, type = STRAY_SWEEP_FULL; k < 2; k++, type = STRAY_SWEEP_AMBIENT) {
+	for (k = 0, type = STRAY_SWEEP_FULL; k < 2; k++,
+	     type = STRAY_SWEEP_AMBIENT) {
 		double sum = 0;
 		int n = 0;
 
@@ -325,7 +328,8 @@ static void test_sweep_stops_safe_on_lasting_disconnect(void **state)
 	assert_non_null(strstr(r.err.msg, "camera"));
 	assert_null(strchr(r.err.msg, '\n'));
 	assert_lab_safe(&r);
-	assert_int_equal(check_sweep(r.dir, &r.cfg).bad > 0, 1);	/* partial */
+	assert_int_equal(check_sweep(r.dir, &r.cfg).bad > 0,
+			 1);	/* partial */
 	end_run(&r);
 }
 
