@@ -254,6 +254,7 @@ int stray_sweep_manifest_parse_text(const char *name, const char *text,
 
 	m->n = m->cap = 0;
 	m->e = NULL;
+	m->writer = 0;
 	m->lock_fd = -1;
 	if (!r)
 		return stray_error_at(err, STRAY_ENOMEM, name, 0, 0, 0);
@@ -295,6 +296,7 @@ int stray_sweep_manifest_load(const char *dir,
 
 	m->n = m->cap = 0;
 	m->e = NULL;
+	m->writer = 0;
 	m->lock_fd = -1;
 	if (strlen(dir) >= sizeof(m->dir))
 		return stray_error_at(err, STRAY_EINVAL, dir, 0, "dir",
@@ -313,8 +315,9 @@ void stray_sweep_manifest_free(struct stray_sweep_manifest *m)
 	free(m->e);
 	m->e = NULL;
 	m->n = m->cap = 0;
-	if (m->lock_fd >= 0)
+	if (m->writer)
 		close(m->lock_fd);	/* releases the flock */
+	m->writer = 0;
 	m->lock_fd = -1;
 }
 

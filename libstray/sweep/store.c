@@ -49,7 +49,7 @@ static int load(struct stray_sweep_manifest *m, const char *path,
 	char dir[STRAY_SWEEP_DIR_MAX];
 	char *text = NULL;
 	size_t len = 0;
-	int rc, fd = m->lock_fd;
+	int rc, fd = m->lock_fd, writer = m->writer;
 
 	if ((rc = stray_file_read(path, &text, &len, err)) != STRAY_OK)
 		return rc;
@@ -62,7 +62,8 @@ static int load(struct stray_sweep_manifest *m, const char *path,
 	rc = stray_sweep_manifest_parse_text(path, text, len, 1, m, err);
 	free(text);
 	strcpy(m->dir, dir);
-	m->lock_fd = fd;
+	m->lock_fd = fd;	/* the parser reset them: keep the lock */
+	m->writer = writer;
 	return rc;
 }
 
@@ -120,6 +121,7 @@ static int lock(struct stray_sweep_manifest *m, int fd, const char *path,
 		struct stray_error *err)
 {
 	m->lock_fd = fd;
+	m->writer = 1;		/* closed by stray_sweep_manifest_free */
 	if (flock(fd, LOCK_EX | LOCK_NB) == 0)
 		return STRAY_OK;
 	return stray_error_at(err, STRAY_EIO, path, 0, "file",

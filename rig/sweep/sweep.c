@@ -72,7 +72,6 @@ int rig_sweep_open(struct rig_sweep *sw, struct rig_lab *lab,
 	int rc;
 
 	memset(sw, 0, sizeof(*sw));
-	sw->mf.lock_fd = -1;
 	sw->lab = lab;
 	sw->cfg = &lab->cfg->sweep;
 	rc = rig_sweep_angles(sw->cfg, &sw->angles, &sw->n_angles, err);

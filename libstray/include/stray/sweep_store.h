@@ -77,7 +77,8 @@ struct stray_sweep_manifest {
 	char dir[STRAY_SWEEP_DIR_MAX];
 	size_t n, cap;
 	struct stray_sweep_entry *e;
-	int lock_fd;			/* -1: not a writer */
+	int writer;			/* 1: lock_fd holds the flock */
+	int lock_fd;
 };
 
 /*
