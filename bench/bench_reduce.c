@@ -11,7 +11,7 @@
 
 #include "stray/reduce_response.h"
 #include "synth_sweep.h"
-#include "sweep_reduce.h"
+#include "stray/reduce_sweep.h"
 
 #define ROWS 1944
 #define COLS 2592
@@ -81,8 +81,8 @@ int main(void)
 {
 	static struct synth_truth truth;
 	struct synth_config c;
-	struct sweep_opts o;
-	struct sweep_result r;
+	struct stray_reduce_sweep_opts o;
+	struct stray_reduce_sweep_result r;
 	struct stray_error err;
 	char dir[] = "/tmp/stray_bench_XXXXXX", cmd[64];
 	double t0, t, mb, copy, acc;
@@ -102,10 +102,10 @@ int main(void)
 		return 1;
 	copy = memcpy_mb_s((size_t)ROWS * COLS * 2);
 	acc = accum_mb_s();
-	sweep_opts_default(&o);
+	stray_reduce_sweep_opts_default(&o);
 	stray_error_clear(&err);
 	t0 = now_s();
-	rc = sweep_reduce(dir, &o, &r, &err);
+	rc = stray_reduce_sweep(dir, &o, &r, &err);
 	t = now_s() - t0;
 	/* darks are read twice: 8 frame reads of 2 bytes a pixel */
 	mb = 8.0 * ROWS * COLS * 2 / 1e6;
@@ -117,7 +117,7 @@ int main(void)
 	       rc == 0 ? "ok" : "FAILED");
 	printf("workspace: %.1f bytes per pixel\n",
 	       (double)r.workspace_bytes / ((double)ROWS * COLS));
-	sweep_result_free(&r);
+	stray_reduce_sweep_result_free(&r);
 	snprintf(cmd, sizeof(cmd), "rm -rf '%s'", dir);
 	return system(cmd) != 0 || rc != 0;
 }

@@ -1,14 +1,17 @@
 # libstray: the freestanding core (linked by firmware_fdr too) and the
-# hosted layer (CSV/JSON I/O, built-in spectra).
+# hosted layer (CSV/JSON I/O, built-in spectra, the sweep-folder store:
+# cfitsio frames, libcsv manifest, OpenSSL SHA-256, in libstray/sweep).
 
 STRAY_CORE_SRC := $(wildcard libstray/core/*.c)
 STRAY_HOST_SRC := $(wildcard libstray/host/*.c)
 STRAY_CORE_OBJ := $(STRAY_CORE_SRC:%.c=$(B)/obj/%.o)
 STRAY_HOST_OBJ := $(STRAY_HOST_SRC:%.c=$(B)/obj/%.o) \
 	$(B)/obj/libstray/host/builtin_data.o
+STRAY_SWEEP_SRC := $(wildcard libstray/sweep/*.c)
+STRAY_SWEEP_OBJ := $(STRAY_SWEEP_SRC:%.c=$(B)/obj/%.o)
 STRAY_LIB := $(B)/lib/libstray.a
 STRAY_CORE_LIB := $(B)/lib/libstray_core.a
-STRAY_LDLIBS := -lcsv -lcjson -lm
+STRAY_LDLIBS := -lcfitsio -lcrypto -lcsv -lcjson -lm
 STRAY_DATA := $(wildcard libstray/data/*.csv)
 
 # The core must build freestanding: no hosted headers, no builtins assumed.
@@ -22,7 +25,7 @@ $(STRAY_CORE_LIB): $(STRAY_CORE_OBJ)
 	@mkdir -p $(dir $@)
 	rm -f $@ && ar rcs $@ $^
 
-$(STRAY_LIB): $(STRAY_CORE_OBJ) $(STRAY_HOST_OBJ)
+$(STRAY_LIB): $(STRAY_CORE_OBJ) $(STRAY_HOST_OBJ) $(STRAY_SWEEP_OBJ)
 	@mkdir -p $(dir $@)
 	rm -f $@ && ar rcs $@ $^
 

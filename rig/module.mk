@@ -1,5 +1,6 @@
 # rig: strayrigd, the lab sweep daemon; device drivers above the HAL seam,
-# real backends (libusb, hidapi, libgpiod) and simulators below it.
+# real backends (libusb, hidapi, libgpiod) and simulators below it.  The
+# sweep folder is written through libstray's sweep store (libstray.a).
 
 RIG_SRC := $(filter-out rig/daemon/strayrigd.c,\
 	$(wildcard rig/*.c rig/hal/*.c rig/backend/*.c rig/proto/*.c \
@@ -9,8 +10,8 @@ RIG_LIB := $(B)/lib/librig.a
 RIG_BIN := $(B)/bin/strayrigd
 RIG_CFLAGS := -Irig/include -I/usr/include/libusb-1.0 -I/usr/include/hidapi \
 	-I/usr/include/cjson
-RIG_LDLIBS := -lcfitsio -lusb-1.0 -lhidapi-libusb -lgpiod -lcrypto -lz \
-	-lcjson -lcsv -lm
+RIG_LDLIBS := $(STRAY_LIB) -lusb-1.0 -lhidapi-libusb -lgpiod -lz -lcjson \
+	$(STRAY_LDLIBS)
 
 $(RIG_OBJ) $(B)/obj/rig/daemon/strayrigd.o: EXTRA_CFLAGS += $(RIG_CFLAGS)
 
@@ -18,7 +19,7 @@ $(RIG_LIB): $(RIG_OBJ)
 	@mkdir -p $(dir $@)
 	rm -f $@ && ar rcs $@ $^
 
-$(RIG_BIN): $(B)/obj/rig/daemon/strayrigd.o $(RIG_LIB)
+$(RIG_BIN): $(B)/obj/rig/daemon/strayrigd.o $(RIG_LIB) $(STRAY_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_BASE) -o $@ $< $(RIG_LIB) $(RIG_LDLIBS)
 
@@ -47,9 +48,8 @@ $(B)/tests/rig/test_hal_fail_wrap: LDWRAP := \
 	-Wl,--wrap=rig_hal_gpio_set,--wrap=rig_hal_gpio_get
 $(B)/tests/rig/test_daemon: $(STRAY_BIN)
 # The end-to-end test runs `stray reduce` and reads its CSV with libstray.
-$(B)/tests/rig/test_e2e_reduce: $(STRAY_BIN) $(STRAY_LIB)
-$(B)/tests/rig/test_e2e_reduce: LDEXTRA := $(STRAY_LIB) $(STRAY_LDLIBS)
-$(B)/tests/rig/%: $(B)/obj/tests/rig/%.o $(RIG_LIB) $(RIG_BIN)
+$(B)/tests/rig/test_e2e_reduce: $(STRAY_BIN)
+$(B)/tests/rig/%: $(B)/obj/tests/rig/%.o $(RIG_LIB) $(RIG_BIN) $(STRAY_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_BASE) $(LDWRAP) -o $@ $< $(RIG_LIB) $(LDEXTRA) \
 		$(CMOCKA_LIBS) $(RIG_LDLIBS)

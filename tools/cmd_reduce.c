@@ -3,9 +3,9 @@
  * manifest.csv, docs/formats.md) to the lens attenuation curve, its noise
  * floor and its ghosts (thesis §3.2, eq. 3.4-3.15, figs. 3.7-3.9).
  *
- * The I/O lives in tools/ (sweep_manifest.c: libcsv and OpenSSL SHA-256;
- * sweep_fits.c: cfitsio; sweep_reduce.c: streaming), the math in
- * libstray/reduce.
+ * This file parses the options and prints; the reduction is one library
+ * call, stray_reduce_sweep (libstray/reduce, stray/reduce_sweep.h), which
+ * reads the folder through the sweep store (libstray/sweep).
  */
 #include <getopt.h>
 #include <math.h>
@@ -18,7 +18,7 @@
 #include "reduce_report.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"
-#include "sweep_reduce.h"
+#include "stray/reduce_sweep.h"
 
 static const char usage[] =
 	"usage: stray reduce SWEEP_DIR --out C.csv [--zemax F.DAT] [--json]\n"
@@ -69,7 +69,8 @@ static int parse_size(const char *opt, const char *text, size_t *out)
 	return CLI_OK;
 }
 
-static int take_option(int opt, struct reduce_args *a, struct sweep_opts *o)
+static int take_option(int opt, struct reduce_args *a,
+		       struct stray_reduce_sweep_opts *o)
 {
 	struct stray_error err;
 
@@ -81,11 +82,14 @@ static int take_option(int opt, struct reduce_args *a, struct sweep_opts *o)
 	case 'P': a->plot_dir = optarg; return CLI_OK;
 	case 'm': a->map = optarg; return CLI_OK;
 	case 'R': return parse_size("map-regions", optarg, &a->map_regions);
-	case 'w': return cli_parse_double("reduce", "wave-um", optarg, &a->wave_um);
+	case 'w': return cli_parse_double("reduce", "wave-um", optarg,
+					  &a->wave_um);
 	case 'r': o->response.row_filter = 1; return CLI_OK;
 	case 'V': o->verify_sha256 = 0; return CLI_OK;
-	case 's': return cli_parse_double("reduce", "hot-sigma", optarg, &o->hot_sigma);
-	case 'Z': return cli_parse_double("reduce", "ghost-z", optarg, &o->ghost.min_z);
+	case 's': return cli_parse_double("reduce", "hot-sigma", optarg,
+					  &o->hot_sigma);
+	case 'Z': return cli_parse_double("reduce", "ghost-z", optarg,
+					  &o->ghost.min_z);
 	case 'W': return parse_size("ghost-window", optarg, &o->ghost.window);
 	case 'i':
 		o->keep_image = 1;
@@ -93,7 +97,8 @@ static int take_option(int opt, struct reduce_args *a, struct sweep_opts *o)
 					&o->image_theta_deg);
 	case 'c':
 		if (stray_bayer_parse(optarg, &o->map, &err) != STRAY_OK)
-			return cli_usage_error("reduce", "option '--channels': '%s':"
+			return cli_usage_error("reduce",
+					       "option '--channels': '%s':"
 					       " %s", optarg, err.reason);
 		return CLI_OK;
 	}
@@ -101,7 +106,7 @@ static int take_option(int opt, struct reduce_args *a, struct sweep_opts *o)
 }
 
 static int parse_args(int argc, char **argv, struct reduce_args *a,
-		      struct sweep_opts *o)
+		      struct stray_reduce_sweep_opts *o)
 {
 	static const struct option opts[] = {
 		{ "out", required_argument, NULL, 'o' },
@@ -159,7 +164,7 @@ static int parse_args(int argc, char **argv, struct reduce_args *a,
 
 /* The curve CSV (docs/formats.md) with noise_floor and provenance. */
 static int save_curve(const struct reduce_args *a,
-		      const struct sweep_result *r, struct stray_error *err)
+		      const struct stray_reduce_sweep_result *r, struct stray_error *err)
 {
 	struct stray_curve c;
 	double *nf = calloc(r->n_points ? r->n_points : 1, sizeof(double));
@@ -196,7 +201,7 @@ static int save_curve(const struct reduce_args *a,
 }
 
 static int write_outputs(const struct reduce_args *a,
-			 const struct sweep_result *r, struct stray_error *err)
+			 const struct stray_reduce_sweep_result *r, struct stray_error *err)
 {
 	int rc = save_curve(a, r, err);
 
@@ -214,29 +219,29 @@ int cmd_reduce(int argc, char **argv)
 {
 	struct reduce_args a = { NULL, NULL, NULL, "LENS_ATTEN", NULL, NULL,
 				 0.55, 16 };
-	struct sweep_opts o;
-	struct sweep_result r;
+	struct stray_reduce_sweep_opts o;
+	struct stray_reduce_sweep_result r;
 	struct stray_error err;
 	int rc;
 
-	sweep_opts_default(&o);
+	stray_reduce_sweep_opts_default(&o);
 	rc = parse_args(argc, argv, &a, &o);
 	if (rc != CLI_OK)
 		return rc < 0 ? CLI_OK : rc;
 	if ((a.plot_dir || a.map) && !o.keep_image)
 		o.keep_image = 1;	/* J at 0 deg unless told otherwise */
 	stray_error_clear(&err);
-	rc = sweep_reduce(a.dir, &o, &r, &err);
+	rc = stray_reduce_sweep(a.dir, &o, &r, &err);
 	if (rc == STRAY_OK)
 		rc = write_outputs(&a, &r, &err);
 	if (rc != STRAY_OK) {
-		sweep_result_free(&r);
+		stray_reduce_sweep_result_free(&r);
 		return cli_fail("reduce", &err);
 	}
 	if (cli.json)
 		rc = cli_json_emit(reduce_json(&r, a.out));
 	else
 		reduce_print(stdout, &r, a.out);
-	sweep_result_free(&r);
+	stray_reduce_sweep_result_free(&r);
 	return rc;
 }

@@ -12,7 +12,8 @@
 #include "reduce_report.h"
 #include "stray/errfmt.h"
 
-static int plot_alpha(const char *dir, const struct sweep_result *r,
+static int plot_alpha(const char *dir,
+		      const struct stray_reduce_sweep_result *r,
 		      struct stray_error *err)
 {
 	size_t n = r->n_points, i;
@@ -47,7 +48,8 @@ static int plot_alpha(const char *dir, const struct sweep_result *r,
 }
 
 /* Profiles / Pbar(0), one line per angle (first visit of each). */
-static int plot_profiles(const char *dir, const struct sweep_result *r,
+static int plot_profiles(const char *dir,
+			 const struct stray_reduce_sweep_result *r,
 			 struct stray_error *err)
 {
 	size_t nc = r->n_cols, nv = r->n_visits, v, c, k = 0;
@@ -80,11 +82,12 @@ static int plot_profiles(const char *dir, const struct sweep_result *r,
 	return rc;
 }
 
-static int plot_tracks(const char *dir, const struct sweep_result *r,
+static int plot_tracks(const char *dir,
+		       const struct stray_reduce_sweep_result *r,
 		       struct stray_error *err)
 {
-	struct plot_series s[SWEEP_TRACKS_MAX];
-	double *xy[SWEEP_TRACKS_MAX][2] = { { 0 } };
+	struct plot_series s[STRAY_REDUCE_TRACKS_MAX];
+	double *xy[STRAY_REDUCE_TRACKS_MAX][2] = { { 0 } };
 	struct plot_spec p;
 	char path[4096];
 	size_t i, k;
@@ -96,7 +99,8 @@ static int plot_tracks(const char *dir, const struct sweep_result *r,
 		xy[i][0] = calloc(t->n, sizeof(double));
 		xy[i][1] = calloc(t->n, sizeof(double));
 		if (!xy[i][0] || !xy[i][1]) {
-			rc = stray_error_set(err, STRAY_ENOMEM, "plot", "no memory");
+			rc = stray_error_set(err, STRAY_ENOMEM, "plot",
+					     "no memory");
 			break;
 		}
 		for (k = 0; k < t->n; k++) {
@@ -113,18 +117,19 @@ static int plot_tracks(const char *dir, const struct sweep_result *r,
 		(double)r->col0 + (double)r->n_cols, s, r->n_tracks };
 	if (rc == STRAY_OK && r->n_tracks > 0)
 		rc = plot_render(&p, err);
-	for (i = 0; i < SWEEP_TRACKS_MAX; i++)
+	for (i = 0; i < STRAY_REDUCE_TRACKS_MAX; i++)
 		free(xy[i][0]), free(xy[i][1]);
 	return rc;
 }
 
-int reduce_plots(const char *dir, const struct sweep_result *r,
+int reduce_plots(const char *dir, const struct stray_reduce_sweep_result *r,
 		 struct stray_error *err)
 {
 	char path[4096], msg[256];
 	int rc;
 
-	if ((rc = plot_alpha(dir, r, err)) || (rc = plot_profiles(dir, r, err)) ||
+	if ((rc = plot_alpha(dir, r, err)) || (rc = plot_profiles(dir, r,
+								  err)) ||
 	    (rc = plot_tracks(dir, r, err)))
 		return rc;
 	if (!r->image)
@@ -132,7 +137,8 @@ int reduce_plots(const char *dir, const struct sweep_result *r,
 	snprintf(path, sizeof(path), "%s/j.png", dir);
 	if (image_cv_false_colour(path, r->image, r->n_rows, r->n_cols, 1, 512,
 				  msg, sizeof(msg)) != 0) {
-		stray_error_at(err, STRAY_EIO, path, 0, "image", "cannot write");
+		stray_error_at(err, STRAY_EIO, path, 0, "image",
+			       "cannot write");
 		stray_error_text(err, msg);
 		return STRAY_EIO;
 	}

@@ -15,12 +15,12 @@
 
 const char *reduce_track_name(size_t i)
 {
-	static const char *const names[SWEEP_TRACKS_MAX] = {
+	static const char *const names[STRAY_REDUCE_TRACKS_MAX] = {
 		"A", "B", "C", "D", "E", "F", "G", "H",
 		"I", "J", "K", "L", "M", "N", "O", "P"
 	};
 
-	return i < SWEEP_TRACKS_MAX ? names[i] : "?";
+	return i < STRAY_REDUCE_TRACKS_MAX ? names[i] : "?";
 }
 
 static int coating_name_ok(const char *name)
@@ -36,7 +36,7 @@ static int coating_name_ok(const char *name)
 }
 
 int reduce_write_zemax(const char *path, const char *name, double wave_um,
-		       const struct sweep_result *r, struct stray_error *err)
+		       const struct stray_reduce_sweep_result *r, struct stray_error *err)
 {
 	struct stray_file_out out;
 	size_t i;
@@ -65,7 +65,7 @@ int reduce_write_zemax(const char *path, const char *name, double wave_um,
 }
 
 int reduce_write_map(const char *path, unsigned n_regions,
-		     const struct sweep_result *r, struct stray_error *err)
+		     const struct stray_reduce_sweep_result *r, struct stray_error *err)
 {
 	size_t n = r->n_rows * r->n_cols;
 	double *scratch;
@@ -90,12 +90,13 @@ int reduce_write_map(const char *path, unsigned n_regions,
 	fprintf(out.f, "# kind: region map (stray fdr --map)\n"
 		"# theta_deg: %.10g\nfraction,rel_alpha\n", r->image_theta_deg);
 	for (k = 0; k < map.n; k++)
-		fprintf(out.f, "%.10g,%.10g\n", map.fraction[k], map.rel_alpha[k]);
+		fprintf(out.f, "%.10g,%.10g\n", map.fraction[k],
+			map.rel_alpha[k]);
 	return stray_file_commit(&out, err);
 }
 
 static cJSON *track_json(const struct stray_ghost_track *t, size_t i,
-			 const struct sweep_result *r)
+			 const struct stray_reduce_sweep_result *r)
 {
 	cJSON *o = cJSON_CreateObject();
 	cJSON *th = cJSON_AddArrayToObject(o, "theta_deg");
@@ -111,13 +112,14 @@ static cJSON *track_json(const struct stray_ghost_track *t, size_t i,
 		cJSON_AddItemToArray(th, cli_json_number(p->theta_deg));
 		cJSON_AddItemToArray(col, cli_json_number(p->column +
 							  (double)r->col0));
-		cJSON_AddItemToArray(rel, cli_json_number(p->excess / p->power));
+		cJSON_AddItemToArray(rel,
+				     cli_json_number(p->excess / p->power));
 		cJSON_AddItemToArray(al, cli_json_number(p->excess / r->p0));
 	}
 	return o;
 }
 
-static cJSON *pixels_json(const struct sweep_result *r, int flag)
+static cJSON *pixels_json(const struct stray_reduce_sweep_result *r, int flag)
 {
 	cJSON *a = cJSON_CreateArray();
 	size_t i;
@@ -135,7 +137,7 @@ static cJSON *pixels_json(const struct sweep_result *r, int flag)
 	return a;
 }
 
-static cJSON *curve_json(const struct sweep_result *r)
+static cJSON *curve_json(const struct stray_reduce_sweep_result *r)
 {
 	cJSON *a = cJSON_CreateArray();
 	size_t i;
@@ -144,7 +146,8 @@ static cJSON *curve_json(const struct sweep_result *r)
 		const struct stray_curve_point *p = &r->points[i];
 		cJSON *o = cJSON_CreateObject();
 
-		cJSON_AddItemToObject(o, "theta_deg", cli_json_number(p->theta_deg));
+		cJSON_AddItemToObject(o, "theta_deg",
+				      cli_json_number(p->theta_deg));
 		cJSON_AddItemToObject(o, "alpha", cli_json_number(p->alpha));
 		cJSON_AddItemToObject(o, "sigma", cli_json_number(p->sigma));
 		cJSON_AddItemToObject(o, "noise_floor",
@@ -154,7 +157,7 @@ static cJSON *curve_json(const struct sweep_result *r)
 	return a;
 }
 
-static cJSON *drift_json(const struct sweep_result *r)
+static cJSON *drift_json(const struct stray_reduce_sweep_result *r)
 {
 	cJSON *o = cJSON_CreateObject();
 
@@ -168,7 +171,8 @@ static cJSON *drift_json(const struct sweep_result *r)
 	return o;
 }
 
-cJSON *reduce_json(const struct sweep_result *r, const char *out_path)
+cJSON *reduce_json(const struct stray_reduce_sweep_result *r,
+		   const char *out_path)
 {
 	cJSON *o = cJSON_CreateObject();
 	cJSON *g = cJSON_AddArrayToObject(o, "ghosts");
@@ -199,7 +203,7 @@ cJSON *reduce_json(const struct sweep_result *r, const char *out_path)
 	return o;
 }
 
-void reduce_print(FILE *out, const struct sweep_result *r,
+void reduce_print(FILE *out, const struct stray_reduce_sweep_result *r,
 		  const char *out_path)
 {
 	size_t i, k;

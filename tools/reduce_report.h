@@ -10,7 +10,7 @@
 #include <stdio.h>
 
 #include "stray/error.h"
-#include "sweep_reduce.h"
+#include "stray/reduce_sweep.h"
 
 /* Name of the ghost track i: "A", "B", ... (thesis fig. 3.9). */
 const char *reduce_track_name(size_t i);
@@ -21,23 +21,24 @@ const char *reduce_track_name(size_t i);
  * digits or '_'.
  */
 int reduce_write_zemax(const char *path, const char *name, double wave_um,
-		       const struct sweep_result *r, struct stray_error *err);
+		       const struct stray_reduce_sweep_result *r, struct stray_error *err);
 
 /* The J image at r->image_theta_deg as an FDR region map CSV
  * (fraction,rel_alpha; `stray fdr --map`), n_regions quantile regions. */
 int reduce_write_map(const char *path, unsigned n_regions,
-		     const struct sweep_result *r, struct stray_error *err);
+		     const struct stray_reduce_sweep_result *r, struct stray_error *err);
 
 /* The --json object (cli.md: `ghosts`, each with theta_deg and column). */
-cJSON *reduce_json(const struct sweep_result *r, const char *out_path);
+cJSON *reduce_json(const struct stray_reduce_sweep_result *r,
+		   const char *out_path);
 
 /* Human-readable summary on out. */
-void reduce_print(FILE *out, const struct sweep_result *r,
+void reduce_print(FILE *out, const struct stray_reduce_sweep_result *r,
 		  const char *out_path);
 
 /* alpha.png (fig. 3.7), profiles.png (fig. 3.9), ghosts.png, j.png (fig.
  * 3.8, when r->image) under dir. */
-int reduce_plots(const char *dir, const struct sweep_result *r,
+int reduce_plots(const char *dir, const struct stray_reduce_sweep_result *r,
 		 struct stray_error *err);
 
 #endif /* STRAY_TOOLS_REDUCE_REPORT_H */

@@ -10,8 +10,21 @@
 #include <string.h>
 
 #include "rig/sweep.h"
+#include "stray/errfmt.h"
 
 #define MAX_ANGLES 100000
+
+/* A sweep-store failure as the rig's one error line. */
+static int store_fail(struct rig_error *err, const struct stray_error *se)
+{
+	char line[RIG_ERROR_MSG_MAX];
+	int code = se->code == STRAY_ENOMEM ? RIG_ENOMEM :
+		   se->code == STRAY_EPARSE || se->code == STRAY_ENOTFOUND
+		   ? RIG_EPARSE : RIG_EIO;
+
+	return rig_error_set(err, code, "%s",
+			     stray_error_format(se, line, sizeof(line)));
+}
 
 int rig_sweep_angles(const struct rig_sweep_cfg *cfg, double **angles,
 		     int *n, struct rig_error *err)
@@ -42,9 +55,9 @@ static void seed_settings(struct rig_sweep *sw)
 	size_t i;
 
 	for (i = 0; i < sw->mf.n; i++) {
-		const struct rig_frame_meta *m = &sw->mf.rows[i].meta;
+		const struct stray_sweep_entry *m = &sw->mf.e[i];
 
-		if (m->type == RIG_DARK)
+		if (m->type == STRAY_SWEEP_DARK)
 			continue;
 		sw->t_exp_s[m->type] = m->exptime_s;
 		sw->slot[m->type] = slot_of(&sw->lab->cfg->wheel, m->ndtrans);
@@ -55,6 +68,7 @@ int rig_sweep_open(struct rig_sweep *sw, struct rig_lab *lab,
 		   const char *dir, int resume, struct rig_error *err)
 {
 	const struct rig_camera_cfg *cam = &lab->cfg->camera;
+	struct stray_error se;
 	int rc;
 
 	memset(sw, 0, sizeof(*sw));
@@ -69,10 +83,10 @@ int rig_sweep_open(struct rig_sweep *sw, struct rig_lab *lab,
 		rig_sweep_close(sw);
 		return rig_error_set(err, RIG_ENOMEM, "sweep: no memory");
 	}
-	rc = rig_manifest_open(&sw->mf, dir, resume, err);
-	if (rc != RIG_OK) {
+	stray_error_clear(&se);
+	if (stray_sweep_store_open(&sw->mf, dir, resume, &se) != STRAY_OK) {
 		rig_sweep_close(sw);
-		return rc;
+		return store_fail(err, &se);
 	}
 	seed_settings(sw);
 	sw->done_at_open = (long)sw->mf.n;
@@ -96,15 +110,15 @@ static int slot_of(const struct rig_wheel_cfg *w, double nd)
 static int lit_setting(struct rig_sweep *sw, int type, double theta,
 		       struct rig_error *err)
 {
-	const struct rig_manifest_row *first;
+	const struct stray_sweep_entry *first;
 	int rc;
 
 	if (sw->have[type])
 		return RIG_OK;
-	if (rig_manifest_count(&sw->mf, theta, type, &first) > 0) {
-		sw->t_exp_s[type] = first->meta.exptime_s;
+	if (stray_sweep_manifest_count(&sw->mf, theta, type, &first) > 0) {
+		sw->t_exp_s[type] = first->exptime_s;
 		sw->slot[type] = slot_of(&sw->lab->cfg->wheel,
-					 first->meta.ndtrans);
+					 first->ndtrans);
 	} else {
 		if (!(sw->t_exp_s[type] > 0))
 			sw->t_exp_s[type] = sw->cfg->t_init_s;
@@ -121,35 +135,39 @@ static int take(struct rig_sweep *sw, int type, int seq, double t_exp_s,
 		struct rig_error *err)
 {
 	struct rig_lab *lab = sw->lab;
-	struct rig_manifest_row row;
+	struct stray_sweep_frame f;
+	struct stray_sweep_image im;
+	struct stray_error se;
 	int slot = lab->wheel.slot, rc;
 
 	rc = rig_lab_illuminate(lab, type, err);
-	if (rc == RIG_OK && type != RIG_DARK)
+	if (rc == RIG_OK && type != STRAY_SWEEP_DARK)
 		rc = rig_lab_wheel(lab, slot = sw->slot[type], err);
 	if (rc == RIG_OK)
 		rc = rig_lab_capture(lab, t_exp_s, &sw->img, err);
-	memset(&row, 0, sizeof(row));
-	row.meta.has_monitor = lab->cfg->monitor.enabled;
-	if (rc == RIG_OK && row.meta.has_monitor)
-		rc = rig_lab_monitor(lab, &row.meta.monitor, err);
+	memset(&f, 0, sizeof(f));
+	f.has_monitor = lab->cfg->monitor.enabled;
+	if (rc == RIG_OK && f.has_monitor)
+		rc = rig_lab_monitor(lab, &f.monitor, err);
 	if (rc != RIG_OK)
 		return rc;
-	row.meta.type = type;
-	row.meta.angle_deg = sw->angles[sw->i_angle];
-	row.meta.exptime_s = sw->img.t_exp_s;
-	row.meta.ndtrans = lab->cfg->wheel.trans[slot < 0 ? 0 : slot];
-	row.meta.seqnum = seq;
-	row.meta.sat_dn = lab->cfg->camera.sat_dn;
-	row.meta.full_frame = sw->img.n_rows == RIG_FL_SENSOR_ROWS;
-	rig_frame_filename(&row.meta, row.file, sizeof(row.file));
-	rc = rig_fits_write(sw->mf.dir, row.file, &sw->img, &row.meta,
-			    row.sha256, err);
-	if (rc == RIG_OK)
-		rc = rig_manifest_append(&sw->mf, &row, err);
-	if (rc == RIG_OK)
-		sw->taken++;
-	return rc;
+	f.type = type;
+	f.angle_deg = sw->angles[sw->i_angle];
+	f.exptime_s = sw->img.t_exp_s;
+	f.ndtrans = lab->cfg->wheel.trans[slot < 0 ? 0 : slot];
+	f.seqnum = seq;
+	f.sat_dn = lab->cfg->camera.sat_dn;
+	f.full_frame = sw->img.n_rows == RIG_FL_SENSOR_ROWS;
+	im.n_rows = (size_t)sw->img.n_rows;
+	im.n_cols = (size_t)sw->img.n_cols;
+	im.col0 = sw->img.col0;
+	im.rows = sw->img.rows;
+	im.px = sw->img.px;
+	stray_error_clear(&se);
+	if (stray_sweep_store_append(&sw->mf, &f, &im, &se) != STRAY_OK)
+		return store_fail(err, &se);
+	sw->taken++;
+	return RIG_OK;
 }
 
 /* Exposures the darks at this angle must match: FULL's, then AMBIENT's
@@ -157,12 +175,12 @@ static int take(struct rig_sweep *sw, int type, int seq, double t_exp_s,
 static int dark_exposures(const struct rig_sweep *sw, double theta,
 			  double t[2])
 {
-	const struct rig_manifest_row *f, *a;
+	const struct stray_sweep_entry *f, *a;
 
-	rig_manifest_count(&sw->mf, theta, RIG_FULL, &f);
-	rig_manifest_count(&sw->mf, theta, RIG_AMBIENT, &a);
-	t[0] = f->meta.exptime_s;
-	t[1] = a->meta.exptime_s;
+	stray_sweep_manifest_count(&sw->mf, theta, STRAY_SWEEP_FULL, &f);
+	stray_sweep_manifest_count(&sw->mf, theta, STRAY_SWEEP_AMBIENT, &a);
+	t[0] = f->exptime_s;
+	t[1] = a->exptime_s;
 	return fabs(t[0] - t[1]) < 1e-9 ? 1 : 2;
 }
 
@@ -176,12 +194,12 @@ static void next_angle(struct rig_sweep *sw)
 /* The frame to take next at the current angle; 0 when all are taken. */
 static int plan(struct rig_sweep *sw, int *type, int *seq, double *t)
 {
-	static const int lit[2] = { RIG_FULL, RIG_AMBIENT };
+	static const int lit[2] = { STRAY_SWEEP_FULL, STRAY_SWEEP_AMBIENT };
 	double theta = sw->angles[sw->i_angle], td[2];
 	int reps = sw->cfg->repeats, k, n, nd;
 
 	for (k = 0; k < 2; k++) {
-		n = rig_manifest_count(&sw->mf, theta, lit[k], NULL);
+		n = stray_sweep_manifest_count(&sw->mf, theta, lit[k], NULL);
 		if (n < reps) {
 			*type = lit[k];
 			*seq = n;
@@ -190,10 +208,10 @@ static int plan(struct rig_sweep *sw, int *type, int *seq, double *t)
 		}
 	}
 	nd = dark_exposures(sw, theta, td);
-	n = rig_manifest_count(&sw->mf, theta, RIG_DARK, NULL);
+	n = stray_sweep_manifest_count(&sw->mf, theta, STRAY_SWEEP_DARK, NULL);
 	if (n >= reps * nd)
 		return 0;
-	*type = RIG_DARK;
+	*type = STRAY_SWEEP_DARK;
 	*seq = n;
 	*t = td[n / reps];
 	return 1;
@@ -216,7 +234,7 @@ static int step_once(struct rig_sweep *sw, struct rig_error *err)
 			return rc;
 		sw->at_angle = 1;
 	}
-	if (type != RIG_DARK) {
+	if (type != STRAY_SWEEP_DARK) {
 		rc = rig_lab_illuminate(sw->lab, type, err);
 		if (rc == RIG_OK)
 			rc = lit_setting(sw, type, sw->angles[sw->i_angle],
@@ -255,8 +273,10 @@ void rig_sweep_progress(const struct rig_sweep *sw, struct rig_progress *p)
 	 * until their exposures are known. */
 	for (k = 0; k < sw->n_angles; k++) {
 		double theta = sw->angles[k];
-		int nf = rig_manifest_count(&sw->mf, theta, RIG_FULL, NULL);
-		int na = rig_manifest_count(&sw->mf, theta, RIG_AMBIENT, NULL);
+		int nf = stray_sweep_manifest_count(&sw->mf, theta,
+						    STRAY_SWEEP_FULL, NULL);
+		int na = stray_sweep_manifest_count(&sw->mf, theta,
+						    STRAY_SWEEP_AMBIENT, NULL);
 		double td[2];
 
 		p->total += reps * 2 + (nf >= reps && na >= reps
@@ -289,7 +309,7 @@ int rig_sweep_run(struct rig_sweep *sw, FILE *out, struct rig_error *err)
 
 void rig_sweep_close(struct rig_sweep *sw)
 {
-	rig_manifest_close(&sw->mf);
+	stray_sweep_manifest_free(&sw->mf);
 	free(sw->angles);
 	free(sw->img.px);
 	sw->angles = NULL;

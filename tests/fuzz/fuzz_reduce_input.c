@@ -10,17 +10,16 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sweep_fits.h"
-#include "sweep_manifest.h"
+#include "stray/sweep_store.h"
 
 static void manifest(const uint8_t *data, size_t size)
 {
-	struct sweep_manifest m;
+	struct stray_sweep_manifest m;
 	struct stray_error err;
 	size_t i;
 
 	stray_error_clear(&err);
-	if (sweep_manifest_parse("fuzz.csv", (const char *)data, size, &m,
+	if (stray_sweep_manifest_parse("fuzz.csv", (const char *)data, size, &m,
 				 &err) != STRAY_OK)
 		return;
 	for (i = 0; i < m.n; i++)
@@ -28,28 +27,29 @@ static void manifest(const uint8_t *data, size_t size)
 		      m.e[i].ndtrans <= 1.0 && fabs(m.e[i].angle_deg) <= 180.0 &&
 		      strlen(m.e[i].sha256) == 64 && m.e[i].file[0] != '/'))
 			__builtin_trap();
-	sweep_manifest_free(&m);
+	stray_sweep_manifest_free(&m);
 }
 
 static void frame(const uint8_t *data, size_t size)
 {
-	static struct sweep_fits f;
+	static struct stray_sweep_fits f;
 	struct stray_error err;
 	uint16_t *pix;
 
 	stray_error_clear(&err);
-	if (sweep_fits_open_mem("fuzz.fits", data, size, &f, &err) == STRAY_OK) {
+	if (stray_sweep_fits_open_mem("fuzz.fits", data, size, &f,
+				      &err) == STRAY_OK) {
 		if (!(f.h.exptime_s > 0.0 && f.h.ndtrans > 0.0 &&
 		      f.h.ndtrans <= 1.0 && f.h.n_rows >= 1 &&
-		      f.h.n_rows <= SWEEP_ROWS_MAX))
+		      f.h.n_rows <= STRAY_SWEEP_ROWS_MAX))
 			__builtin_trap();
 		if (f.h.n_rows * f.h.n_cols <= (1u << 20)) {
 			pix = malloc(f.h.n_rows * f.h.n_cols * sizeof(*pix));
 			if (pix)
-				(void)sweep_fits_read(&f, pix, &err);
+				(void)stray_sweep_fits_read(&f, pix, &err);
 			free(pix);
 		}
-		sweep_fits_close(&f);
+		stray_sweep_fits_close(&f);
 	}
 }
 

@@ -14,7 +14,7 @@
 #include <unistd.h>
 
 #include "stray/errfmt.h"
-#include "sweep_manifest.h"
+#include "stray/sweep_store.h"
 #include "test_util.h"
 
 #define HDR "file,frametyp,angle_deg,exptime_s,ndtrans,seqnum,sha256\n"
@@ -22,16 +22,17 @@
 	"a7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad"
 #define SHA "b" SHA_TAIL
 
-static int parse(const char *text, struct sweep_manifest *m,
+static int parse(const char *text, struct stray_sweep_manifest *m,
 		 struct stray_error *err)
 {
 	stray_error_clear(err);
-	return sweep_manifest_parse("manifest.csv", text, strlen(text), m, err);
+	return stray_sweep_manifest_parse("manifest.csv", text, strlen(text), m,
+					  err);
 }
 
 static void test_manifest_good_rows(void **state)
 {
-	struct sweep_manifest m;
+	struct stray_sweep_manifest m;
 	struct stray_error err;
 	const char *text =
 		"# sweep 2026-11-20\n"
@@ -44,19 +45,19 @@ static void test_manifest_good_rows(void **state)
 	assert_int_equal(parse(text, &m, &err), STRAY_OK);
 	assert_int_equal(m.n, 2);
 	assert_string_equal(m.e[1].file, "f 1.fits");
-	assert_int_equal(m.e[1].type, SWEEP_FULL);
+	assert_int_equal(m.e[1].type, STRAY_SWEEP_FULL);
 	assert_near(m.e[1].angle_deg, -12.5, 0);
 	assert_near(m.e[1].ndtrans, 0.01, 0);
 	assert_int_equal(m.e[1].seqnum, 2);
 	assert_int_equal(m.e[1].line, 5);
 	assert_string_equal(m.e[0].sha256, SHA);
-	sweep_manifest_free(&m);
+	stray_sweep_manifest_free(&m);
 }
 
 /* Each bad manifest: the status, the line and the column named. */
 static void expect(const char *text, int code, long line, const char *field)
 {
-	struct sweep_manifest m;
+	struct stray_sweep_manifest m;
 	struct stray_error err;
 	char msg[512];
 
@@ -104,9 +105,9 @@ static void test_manifest_sha256_vector(void **state)
 	assert_int_equal(write(fd, "abc", 3), 3);
 	close(fd);
 	stray_error_clear(&err);
-	assert_int_equal(sweep_sha256_check(path, SHA, &err), STRAY_OK);
+	assert_int_equal(stray_sweep_sha256_check(path, SHA, &err), STRAY_OK);
 	/* one digit changed: "ba78..." -> "ca78..." */
-	assert_int_equal(sweep_sha256_check(path, "c" SHA_TAIL, &err),
+	assert_int_equal(stray_sweep_sha256_check(path, "c" SHA_TAIL, &err),
 			 STRAY_EINVAL);
 	assert_string_equal(err.field, "sha256");
 	assert_string_equal(err.text, SHA);

@@ -1,8 +1,9 @@
 /*
  * rig_test_util.h - shared helpers of the rig tests: a small simulated
  * lab config, temporary folders, and an independent check of a sweep
- * folder (every manifest row against its FITS header and file, groups
- * complete, darks matching the lit exposures, nothing extra on disk).
+ * folder read through the sweep store's reader (every manifest row
+ * against its FITS header and file and its SHA-256, groups complete,
+ * darks matching the lit exposures, nothing extra on disk).
  */
 #ifndef RIG_TEST_UTIL_H
 #define RIG_TEST_UTIL_H
@@ -16,7 +17,8 @@
 #include <unistd.h>
 
 #include "rig/config.h"
-#include "rig/store.h"
+#include "stray/errfmt.h"
+#include "stray/sweep_store.h"
 #include "rig/sweep.h"
 
 /* A 4-row x 128-column window, angles 0..30 step 10, 2 repeats. */
@@ -58,7 +60,7 @@ struct sweep_check {
 };
 
 static inline int fits_key_mismatch(const char *path,
-				    const struct rig_manifest_row *r)
+				    const struct stray_sweep_entry *r)
 {
 	fitsfile *f;
 	char type[FLEN_VALUE];
@@ -73,10 +75,10 @@ static inline int fits_key_mismatch(const char *path,
 	fits_read_key(f, TDOUBLE, "NDTRANS", &nd, NULL, &st);
 	fits_read_key(f, TINT, "SEQNUM", &seq, NULL, &st);
 	fits_read_key(f, TINT, "SATLEVEL", &sat, NULL, &st);
-	bad = st != 0 || strcmp(type, rig_frametyp_name(r->meta.type)) ||
-	      fabs(angle - r->meta.angle_deg) > 1e-4 ||
-	      fabs(t - r->meta.exptime_s) > 1e-7 ||
-	      fabs(nd / r->meta.ndtrans - 1) > 1e-5 || seq != r->meta.seqnum ||
+	bad = st != 0 || strcmp(type, stray_sweep_frametyp_name(r->type)) ||
+	      fabs(angle - r->angle_deg) > 1e-4 ||
+	      fabs(t - r->exptime_s) > 1e-7 ||
+	      fabs(nd / r->ndtrans - 1) > 1e-5 || seq != r->seqnum ||
 	      sat != 4095;
 	st = 0;
 	fits_close_file(f, &st);
@@ -84,56 +86,58 @@ static inline int fits_key_mismatch(const char *path,
 }
 
 /* Count how many rows of (angle, type) have seqnum k. */
-static inline int n_with_seq(const struct rig_manifest *mf, double a, int type,
+static inline int n_with_seq(const struct stray_sweep_manifest *mf, double a,
+			     int type,
 			     int k)
 {
 	size_t i;
 	int n = 0;
 
 	for (i = 0; i < mf->n; i++)
-		n += mf->rows[i].meta.type == type &&
-		     fabs(mf->rows[i].meta.angle_deg - a) < 1e-6 &&
-		     mf->rows[i].meta.seqnum == k;
+		n += mf->e[i].type == type &&
+		     fabs(mf->e[i].angle_deg - a) < 1e-6 &&
+		     mf->e[i].seqnum == k;
 	return n;
 }
 
-static inline int check_angle(const struct rig_manifest *mf, double a,
+static inline int check_angle(const struct stray_sweep_manifest *mf, double a,
 			      int reps)
 {
-	const struct rig_manifest_row *f, *am;
+	const struct stray_sweep_entry *f, *am;
 	int bad = 0, k, n_dark, t;
 
-	for (t = RIG_AMBIENT; t <= RIG_FULL; t++)
+	for (t = STRAY_SWEEP_AMBIENT; t <= STRAY_SWEEP_FULL; t++)
 		for (k = 0; k < reps; k++)
 			bad += n_with_seq(mf, a, t, k) != 1;
-	if (rig_manifest_count(mf, a, RIG_FULL, &f) != reps ||
-	    rig_manifest_count(mf, a, RIG_AMBIENT, &am) != reps)
+	if (stray_sweep_manifest_count(mf, a, STRAY_SWEEP_FULL, &f) != reps ||
+	    stray_sweep_manifest_count(mf, a, STRAY_SWEEP_AMBIENT, &am) != reps)
 		return bad + 1;
-	n_dark = fabs(f->meta.exptime_s - am->meta.exptime_s) < 1e-9 ? 1 : 2;
-	bad += rig_manifest_count(mf, a, RIG_DARK, NULL) != reps * n_dark;
+	n_dark = fabs(f->exptime_s - am->exptime_s) < 1e-9 ? 1 : 2;
+	bad += stray_sweep_manifest_count(mf, a, STRAY_SWEEP_DARK,
+					  NULL) != reps * n_dark;
 	for (k = 0; k < reps * n_dark; k++) {
 		size_t i;
-		double want = k < reps ? f->meta.exptime_s : am->meta.exptime_s;
+		double want = k < reps ? f->exptime_s : am->exptime_s;
 
-		bad += n_with_seq(mf, a, RIG_DARK, k) != 1;
+		bad += n_with_seq(mf, a, STRAY_SWEEP_DARK, k) != 1;
 		for (i = 0; i < mf->n; i++)
-			if (mf->rows[i].meta.type == RIG_DARK &&
-			    fabs(mf->rows[i].meta.angle_deg - a) < 1e-6 &&
-			    mf->rows[i].meta.seqnum == k)
-				bad += fabs(mf->rows[i].meta.exptime_s -
+			if (mf->e[i].type == STRAY_SWEEP_DARK &&
+			    fabs(mf->e[i].angle_deg - a) < 1e-6 &&
+			    mf->e[i].seqnum == k)
+				bad += fabs(mf->e[i].exptime_s -
 					    want) > 1e-9;
 	}
 	/* Every lit frame of a group shares one exposure and ND. */
 	for (k = 0; k < (int)mf->n; k++) {
-		const struct rig_manifest_row *r = &mf->rows[k];
-		const struct rig_manifest_row *g = r->meta.type == RIG_FULL ? f
+		const struct stray_sweep_entry *r = &mf->e[k];
+		const struct stray_sweep_entry *g = r->type == STRAY_SWEEP_FULL ? f
 						   : am;
 
-		if (r->meta.type == RIG_DARK ||
-		    fabs(r->meta.angle_deg - a) > 1e-6)
+		if (r->type == STRAY_SWEEP_DARK ||
+		    fabs(r->angle_deg - a) > 1e-6)
 			continue;
-		bad += r->meta.exptime_s != g->meta.exptime_s ||
-		       r->meta.ndtrans != g->meta.ndtrans;
+		bad += r->exptime_s != g->exptime_s ||
+		       r->ndtrans != g->ndtrans;
 	}
 	return bad;
 }
@@ -157,7 +161,8 @@ static inline struct sweep_check check_sweep(const char *dir,
 					     const struct rig_config *cfg)
 {
 	struct sweep_check c = { 0, 0 };
-	struct rig_manifest mf;
+	struct stray_sweep_manifest mf;
+	struct stray_error se;
 	struct rig_error err;
 	double *angles;
 	int n_angles, k;
@@ -165,15 +170,22 @@ static inline struct sweep_check check_sweep(const char *dir,
 	char path[1024];
 
 	rig_error_clear(&err);
-	if (rig_manifest_open(&mf, dir, 1, &err) != RIG_OK) {
-		fprintf(stderr, "check: %s\n", err.msg);
+	stray_error_clear(&se);
+	if (stray_sweep_manifest_load(dir, &mf, &se) != STRAY_OK) {
+		fprintf(stderr, "check: %s\n",
+			stray_error_format(&se, path, sizeof(path)));
 		c.bad = 1;
 		return c;
 	}
 	c.rows = (int)mf.n;
 	for (i = 0; i < mf.n; i++) {
-		snprintf(path, sizeof(path), "%s/%s", dir, mf.rows[i].file);
-		if (fits_key_mismatch(path, &mf.rows[i])) {
+		snprintf(path, sizeof(path), "%s/%s", dir, mf.e[i].file);
+		if (stray_sweep_sha256_check(path, mf.e[i].sha256, NULL) !=
+		    STRAY_OK) {
+			fprintf(stderr, "check: %s: sha256 differs\n", path);
+			c.bad++;
+		}
+		if (fits_key_mismatch(path, &mf.e[i])) {
 			fprintf(stderr, "check: %s: header disagrees\n", path);
 			c.bad++;
 		}
@@ -191,8 +203,9 @@ static inline struct sweep_check check_sweep(const char *dir,
 		long in_plan = 0;
 
 		for (k = 0; k < n_angles; k++)
-			for (i = 0; i < RIG_FRAMETYP_COUNT; i++)
-				in_plan += rig_manifest_count(&mf, angles[k],
+			for (i = 0; i < STRAY_SWEEP_FRAMETYP_COUNT; i++)
+				in_plan += stray_sweep_manifest_count(&mf,
+								      angles[k],
 							      (int)i, NULL);
 		if (in_plan != c.rows) {
 			fprintf(stderr, "check: %d rows, %ld in plan\n",
@@ -206,7 +219,7 @@ static inline struct sweep_check check_sweep(const char *dir,
 		c.bad++;
 	}
 	free(angles);
-	rig_manifest_close(&mf);
+	stray_sweep_manifest_free(&mf);
 	return c;
 }
 

@@ -141,13 +141,35 @@ static void test_resume_repairs_torn_tail(void **state)
 	free(dir);
 }
 
+/* rig_sweep_open's code when resuming dir. */
+static int resume_code(const struct rig_config *cfg, const char *dir)
+{
+	struct rig_sim sim;
+	struct rig_hal hal;
+	struct rig_lab lab;
+	struct rig_sweep sw;
+	struct rig_error err;
+	int rc;
+
+	rig_error_clear(&err);
+	rig_sim_init(&sim, cfg, &hal);
+	assert_int_equal(rig_lab_open(&lab, cfg, &hal, &err), RIG_OK);
+	rc = rig_sweep_open(&sw, &lab, dir, 1, &err);
+	print_message("resume: %s\n", err.msg);
+	if (rc == RIG_OK)
+		rig_sweep_close(&sw);
+	rig_lab_close(&lab);
+	rig_sim_fini(&sim);
+	return rc;
+}
+
 /* A manifest row whose file changed is refused, never silently reused. */
 static void test_resume_refuses_hash_mismatch(void **state)
 {
 	struct rig_config cfg;
-	struct rig_manifest mf;
-	struct rig_error err;
-	char *dir = temp_dir(), cmd[1200];
+	struct stray_sweep_manifest mf;
+	struct stray_error err;
+	char *dir = temp_dir(), cmd[1200], msg[400];
 
 	(void)state;
 	small_config(&cfg);
@@ -155,11 +177,39 @@ static void test_resume_refuses_hash_mismatch(void **state)
 	snprintf(cmd, sizeof(cmd), "printf X >> '%s'/a+010.000_DARK_000.fits",
 		 dir);
 	assert_int_equal(system(cmd), 0);
-	rig_error_clear(&err);
-	assert_int_equal(rig_manifest_open(&mf, dir, 1, &err), RIG_EIO);
-	assert_non_null(strstr(err.msg, "a+010.000_DARK_000.fits"));
-	assert_non_null(strstr(err.msg, "sha256"));
-	rig_manifest_close(&mf);
+	stray_error_clear(&err);
+	assert_int_not_equal(stray_sweep_store_open(&mf, dir, 1, &err),
+			     STRAY_OK);
+	stray_error_format(&err, msg, sizeof(msg));
+	assert_non_null(strstr(msg, "a+010.000_DARK_000.fits"));
+	assert_non_null(strstr(msg, "sha256"));
+	stray_sweep_manifest_free(&mf);
+	/* The sweep refuses the resume as an I/O fault (strayrigd exit 1). */
+	assert_int_equal(resume_code(&cfg, dir), RIG_EIO);
+	remove_tree(dir);
+	free(dir);
+}
+
+/* One writer per sweep folder: a second one is refused while the first
+ * holds it, and admitted once it let go. */
+static void test_store_one_writer(void **state)
+{
+	struct stray_sweep_manifest a, b;
+	struct stray_error err;
+	char *dir = temp_dir(), sub[600], msg[400];
+
+	(void)state;
+	snprintf(sub, sizeof(sub), "%s/s", dir);
+	stray_error_clear(&err);
+	assert_int_equal(stray_sweep_store_open(&a, sub, 0, &err), STRAY_OK);
+	assert_int_equal(stray_sweep_store_open(&b, sub, 1, &err), STRAY_EIO);
+	stray_error_format(&err, msg, sizeof(msg));
+	assert_non_null(strstr(msg, "another writer"));
+	stray_sweep_manifest_free(&a);
+	stray_error_clear(&err);
+	assert_int_equal(stray_sweep_store_open(&b, sub, 1, &err), STRAY_OK);
+	assert_int_equal(b.n, 0);
+	stray_sweep_manifest_free(&b);
 	remove_tree(dir);
 	free(dir);
 }
@@ -236,6 +286,7 @@ int main(void)
 		cmocka_unit_test(test_resume_after_kills_at_device_events),
 		cmocka_unit_test(test_resume_repairs_torn_tail),
 		cmocka_unit_test(test_resume_refuses_hash_mismatch),
+		cmocka_unit_test(test_store_one_writer),
 		cmocka_unit_test(test_resume_daemon_killed_by_parent),
 	};
 

@@ -109,7 +109,8 @@ static double frame_sum(const char *dir, const char *file)
 }
 
 /* Mean over the group's repeats of the summed frame, and its t, nd. */
-static double group_sum(const struct rig_manifest *mf, double a, int type,
+static double group_sum(const struct stray_sweep_manifest *mf, double a,
+			int type,
 			double t_exp_s, double *t_out, double *nd_out)
 {
 	size_t i;
@@ -117,15 +118,15 @@ static double group_sum(const struct rig_manifest *mf, double a, int type,
 	int n = 0;
 
 	for (i = 0; i < mf->n; i++) {
-		const struct rig_manifest_row *row = &mf->rows[i];
+		const struct stray_sweep_entry *row = &mf->e[i];
 
-		if (row->meta.type != type ||
-		    fabs(row->meta.angle_deg - a) > 1e-6 ||
-		    (t_exp_s > 0 && fabs(row->meta.exptime_s - t_exp_s) > 1e-9))
+		if (row->type != type ||
+		    fabs(row->angle_deg - a) > 1e-6 ||
+		    (t_exp_s > 0 && fabs(row->exptime_s - t_exp_s) > 1e-9))
 			continue;
 		s += frame_sum(mf->dir, row->file);
-		*t_out = row->meta.exptime_s;
-		*nd_out = row->meta.ndtrans;
+		*t_out = row->exptime_s;
+		*nd_out = row->ndtrans;
 		n++;
 	}
 	assert_true(n > 0);
@@ -133,22 +134,22 @@ static double group_sum(const struct rig_manifest *mf, double a, int type,
 }
 
 /* eq. 3.6: J = L_ful/(t1 nd1) - L_amb/(t2 nd2); the darks matched on t. */
-static double true_response(const struct rig_manifest *mf, double a)
+static double true_response(const struct stray_sweep_manifest *mf, double a)
 {
 	double t1, nd1, t2, nd2, d, dummy, ful, amb;
 
-	ful = group_sum(mf, a, RIG_FULL, -1, &t1, &nd1);
-	amb = group_sum(mf, a, RIG_AMBIENT, -1, &t2, &nd2);
-	d = group_sum(mf, a, RIG_DARK, t1, &dummy, &dummy);
+	ful = group_sum(mf, a, STRAY_SWEEP_FULL, -1, &t1, &nd1);
+	amb = group_sum(mf, a, STRAY_SWEEP_AMBIENT, -1, &t2, &nd2);
+	d = group_sum(mf, a, STRAY_SWEEP_DARK, t1, &dummy, &dummy);
 	ful -= d;
-	d = group_sum(mf, a, RIG_DARK, t2, &dummy, &dummy);
+	d = group_sum(mf, a, STRAY_SWEEP_DARK, t2, &dummy, &dummy);
 	amb -= d;
 	return ful / (t1 * nd1) - amb / (t2 * nd2);
 }
 
 static void test_sweep_recovers_lens_curve(void **state)
 {
-	struct rig_manifest mf;
+	struct stray_sweep_manifest mf;
 	struct run r;
 	double j0, a;
 
@@ -158,7 +159,8 @@ static void test_sweep_recovers_lens_curve(void **state)
 	r.cfg.sim.vlab.hot_frac = 0;
 	run_sweep(&r);
 	assert_complete(&r);
-	assert_int_equal(rig_manifest_open(&mf, r.dir, 1, &r.err), RIG_OK);
+	assert_int_equal(stray_sweep_manifest_load(r.dir, &mf, NULL),
+			 STRAY_OK);
 	j0 = true_response(&mf, 0);
 	for (a = 10; a <= 30; a += 10) {
 		const struct rig_camera_cfg *c = &r.cfg.camera;
@@ -172,7 +174,7 @@ static void test_sweep_recovers_lens_curve(void **state)
 			      truth);
 		assert_float_equal(got / truth, 1.0, 0.02);
 	}
-	rig_manifest_close(&mf);
+	stray_sweep_manifest_free(&mf);
 	end_run(&r);
 }
 
@@ -193,23 +195,25 @@ static double frame_monitor(const char *dir, const char *file)
 }
 
 /* eq. 3.6 with each lit frame's light divided by its lamp level. */
-static double j_monitored(const struct rig_manifest *mf, double a, int norm)
+static double j_monitored(const struct stray_sweep_manifest *mf, double a,
+			  int norm)
 {
 	double j = 0, t, nd, dummy, dark[2];
 	int type, k;
 	size_t i;
 
-	for (k = 0, type = RIG_FULL; k < 2; k++, type = RIG_AMBIENT) {
+	for (k = 0, type = STRAY_SWEEP_FULL; k < 2; k++,
+	     type = STRAY_SWEEP_AMBIENT) {
 		double sum = 0;
 		int n = 0;
 
 		group_sum(mf, a, type, -1, &t, &nd);
-		dark[k] = group_sum(mf, a, RIG_DARK, t, &dummy, &dummy);
+		dark[k] = group_sum(mf, a, STRAY_SWEEP_DARK, t, &dummy, &dummy);
 		for (i = 0; i < mf->n; i++) {
-			const struct rig_manifest_row *r = &mf->rows[i];
+			const struct stray_sweep_entry *r = &mf->e[i];
 
-			if (r->meta.type != type ||
-			    fabs(r->meta.angle_deg - a) > 1e-6)
+			if (r->type != type ||
+			    fabs(r->angle_deg - a) > 1e-6)
 				continue;
 			sum += (frame_sum(mf->dir, r->file) - dark[k]) /
 			       (norm ? frame_monitor(mf->dir, r->file) : 1);
@@ -224,7 +228,7 @@ static double j_monitored(const struct rig_manifest *mf, double a, int norm)
  * the monitor photodiode's MONITOR keyword takes it out again. */
 static void test_sweep_monitor_corrects_lamp_drift(void **state)
 {
-	struct rig_manifest mf;
+	struct stray_sweep_manifest mf;
 	struct run r;
 	double worst_raw = 0, worst_norm = 0, a;
 
@@ -235,7 +239,8 @@ static void test_sweep_monitor_corrects_lamp_drift(void **state)
 	r.cfg.monitor.enabled = 1;
 	run_sweep(&r);
 	assert_complete(&r);
-	assert_int_equal(rig_manifest_open(&mf, r.dir, 1, &r.err), RIG_OK);
+	assert_int_equal(stray_sweep_manifest_load(r.dir, &mf, NULL),
+			 STRAY_OK);
 	for (a = 10; a <= 30; a += 10) {
 		const struct rig_camera_cfg *c = &r.cfg.camera;
 		double truth = rig_vlab_lens_alpha(&r.cfg.sim.vlab, a, c->rows,
@@ -251,13 +256,13 @@ static void test_sweep_monitor_corrects_lamp_drift(void **state)
 	}
 	assert_true(worst_raw > 0.05);		/* the drift is visible */
 	assert_true(worst_norm < 0.01);		/* and removed */
-	rig_manifest_close(&mf);
+	stray_sweep_manifest_free(&mf);
 	end_run(&r);
 }
 
 static void test_sweep_exposure_below_saturation(void **state)
 {
-	struct rig_manifest mf;
+	struct stray_sweep_manifest mf;
 	struct run r;
 	size_t i;
 
@@ -265,17 +270,18 @@ static void test_sweep_exposure_below_saturation(void **state)
 	small_config(&r.cfg);
 	run_sweep(&r);
 	assert_complete(&r);
-	assert_int_equal(rig_manifest_open(&mf, r.dir, 1, &r.err), RIG_OK);
+	assert_int_equal(stray_sweep_manifest_load(r.dir, &mf, NULL),
+			 STRAY_OK);
 	for (i = 0; i < mf.n; i++) {
-		const struct rig_frame_meta *m = &mf.rows[i].meta;
+		const struct stray_sweep_entry *m = &mf.e[i];
 
 		assert_true(m->exptime_s >= r.cfg.sweep.t_min_s - 1e-9);
 		assert_true(m->exptime_s <= r.cfg.sweep.t_max_s + 1e-9);
 	}
 	/* On axis the bright beam needs an ND filter (lamp 4e5 DN/s). */
-	assert_true(mf.rows[0].meta.type == RIG_FULL &&
-		    mf.rows[0].meta.ndtrans < 1);
-	rig_manifest_close(&mf);
+	assert_true(mf.e[0].type == STRAY_SWEEP_FULL &&
+		    mf.e[0].ndtrans < 1);
+	stray_sweep_manifest_free(&mf);
 	end_run(&r);
 }
 
@@ -323,7 +329,8 @@ static void test_sweep_stops_safe_on_lasting_disconnect(void **state)
 	assert_non_null(strstr(r.err.msg, "camera"));
 	assert_null(strchr(r.err.msg, '\n'));
 	assert_lab_safe(&r);
-	assert_int_equal(check_sweep(r.dir, &r.cfg).bad > 0, 1);	/* partial */
+	assert_int_equal(check_sweep(r.dir, &r.cfg).bad > 0,
+			 1);	/* partial */
 	end_run(&r);
 }
 

@@ -15,7 +15,7 @@
 #include <stdio.h>
 
 #include "rig/lab.h"
-#include "rig/store.h"
+#include "stray/sweep_store.h"
 
 struct rig_progress {
 	long done, total;	/* frames (total estimated until known) */
@@ -27,13 +27,14 @@ struct rig_progress {
 struct rig_sweep {
 	struct rig_lab *lab;
 	const struct rig_sweep_cfg *cfg;
-	struct rig_manifest mf;
+	struct stray_sweep_manifest mf;	/* the folder, written through the
+					 * sweep store (libstray/sweep) */
 	double *angles;
 	int n_angles, i_angle;
 	int at_angle;		/* stage verified at angles[i_angle] */
-	int have[RIG_FRAMETYP_COUNT];	/* exposure found at this angle */
-	double t_exp_s[RIG_FRAMETYP_COUNT];
-	int slot[RIG_FRAMETYP_COUNT];
+	int have[STRAY_SWEEP_FRAMETYP_COUNT];	/* exposure found at this angle */
+	double t_exp_s[STRAY_SWEEP_FRAMETYP_COUNT];
+	int slot[STRAY_SWEEP_FRAMETYP_COUNT];
 	struct rig_image img;
 	long done_at_open, taken;
 	double t_open_s;

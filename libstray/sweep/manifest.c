@@ -1,26 +1,28 @@
 /*
- * sweep_manifest.c - manifest.csv of a sweep folder through libcsv, and
- * the frames' SHA-256 through OpenSSL's EVP digest interface.
+ * manifest.c - manifest.csv of a sweep folder (sweep_store.h) read
+ * through libcsv, and the rows of one (angle, type) counted.
  */
 #include <csv.h>
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
-#include <openssl/evp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "stray/errfmt.h"
 #include "stray/file.h"
-#include "sweep_manifest.h"
+#include "stray/sweep_store.h"
+#include "sweep_priv.h"
 
 #define FIELDS_MAX 32
 #define FIELD_LEN_MAX 512
 
 static const char *const columns[] = {
-	"file", "frametyp", "angle_deg", "exptime_s", "ndtrans", "seqnum",
-	"sha256"
+	STRAY_SWEEP_COL_FILE, STRAY_SWEEP_COL_FRAMETYP, STRAY_SWEEP_COL_ANGLE,
+	STRAY_SWEEP_COL_EXPTIME, STRAY_SWEEP_COL_NDTRANS,
+	STRAY_SWEEP_COL_SEQNUM, STRAY_SWEEP_COL_SHA256
 };
 enum { COL_FILE, COL_TYPE, COL_ANGLE, COL_EXP, COL_ND, COL_SEQ, COL_SHA,
        N_COLS };
@@ -74,24 +76,6 @@ static int split(const char *name, long line, const char *s, size_t len,
 	return STRAY_OK;
 }
 
-int sweep_frametyp_parse(const char *text)
-{
-	if (strcmp(text, "DARK") == 0)
-		return SWEEP_DARK;
-	if (strcmp(text, "AMBIENT") == 0)
-		return SWEEP_AMBIENT;
-	if (strcmp(text, "FULL") == 0)
-		return SWEEP_FULL;
-	return -1;
-}
-
-const char *sweep_frametyp_name(int type)
-{
-	static const char *const names[] = { "DARK", "AMBIENT", "FULL" };
-
-	return type >= 0 && type <= SWEEP_FULL ? names[type] : "?";
-}
-
 static int bad_cell(const char *name, long line, const char *col,
 		    const char *reason, const char *text,
 		    struct stray_error *err)
@@ -123,7 +107,7 @@ static int check_sha(const char *name, long line, const char *s,
 		if (!isxdigit((unsigned char)s[i]))
 			break;
 	if (i != 64 || s[64] != '\0')
-		return bad_cell(name, line, "sha256",
+		return bad_cell(name, line, columns[COL_SHA],
 				"is not 64 hexadecimal digits", s, err);
 	return STRAY_OK;
 }
@@ -133,15 +117,15 @@ static int check_file(const char *name, long line, const char *s,
 		      struct stray_error *err)
 {
 	if (*s == '\0' || *s == '/' || strstr(s, "..") ||
-	    strlen(s) >= SWEEP_FILE_MAX)
-		return bad_cell(name, line, "file",
+	    strlen(s) >= STRAY_SWEEP_FILE_MAX)
+		return bad_cell(name, line, columns[COL_FILE],
 				"must be a relative path inside the sweep folder",
 				s, err);
 	return STRAY_OK;
 }
 
 static int take_entry(const char *name, long line, const struct fields *r,
-		      const int *idx, struct sweep_entry *e,
+		      const int *idx, struct stray_sweep_entry *e,
 		      struct stray_error *err)
 {
 	double seq;
@@ -154,32 +138,33 @@ static int take_entry(const char *name, long line, const struct fields *r,
 	strcpy(e->file, r->f[idx[COL_FILE]]);
 	for (i = 0; i < 65; i++)
 		e->sha256[i] = (char)tolower((unsigned char)r->f[idx[COL_SHA]][i]);
-	e->type = sweep_frametyp_parse(r->f[idx[COL_TYPE]]);
+	e->type = stray_sweep_frametyp_parse(r->f[idx[COL_TYPE]]);
 	if (e->type < 0)
-		return bad_cell(name, line, "frametyp",
+		return bad_cell(name, line, columns[COL_TYPE],
 				"must be DARK, AMBIENT or FULL",
 				r->f[idx[COL_TYPE]], err);
-	if ((rc = number(name, line, "angle_deg", r->f[idx[COL_ANGLE]],
+	if ((rc = number(name, line, columns[COL_ANGLE], r->f[idx[COL_ANGLE]],
 			 &e->angle_deg, err)) ||
-	    (rc = number(name, line, "exptime_s", r->f[idx[COL_EXP]],
+	    (rc = number(name, line, columns[COL_EXP], r->f[idx[COL_EXP]],
 			 &e->exptime_s, err)) ||
-	    (rc = number(name, line, "ndtrans", r->f[idx[COL_ND]],
+	    (rc = number(name, line, columns[COL_ND], r->f[idx[COL_ND]],
 			 &e->ndtrans, err)) ||
-	    (rc = number(name, line, "seqnum", r->f[idx[COL_SEQ]], &seq,
+	    (rc = number(name, line, columns[COL_SEQ], r->f[idx[COL_SEQ]], &seq,
 			 err)))
 		return rc;
 	if (fabs(e->angle_deg) > 180.0)
-		return bad_cell(name, line, "angle_deg",
+		return bad_cell(name, line, columns[COL_ANGLE],
 				"must be within -180..180", r->f[idx[COL_ANGLE]],
 				err);
 	if (!(e->exptime_s > 0.0))
-		return bad_cell(name, line, "exptime_s", "must be > 0",
+		return bad_cell(name, line, columns[COL_EXP], "must be > 0",
 				r->f[idx[COL_EXP]], err);
 	if (!(e->ndtrans > 0.0 && e->ndtrans <= 1.0))
-		return bad_cell(name, line, "ndtrans", "must be in (0, 1]",
+		return bad_cell(name, line, columns[COL_ND],
+				"must be in (0, 1]",
 				r->f[idx[COL_ND]], err);
 	if (seq < 0 || seq > 1e9 || seq != floor(seq))
-		return bad_cell(name, line, "seqnum",
+		return bad_cell(name, line, columns[COL_SEQ],
 				"must be a whole number >= 0", r->f[idx[COL_SEQ]],
 				err);
 	e->seqnum = (long)seq;
@@ -205,15 +190,16 @@ static int take_header(const char *name, long line, const struct fields *r,
 	return STRAY_OK;
 }
 
-static int push(struct sweep_manifest *m, size_t *cap, const char *name,
+static int push(struct stray_sweep_manifest *m, size_t *cap, const char *name,
 		long line, struct stray_error *err)
 {
 	if (m->n == *cap) {
 		size_t nc = *cap ? 2 * *cap : 64;
-		struct sweep_entry *e = realloc(m->e, nc * sizeof(*e));
+		struct stray_sweep_entry *e = realloc(m->e, nc * sizeof(*e));
 
 		if (!e)
-			return stray_error_at(err, STRAY_ENOMEM, name, line, 0, 0);
+			return stray_error_at(err, STRAY_ENOMEM, name, line, 0,
+					      0);
 		m->e = e;
 		*cap = nc;
 	}
@@ -222,7 +208,7 @@ static int push(struct sweep_manifest *m, size_t *cap, const char *name,
 
 /* One line: blank, comment, header or entry. */
 static int take_line(const char *name, long line, const char *s, size_t len,
-		     struct sweep_manifest *m, int *idx, int *have_header,
+		     struct stray_sweep_manifest *m, int *idx, int *have_header,
 		     size_t *cap, struct fields *r, struct stray_error *err)
 {
 	size_t k = 0;
@@ -251,16 +237,25 @@ static int take_line(const char *name, long line, const char *s, size_t len,
 	return rc;
 }
 
-int sweep_manifest_parse(const char *name, const char *text, size_t len,
-			 struct sweep_manifest *m, struct stray_error *err)
+/*
+ * The parser behind stray_sweep_manifest_parse; with allow_empty a
+ * manifest of only its header is accepted (a writer resuming a sweep
+ * that has no frame yet).
+ */
+int stray_sweep_manifest_parse_text(const char *name, const char *text,
+				    size_t len, int allow_empty,
+				    struct stray_sweep_manifest *m,
+				    struct stray_error *err)
 {
 	struct fields *r = malloc(sizeof(*r));
 	int idx[N_COLS], have_header = 0, rc = STRAY_OK;
 	size_t pos = 0, cap = 0;
 	long line = 0;
 
-	m->n = 0;
+	m->n = m->cap = 0;
 	m->e = NULL;
+	m->writer = 0;
+	m->lock_fd = -1;
 	if (!r)
 		return stray_error_at(err, STRAY_ENOMEM, name, 0, 0, 0);
 	while (pos < len && rc == STRAY_OK) {
@@ -272,79 +267,77 @@ int sweep_manifest_parse(const char *name, const char *text, size_t len,
 		pos = end + 1;
 	}
 	free(r);
-	if (rc == STRAY_OK && m->n == 0)
+	m->cap = cap;
+	if (rc == STRAY_OK && m->n == 0 && !(allow_empty && have_header))
 		rc = stray_error_at(err, STRAY_EPARSE, name, line ? line : 1,
-				    "file", "manifest lists no frames");
+				    columns[COL_FILE],
+				    "manifest lists no frames");
 	if (rc != STRAY_OK)
-		sweep_manifest_free(m);
+		stray_sweep_manifest_free(m);
 	return rc;
 }
 
-int sweep_manifest_load(const char *dir, struct sweep_manifest *m,
-			struct stray_error *err)
+int stray_sweep_manifest_parse(const char *name, const char *text,
+			       size_t len, struct stray_sweep_manifest *m,
+			       struct stray_error *err)
 {
-	char path[4096];
+	m->dir[0] = '\0';
+	return stray_sweep_manifest_parse_text(name, text, len, 0, m, err);
+}
+
+int stray_sweep_manifest_load(const char *dir,
+			      struct stray_sweep_manifest *m,
+			      struct stray_error *err)
+{
+	char path[STRAY_SWEEP_DIR_MAX + 16];
 	char *text = NULL;
 	size_t len = 0;
 	int rc;
 
-	m->n = 0;
+	m->n = m->cap = 0;
 	m->e = NULL;
-	snprintf(path, sizeof(path), "%s/manifest.csv", dir);
+	m->writer = 0;
+	m->lock_fd = -1;
+	if (strlen(dir) >= sizeof(m->dir))
+		return stray_error_at(err, STRAY_EINVAL, dir, 0, "dir",
+				      "path too long");
+	strcpy(m->dir, dir);
+	snprintf(path, sizeof(path), "%s/" STRAY_SWEEP_MANIFEST, dir);
 	if ((rc = stray_file_read(path, &text, &len, err)) != STRAY_OK)
 		return rc;
-	rc = sweep_manifest_parse(path, text, len, m, err);
+	rc = stray_sweep_manifest_parse_text(path, text, len, 0, m, err);
 	free(text);
 	return rc;
 }
 
-void sweep_manifest_free(struct sweep_manifest *m)
+void stray_sweep_manifest_free(struct stray_sweep_manifest *m)
 {
 	free(m->e);
 	m->e = NULL;
-	m->n = 0;
+	m->n = m->cap = 0;
+	if (m->writer)
+		close(m->lock_fd);	/* releases the flock */
+	m->writer = 0;
+	m->lock_fd = -1;
 }
 
-/* SHA-256 of a file, streamed in 64 KiB blocks. */
-static int sha256_file(const char *path, unsigned char *md,
-		       struct stray_error *err)
+int stray_sweep_manifest_count(const struct stray_sweep_manifest *m,
+			       double angle_deg, int type,
+			       const struct stray_sweep_entry **first)
 {
-	static unsigned char buf[65536];
-	EVP_MD_CTX *ctx = EVP_MD_CTX_new();
-	FILE *f = fopen(path, "rb");
-	int ok = ctx && f && EVP_DigestInit_ex(ctx, EVP_sha256(), NULL);
-	size_t n;
-
-	while (ok && (n = fread(buf, 1, sizeof(buf), f)) > 0)
-		ok = EVP_DigestUpdate(ctx, buf, n);
-	ok = ok && !ferror(f) && EVP_DigestFinal_ex(ctx, md, NULL);
-	if (f)
-		fclose(f);
-	EVP_MD_CTX_free(ctx);
-	if (!ok)
-		return stray_error_at(err, STRAY_EIO, path, 0, "file",
-				      f ? "cannot read the frame file"
-					: "cannot open the frame file");
-	return STRAY_OK;
-}
-
-int sweep_sha256_check(const char *path, const char *hex,
-		       struct stray_error *err)
-{
-	unsigned char md[32];
-	char got[65];
 	size_t i;
-	int rc;
+	int n = 0;
 
-	if ((rc = sha256_file(path, md, err)) != STRAY_OK)
-		return rc;
-	for (i = 0; i < 32; i++)
-		snprintf(got + 2 * i, 3, "%02x", md[i]);
-	if (strcmp(got, hex) != 0) {
-		stray_error_at(err, STRAY_EINVAL, path, 0, "sha256",
-			       "does not match manifest.csv (file changed or corrupt)");
-		stray_error_text(err, got);
-		return STRAY_EINVAL;
+	if (first)
+		*first = NULL;
+	for (i = 0; i < m->n; i++) {
+		const struct stray_sweep_entry *e = &m->e[i];
+
+		if (e->type != type || fabs(e->angle_deg - angle_deg) > 1e-6)
+			continue;
+		if (first && !*first)
+			*first = e;
+		n++;
 	}
-	return STRAY_OK;
+	return n;
 }

@@ -1,8 +1,9 @@
 /*
- * sweep_reduce.c - stream a sweep folder through the reduction of thesis
- * §3.2: darks (levels per read channel, then hot/dead pixels), then every
- * visit to an angle (FULL and AMBIENT groups -> J, eq. 3.6), then the
- * curve (eq. 3.12-3.15) and the ghost tracks.
+ * sweep.c - stray_reduce_sweep (reduce_sweep.h): stream a sweep folder,
+ * read through the sweep store (sweep_store.h), through the reduction of
+ * thesis §3.2: darks (levels per read channel, then hot/dead pixels),
+ * then every visit to an angle (FULL and AMBIENT groups -> J, eq. 3.6),
+ * then the curve (eq. 3.12-3.15) and the ghost tracks.
  */
 #include <math.h>
 #include <stdio.h>
@@ -10,9 +11,8 @@
 #include <string.h>
 
 #include "stray/errfmt.h"
-#include "sweep_fits.h"
-#include "sweep_manifest.h"
-#include "sweep_reduce.h"
+#include "stray/sweep_store.h"
+#include "stray/reduce_sweep.h"
 
 struct visit_plan {
 	/* Manifest runs (darks skipped inside): the visit's own, and a run
@@ -26,10 +26,10 @@ struct visit_plan {
 
 struct workspace {
 	const char *dir;
-	const struct sweep_opts *o;
-	struct sweep_manifest man;
-	struct sweep_fits fits;		/* the frame being read */
-	struct sweep_header geo;	/* the first frame: the geometry */
+	const struct stray_reduce_sweep_opts *o;
+	struct stray_sweep_manifest man;
+	struct stray_sweep_fits fits;		/* the frame being read */
+	struct stray_sweep_header geo;	/* the first frame: the geometry */
 	size_t n_pix;
 	uint16_t *pix;
 	struct stray_dark_model dark;
@@ -44,7 +44,7 @@ struct workspace {
 	size_t bytes, peak_bytes;
 };
 
-void sweep_opts_default(struct sweep_opts *o)
+void stray_reduce_sweep_opts_default(struct stray_reduce_sweep_opts *o)
 {
 	memset(o, 0, sizeof(*o));
 	stray_bayer_default(&o->map);
@@ -80,7 +80,7 @@ static int same(double a, double b, double rel)
 
 /* The header must say what the manifest says, and match the geometry. */
 static int check_header(const struct workspace *w, const char *path,
-			const struct sweep_entry *e, const struct sweep_header *h,
+			const struct stray_sweep_entry *e, const struct stray_sweep_header *h,
 			struct stray_error *err)
 {
 	const char *key = NULL;
@@ -111,36 +111,38 @@ static int check_header(const struct workspace *w, const char *path,
 	return STRAY_OK;
 }
 
-static void frame_path(const struct workspace *w, const struct sweep_entry *e,
+static void frame_path(const struct workspace *w,
+		       const struct stray_sweep_entry *e,
 		       char *path, size_t size)
 {
 	snprintf(path, size, "%s/%s", w->dir, e->file);
 }
 
 /* Verify, open, check and read one frame into w->pix; fill f. */
-static int load_frame(struct workspace *w, const struct sweep_entry *e,
+static int load_frame(struct workspace *w, const struct stray_sweep_entry *e,
 		      struct stray_frame *f, struct stray_error *err)
 {
-	char path[4096 + SWEEP_FILE_MAX];
+	char path[4096 + STRAY_SWEEP_FILE_MAX];
 	int rc;
 
 	frame_path(w, e, path, sizeof(path));
 	if (w->o->verify_sha256 &&
-	    (rc = sweep_sha256_check(path, e->sha256, err)) != STRAY_OK)
+	    (rc = stray_sweep_sha256_check(path, e->sha256, err)) != STRAY_OK)
 		return rc;
-	if ((rc = sweep_fits_open(path, &w->fits, err)) != STRAY_OK)
+	if ((rc = stray_sweep_fits_open(path, &w->fits, err)) != STRAY_OK)
 		return rc;
 	rc = check_header(w, path, e, &w->fits.h, err);
-	if (rc == STRAY_OK && e->type != SWEEP_DARK) {
+	if (rc == STRAY_OK && e->type != STRAY_SWEEP_DARK) {
 		if (w->monitor < 0)
 			w->monitor = w->fits.h.has_monitor;
 		else if (w->monitor != w->fits.h.has_monitor)
-			rc = stray_error_at(err, STRAY_EINVAL, path, 0, "MONITOR",
+			rc = stray_error_at(err, STRAY_EINVAL, path, 0,
+					    "MONITOR",
 				"present in some light frames only");
 	}
 	if (rc == STRAY_OK)
-		rc = sweep_fits_read(&w->fits, w->pix, err);
-	sweep_fits_close(&w->fits);
+		rc = stray_sweep_fits_read(&w->fits, w->pix, err);
+	stray_sweep_fits_close(&w->fits);
 	if (rc != STRAY_OK)
 		return rc;
 	f->n_rows = w->geo.n_rows;
@@ -156,10 +158,11 @@ static int load_frame(struct workspace *w, const struct sweep_entry *e,
 }
 
 /* Library errors carry no file: name the frame. */
-static int at_frame(struct workspace *w, const struct sweep_entry *e, int rc,
+static int at_frame(struct workspace *w, const struct stray_sweep_entry *e,
+		    int rc,
 		    struct stray_error *err)
 {
-	char path[4096 + SWEEP_FILE_MAX];
+	char path[4096 + STRAY_SWEEP_FILE_MAX];
 
 	if (rc != STRAY_OK) {
 		frame_path(w, e, path, sizeof(path));
@@ -171,14 +174,14 @@ static int at_frame(struct workspace *w, const struct sweep_entry *e, int rc,
 /* Learn the geometry from the first frame and size the buffers. */
 static int setup(struct workspace *w, struct stray_error *err)
 {
-	char path[4096 + SWEEP_FILE_MAX];
+	char path[4096 + STRAY_SWEEP_FILE_MAX];
 	int rc;
 
 	frame_path(w, &w->man.e[0], path, sizeof(path));
-	if ((rc = sweep_fits_open(path, &w->fits, err)) != STRAY_OK)
+	if ((rc = stray_sweep_fits_open(path, &w->fits, err)) != STRAY_OK)
 		return rc;
 	w->geo = w->fits.h;
-	sweep_fits_close(&w->fits);
+	stray_sweep_fits_close(&w->fits);
 	w->n_pix = w->geo.n_rows * w->geo.n_cols;
 	w->pix = ws_alloc(w, w->n_pix * sizeof(*w->pix));
 	w->mask = ws_alloc(w, w->n_pix);
@@ -190,7 +193,8 @@ static int setup(struct workspace *w, struct stray_error *err)
 }
 
 /* Pass 1 over the darks: levels per channel and exposure time. */
-static int dark_levels(struct workspace *w, struct sweep_result *res,
+static int dark_levels(struct workspace *w,
+		       struct stray_reduce_sweep_result *res,
 		       struct stray_error *err)
 {
 	uint32_t *hist = ws_alloc(w, STRAY_DARK_HIST_LEN * sizeof(*hist));
@@ -202,7 +206,7 @@ static int dark_levels(struct workspace *w, struct sweep_result *res,
 		return stray_error_set(err, STRAY_ENOMEM, "DARK",
 				       "no memory for the histograms");
 	for (i = 0; i < w->man.n && rc == STRAY_OK; i++) {
-		if (w->man.e[i].type != SWEEP_DARK)
+		if (w->man.e[i].type != STRAY_SWEEP_DARK)
 			continue;
 		rc = load_frame(w, &w->man.e[i], &f, err);
 		if (rc == STRAY_OK)
@@ -216,13 +220,14 @@ static int dark_levels(struct workspace *w, struct sweep_result *res,
 	return rc;
 }
 
-static void list_pixels(const struct workspace *w, struct sweep_result *res)
+static void list_pixels(const struct workspace *w,
+			struct stray_reduce_sweep_result *res)
 {
 	size_t i;
 
 	res->n_pixlist = 0;
-	for (i = 0; i < w->n_pix && res->n_pixlist < SWEEP_PIXLIST_MAX; i++) {
-		struct sweep_pixel *p = &res->pixlist[res->n_pixlist];
+	for (i = 0; i < w->n_pix && res->n_pixlist < STRAY_REDUCE_PIXLIST_MAX; i++) {
+		struct stray_reduce_sweep_pixel *p = &res->pixlist[res->n_pixlist];
 
 		if (w->mask[i] == STRAY_PIX_OK)
 			continue;
@@ -234,7 +239,8 @@ static void list_pixels(const struct workspace *w, struct sweep_result *res)
 }
 
 /* Pass 2 over the darks: hot and dead pixels. */
-static int dark_pixels(struct workspace *w, struct sweep_result *res,
+static int dark_pixels(struct workspace *w,
+		       struct stray_reduce_sweep_result *res,
 		       struct stray_error *err)
 {
 	size_t nb = w->n_pix * sizeof(double), i;
@@ -250,7 +256,7 @@ static int dark_pixels(struct workspace *w, struct sweep_result *res,
 	else
 		stray_pixstat_init(&s, w->n_pix, mean, m2);
 	for (i = 0; i < w->man.n && rc == STRAY_OK; i++) {
-		if (w->man.e[i].type != SWEEP_DARK)
+		if (w->man.e[i].type != STRAY_SWEEP_DARK)
 			continue;
 		rc = load_frame(w, &w->man.e[i], &f, err);
 		if (rc == STRAY_OK)
@@ -282,10 +288,10 @@ static size_t find_runs(struct workspace *w)
 	double cur = 0.0;
 
 	for (i = 0; i < w->man.n; i++) {
-		const struct sweep_entry *e = &w->man.e[i];
+		const struct stray_sweep_entry *e = &w->man.e[i];
 		struct visit_plan *p;
 
-		if (e->type == SWEEP_DARK)
+		if (e->type == STRAY_SWEEP_DARK)
 			continue;
 		if (n == 0 || fabs(e->angle_deg - cur) > STRAY_THETA_TOL_DEG) {
 			w->plan[n].first[0] = i;
@@ -295,8 +301,8 @@ static size_t find_runs(struct workspace *w)
 		}
 		p = &w->plan[n - 1];
 		p->last[0] = i;
-		p->n_full += e->type == SWEEP_FULL;
-		p->n_amb += e->type == SWEEP_AMBIENT;
+		p->n_full += e->type == STRAY_SWEEP_FULL;
+		p->n_amb += e->type == STRAY_SWEEP_AMBIENT;
 	}
 	return n;
 }
@@ -337,7 +343,8 @@ static size_t pair_runs(struct workspace *w, size_t n)
 }
 
 /* Visits: a run of one angle's FULL and AMBIENT frames, or two. */
-static int plan_visits(struct workspace *w, struct sweep_result *res,
+static int plan_visits(struct workspace *w,
+		       struct stray_reduce_sweep_result *res,
 		       struct stray_error *err)
 {
 	w->plan = calloc(w->man.n, sizeof(*w->plan));
@@ -353,7 +360,8 @@ static int plan_visits(struct workspace *w, struct sweep_result *res,
 	return STRAY_OK;
 }
 
-static int light_buffers(struct workspace *w, struct sweep_result *res,
+static int light_buffers(struct workspace *w,
+			 struct stray_reduce_sweep_result *res,
 			 struct stray_error *err)
 {
 	size_t ab = stray_accum_bytes(w->n_pix), nc = w->geo.n_cols;
@@ -377,7 +385,7 @@ static int light_buffers(struct workspace *w, struct sweep_result *res,
 
 /* Stream one visit's frames into the FULL and AMBIENT accumulators. */
 static int accumulate_visit(struct workspace *w, const struct visit_plan *p,
-			    struct sweep_result *res, struct stray_error *err)
+			    struct stray_reduce_sweep_result *res, struct stray_error *err)
 {
 	struct stray_frame f;
 	size_t i, r;
@@ -387,14 +395,14 @@ static int accumulate_visit(struct workspace *w, const struct visit_plan *p,
 	stray_accum_reset(&w->amb);
 	for (r = 0; r < p->n_runs; r++)
 		for (i = p->first[r]; i <= p->last[r] && rc == STRAY_OK; i++) {
-			const struct sweep_entry *e = &w->man.e[i];
+			const struct stray_sweep_entry *e = &w->man.e[i];
 
-			if (e->type == SWEEP_DARK)
+			if (e->type == STRAY_SWEEP_DARK)
 				continue;
 			rc = load_frame(w, e, &f, err);
 			if (rc == STRAY_OK)
 				rc = at_frame(w, e, stray_accum_add(
-					e->type == SWEEP_FULL ? &w->full : &w->amb,
+					e->type == STRAY_SWEEP_FULL ? &w->full : &w->amb,
 					&w->dark, &f, err), err);
 			res->has_monitor |= w->fits.h.has_monitor;
 		}
@@ -402,7 +410,7 @@ static int accumulate_visit(struct workspace *w, const struct visit_plan *p,
 }
 
 static int keep_image(struct workspace *w, double theta,
-		      struct sweep_result *res, struct stray_error *err)
+		      struct stray_reduce_sweep_result *res, struct stray_error *err)
 {
 	if (!w->o->keep_image || res->image ||
 	    fabs(theta - w->o->image_theta_deg) > STRAY_THETA_TOL_DEG)
@@ -417,10 +425,10 @@ static int keep_image(struct workspace *w, double theta,
 }
 
 static int reduce_visit(struct workspace *w, size_t v,
-			struct sweep_result *res, struct stray_error *err)
+			struct stray_reduce_sweep_result *res, struct stray_error *err)
 {
 	struct visit_plan *p = &w->plan[v];
-	const struct sweep_entry *e0 = &w->man.e[p->first[0]];
+	const struct stray_sweep_entry *e0 = &w->man.e[p->first[0]];
 	struct stray_frame geo = { 0 };
 	struct stray_response_sums s;
 	struct stray_visit *vis = &res->visits[v];
@@ -469,7 +477,8 @@ static int by_theta(const void *a, const void *b)
 }
 
 /* Feed the first visit of every angle, in increasing theta, to a tracker. */
-static int track_ghosts(struct workspace *w, struct sweep_result *res,
+static int track_ghosts(struct workspace *w,
+			struct stray_reduce_sweep_result *res,
 			struct stray_error *err)
 {
 	struct stray_ghost_tracker t;
@@ -477,9 +486,11 @@ static int track_ghosts(struct workspace *w, struct sweep_result *res,
 	double last = -HUGE_VAL;
 
 	if (!idx)
-		return stray_error_set(err, STRAY_ENOMEM, "ghosts", "no memory");
-	for (i = 0; i < SWEEP_TRACKS_MAX; i++) {
-		res->tracks[i].pt = calloc(res->n_visits, sizeof(*res->tracks[i].pt));
+		return stray_error_set(err, STRAY_ENOMEM, "ghosts",
+				       "no memory");
+	for (i = 0; i < STRAY_REDUCE_TRACKS_MAX; i++) {
+		res->tracks[i].pt = calloc(res->n_visits,
+					   sizeof(*res->tracks[i].pt));
 		res->tracks[i].cap = res->n_visits;
 		if (!res->tracks[i].pt) {
 			free(idx);
@@ -492,7 +503,7 @@ static int track_ghosts(struct workspace *w, struct sweep_result *res,
 	sort_base = res->visits;
 	qsort(idx, res->n_visits, sizeof(*idx), by_theta);
 	stray_ghost_tracker_init(&t, &w->o->ghost, res->tracks,
-				 SWEEP_TRACKS_MAX);
+				 STRAY_REDUCE_TRACKS_MAX);
 	for (i = 0; i < res->n_visits; i++) {
 		const struct stray_visit *v = &res->visits[idx[i]];
 
@@ -508,7 +519,8 @@ static int track_ghosts(struct workspace *w, struct sweep_result *res,
 	return STRAY_OK;
 }
 
-static int reduce_all(struct workspace *w, struct sweep_result *res,
+static int reduce_all(struct workspace *w,
+		      struct stray_reduce_sweep_result *res,
 		      struct stray_error *err)
 {
 	size_t v;
@@ -533,8 +545,8 @@ static int reduce_all(struct workspace *w, struct sweep_result *res,
 	return track_ghosts(w, res, err);
 }
 
-int sweep_reduce(const char *dir, const struct sweep_opts *o,
-		 struct sweep_result *res, struct stray_error *err)
+int stray_reduce_sweep(const char *dir, const struct stray_reduce_sweep_opts *o,
+		 struct stray_reduce_sweep_result *res, struct stray_error *err)
 {
 	struct workspace *w = calloc(1, sizeof(*w));
 	int rc;
@@ -545,7 +557,7 @@ int sweep_reduce(const char *dir, const struct sweep_opts *o,
 	w->dir = dir;
 	w->o = o;
 	w->monitor = -1;
-	rc = sweep_manifest_load(dir, &w->man, err);
+	rc = stray_sweep_manifest_load(dir, &w->man, err);
 	if (rc == STRAY_OK) {
 		res->n_frames = w->man.n;
 		rc = reduce_all(w, res, err);
@@ -563,12 +575,12 @@ int sweep_reduce(const char *dir, const struct sweep_opts *o,
 	free(w->prof_var);
 	free(w->ghost_scratch);
 	free(w->plan);
-	sweep_manifest_free(&w->man);
+	stray_sweep_manifest_free(&w->man);
 	free(w);
 	return rc;
 }
 
-void sweep_result_free(struct sweep_result *res)
+void stray_reduce_sweep_result_free(struct stray_reduce_sweep_result *res)
 {
 	size_t i;
 
@@ -576,7 +588,7 @@ void sweep_result_free(struct sweep_result *res)
 	free(res->visits);
 	free(res->profiles);
 	free(res->image);
-	for (i = 0; i < SWEEP_TRACKS_MAX; i++)
+	for (i = 0; i < STRAY_REDUCE_TRACKS_MAX; i++)
 		free(res->tracks[i].pt);
 	memset(res, 0, sizeof(*res));
 }

@@ -1,7 +1,7 @@
 /*
- * sweep_fits.c - lab frames through cfitsio: header keywords FRAMETYP,
- * ANGLE, EXPTIME, NDTRANS, SEQNUM, ROWS, COL0, ROW0, SATLEVEL (and the
- * optional MONITOR), then the 16-bit image.
+ * fits_read.c - a lab frame read through cfitsio (sweep_store.h): header
+ * keywords FRAMETYP, ANGLE, EXPTIME, NDTRANS, SEQNUM, ROWS, COL0, ROW0,
+ * SATLEVEL (and the optional MONITOR), then the 16-bit image.
  */
 #include <errno.h>
 #include <fitsio.h>
@@ -10,8 +10,7 @@
 #include <string.h>
 
 #include "stray/errfmt.h"
-#include "sweep_fits.h"
-#include "sweep_manifest.h"
+#include "stray/sweep_store.h"
 
 /* A cfitsio failure: keyword (or part) and cfitsio's own words. */
 static int fits_fail(const char *path, const char *field, const char *why,
@@ -35,7 +34,7 @@ static int fits_fail(const char *path, const char *field, const char *why,
  * malformed values (found by fuzz_reduce_input).  status KEY_NO_EXIST
  * when the keyword is absent.
  */
-static int key_number(struct sweep_fits *f, const char *key, double *v,
+static int key_number(struct stray_sweep_fits *f, const char *key, double *v,
 		      int *status)
 {
 	char text[FLEN_VALUE], *end;
@@ -51,7 +50,7 @@ static int key_number(struct sweep_fits *f, const char *key, double *v,
 	return *status;
 }
 
-static int key_double(struct sweep_fits *f, const char *key, double *v,
+static int key_double(struct stray_sweep_fits *f, const char *key, double *v,
 		      struct stray_error *err)
 {
 	int status = 0;
@@ -66,7 +65,7 @@ static int key_double(struct sweep_fits *f, const char *key, double *v,
 	return STRAY_OK;
 }
 
-static int key_long(struct sweep_fits *f, const char *key, long *v,
+static int key_long(struct stray_sweep_fits *f, const char *key, long *v,
 		    int required, struct stray_error *err)
 {
 	double x;
@@ -88,7 +87,7 @@ static int key_long(struct sweep_fits *f, const char *key, long *v,
 	return STRAY_OK;
 }
 
-int sweep_rows_parse(const char *path, const char *text, long *rows,
+int stray_sweep_rows_parse(const char *path, const char *text, long *rows,
 		     size_t n, struct stray_error *err)
 {
 	const char *s = text;
@@ -111,7 +110,7 @@ int sweep_rows_parse(const char *path, const char *text, long *rows,
 		}
 	}
 	if (k != n || *s != '\0') {
-		stray_error_at(err, STRAY_EPARSE, path, 0, "ROWS",
+		stray_error_at(err, STRAY_EPARSE, path, 0, STRAY_SWEEP_KEY_ROWS,
 			"must list one detector row per stored row (NAXIS2)");
 		stray_error_text(err, text);
 		return STRAY_EPARSE;
@@ -119,16 +118,18 @@ int sweep_rows_parse(const char *path, const char *text, long *rows,
 	return STRAY_OK;
 }
 
-static int read_rows(struct sweep_fits *f, struct stray_error *err)
+static int read_rows(struct stray_sweep_fits *f, struct stray_error *err)
 {
 	char *text = NULL;
 	size_t k;
 	int status = 0, rc;
 
 	f->h.has_rows = 0;
-	if (fits_read_key_longstr(f->fptr, "ROWS", &text, NULL, &status)) {
+	if (fits_read_key_longstr(f->fptr, STRAY_SWEEP_KEY_ROWS, &text, NULL,
+				  &status)) {
 		if (status != KEY_NO_EXIST)
-			return fits_fail(f->path, "ROWS", "cannot be read",
+			return fits_fail(f->path, STRAY_SWEEP_KEY_ROWS,
+					 "cannot be read",
 					 status, err);
 		fits_clear_errmsg();
 		for (k = 0; k < f->h.n_rows; k++)	/* full frame */
@@ -136,23 +137,27 @@ static int read_rows(struct sweep_fits *f, struct stray_error *err)
 		return STRAY_OK;
 	}
 	f->h.has_rows = 1;
-	rc = sweep_rows_parse(f->path, text, f->h.det_row, f->h.n_rows, err);
+	rc = stray_sweep_rows_parse(f->path, text, f->h.det_row, f->h.n_rows,
+				    err);
 	fits_free_memory(text, &status);
 	return rc;
 }
 
-static int read_type(struct sweep_fits *f, struct stray_error *err)
+static int read_type(struct stray_sweep_fits *f, struct stray_error *err)
 {
 	char text[FLEN_VALUE];
 	int status = 0;
 
-	if (fits_read_key(f->fptr, TSTRING, "FRAMETYP", text, NULL, &status))
-		return fits_fail(f->path, "FRAMETYP", status == KEY_NO_EXIST ?
+	if (fits_read_key(f->fptr, TSTRING, STRAY_SWEEP_KEY_FRAMETYP, text,
+			  NULL, &status))
+		return fits_fail(f->path, STRAY_SWEEP_KEY_FRAMETYP,
+				 status == KEY_NO_EXIST ?
 			"required keyword missing" : "cannot be read",
 			status, err);
-	f->h.type = sweep_frametyp_parse(text);
+	f->h.type = stray_sweep_frametyp_parse(text);
 	if (f->h.type < 0) {
-		stray_error_at(err, STRAY_EPARSE, f->path, 0, "FRAMETYP",
+		stray_error_at(err, STRAY_EPARSE, f->path, 0,
+			       STRAY_SWEEP_KEY_FRAMETYP,
 			       "must be DARK, AMBIENT or FULL");
 		stray_error_text(err, text);
 		return STRAY_EPARSE;
@@ -160,7 +165,7 @@ static int read_type(struct sweep_fits *f, struct stray_error *err)
 	return STRAY_OK;
 }
 
-static int read_geometry(struct sweep_fits *f, struct stray_error *err)
+static int read_geometry(struct stray_sweep_fits *f, struct stray_error *err)
 {
 	long naxes[2];
 	int status = 0, bitpix = 0, naxis = 0;
@@ -178,7 +183,7 @@ static int read_geometry(struct sweep_fits *f, struct stray_error *err)
 	if (fits_get_img_size(f->fptr, 2, naxes, &status))
 		return fits_fail(f->path, "NAXIS1", "cannot be read", status,
 				 err);
-	if (naxes[0] < 1 || naxes[1] < 1 || naxes[1] > SWEEP_ROWS_MAX ||
+	if (naxes[0] < 1 || naxes[1] < 1 || naxes[1] > STRAY_SWEEP_ROWS_MAX ||
 	    naxes[0] > 65536)
 		return stray_error_at(err, STRAY_EPARSE, f->path, 0, "NAXIS2",
 			"image size out of range (1..8192 rows, 1..65536 columns)");
@@ -187,46 +192,52 @@ static int read_geometry(struct sweep_fits *f, struct stray_error *err)
 	return STRAY_OK;
 }
 
-static int read_header(struct sweep_fits *f, struct stray_error *err)
+static int read_header(struct stray_sweep_fits *f, struct stray_error *err)
 {
-	struct sweep_header *h = &f->h;
+	struct stray_sweep_header *h = &f->h;
 	int rc, status = 0;
 
 	h->col0 = h->row0 = 0;
 	if ((rc = read_geometry(f, err)) || (rc = read_type(f, err)) ||
-	    (rc = key_double(f, "ANGLE", &h->angle_deg, err)) ||
-	    (rc = key_double(f, "EXPTIME", &h->exptime_s, err)) ||
-	    (rc = key_double(f, "NDTRANS", &h->ndtrans, err)) ||
-	    (rc = key_long(f, "SEQNUM", &h->seqnum, 1, err)) ||
-	    (rc = key_long(f, "SATLEVEL", &h->satlevel, 1, err)) ||
-	    (rc = key_long(f, "COL0", &h->col0, 0, err)) ||
-	    (rc = key_long(f, "ROW0", &h->row0, 0, err)) ||
+	    (rc = key_double(f, STRAY_SWEEP_KEY_ANGLE, &h->angle_deg, err)) ||
+	    (rc = key_double(f, STRAY_SWEEP_KEY_EXPTIME, &h->exptime_s, err)) ||
+	    (rc = key_double(f, STRAY_SWEEP_KEY_NDTRANS, &h->ndtrans, err)) ||
+	    (rc = key_long(f, STRAY_SWEEP_KEY_SEQNUM, &h->seqnum, 1, err)) ||
+	    (rc = key_long(f, STRAY_SWEEP_KEY_SATLEVEL, &h->satlevel, 1,
+			   err)) ||
+	    (rc = key_long(f, STRAY_SWEEP_KEY_COL0, &h->col0, 0, err)) ||
+	    (rc = key_long(f, STRAY_SWEEP_KEY_ROW0, &h->row0, 0, err)) ||
 	    (rc = read_rows(f, err)))
 		return rc;
 	h->has_monitor = 0;
 	h->monitor = 1.0;
-	if (key_number(f, "MONITOR", &h->monitor, &status) == 0)
+	if (key_number(f, STRAY_SWEEP_KEY_MONITOR, &h->monitor, &status) == 0)
 		h->has_monitor = 1;
 	else if (status != KEY_NO_EXIST)
-		return fits_fail(f->path, "MONITOR", "is not a number", status,
+		return fits_fail(f->path, STRAY_SWEEP_KEY_MONITOR,
+				 "is not a number", status,
 				 err);
 	fits_clear_errmsg();
 	if (!(h->exptime_s > 0.0))
-		return stray_error_at(err, STRAY_EPARSE, f->path, 0, "EXPTIME",
+		return stray_error_at(err, STRAY_EPARSE, f->path, 0,
+				      STRAY_SWEEP_KEY_EXPTIME,
 				      "must be > 0");
 	if (!(h->ndtrans > 0.0 && h->ndtrans <= 1.0))
-		return stray_error_at(err, STRAY_EPARSE, f->path, 0, "NDTRANS",
+		return stray_error_at(err, STRAY_EPARSE, f->path, 0,
+				      STRAY_SWEEP_KEY_NDTRANS,
 				      "must be in (0, 1]");
 	if (!(isfinite(h->monitor) && h->monitor > 0.0))
-		return stray_error_at(err, STRAY_EPARSE, f->path, 0, "MONITOR",
+		return stray_error_at(err, STRAY_EPARSE, f->path, 0,
+				      STRAY_SWEEP_KEY_MONITOR,
 				      "must be finite and > 0");
 	if (h->satlevel < 1 || h->satlevel > 65536)
-		return stray_error_at(err, STRAY_EPARSE, f->path, 0, "SATLEVEL",
+		return stray_error_at(err, STRAY_EPARSE, f->path, 0,
+				      STRAY_SWEEP_KEY_SATLEVEL,
 				      "must be in 1..65536");
 	return STRAY_OK;
 }
 
-int sweep_fits_open(const char *path, struct sweep_fits *f,
+int stray_sweep_fits_open(const char *path, struct stray_sweep_fits *f,
 		    struct stray_error *err)
 {
 	int status = 0, rc;
@@ -239,12 +250,12 @@ int sweep_fits_open(const char *path, struct sweep_fits *f,
 				 status, err);
 	rc = read_header(f, err);
 	if (rc != STRAY_OK)
-		sweep_fits_close(f);
+		stray_sweep_fits_close(f);
 	return rc;
 }
 
-int sweep_fits_open_mem(const char *name, const void *data, size_t len,
-			struct sweep_fits *f, struct stray_error *err)
+int stray_sweep_fits_open_mem(const char *name, const void *data, size_t len,
+			struct stray_sweep_fits *f, struct stray_error *err)
 {
 	size_t padded = (len + 2879) / 2880 * 2880;
 	int status = 0, rc;
@@ -261,17 +272,17 @@ int sweep_fits_open_mem(const char *name, const void *data, size_t len,
 	memcpy(f->mem, data, len);
 	if (fits_open_memfile((fitsfile **)&f->fptr, name, READONLY, &f->mem,
 			      &f->mem_size, 0, NULL, &status)) {
-		sweep_fits_close(f);
+		stray_sweep_fits_close(f);
 		return fits_fail(name, "file", "not a readable FITS image",
 				 status, err);
 	}
 	rc = read_header(f, err);
 	if (rc != STRAY_OK)
-		sweep_fits_close(f);
+		stray_sweep_fits_close(f);
 	return rc;
 }
 
-int sweep_fits_read(struct sweep_fits *f, uint16_t *pix,
+int stray_sweep_fits_read(struct stray_sweep_fits *f, uint16_t *pix,
 		    struct stray_error *err)
 {
 	long n = (long)(f->h.n_rows * f->h.n_cols);
@@ -280,7 +291,8 @@ int sweep_fits_read(struct sweep_fits *f, uint16_t *pix,
 	LONGLONG head, data, end;
 
 	/* cfitsio's memory driver does not bound its reads: check first. */
-	if (f->mem && (fits_get_hduaddrll(f->fptr, &head, &data, &end, &status) ||
+	if (f->mem && (fits_get_hduaddrll(f->fptr, &head, &data, &end,
+					  &status) ||
 		       (LONGLONG)f->mem_size < data + 2LL * n))
 		return fits_fail(f->path, "data",
 			"truncated: fewer pixels than NAXIS1 x NAXIS2", status,
@@ -296,7 +308,7 @@ int sweep_fits_read(struct sweep_fits *f, uint16_t *pix,
 	return STRAY_OK;
 }
 
-void sweep_fits_close(struct sweep_fits *f)
+void stray_sweep_fits_close(struct stray_sweep_fits *f)
 {
 	int status = 0;
 

@@ -1,5 +1,5 @@
 /*
- * sweep_reduce.h - a sweep folder to the lens curve (thesis §3.2), driving
+ * stray_reduce_sweep.h - a sweep folder to the lens curve (thesis §3.2), driving
  * the libstray/reduce math from the frames on disk.
  *
  * Streaming: the manifest (metadata only) is read whole; the frames are
@@ -9,8 +9,8 @@
  * per-pixel buffers - about 31 bytes a pixel, the size of 16 frames -
  * plus a few numbers per visit, whatever the number of frames.
  */
-#ifndef STRAY_TOOLS_SWEEP_REDUCE_H
-#define STRAY_TOOLS_SWEEP_REDUCE_H
+#ifndef STRAY_REDUCE_SWEEP_H
+#define STRAY_REDUCE_SWEEP_H
 
 #include <stddef.h>
 
@@ -21,10 +21,10 @@
 #include "stray/reduce_ghost.h"
 #include "stray/reduce_response.h"
 
-#define SWEEP_TRACKS_MAX 16
-#define SWEEP_PIXLIST_MAX 1000
+#define STRAY_REDUCE_TRACKS_MAX 16
+#define STRAY_REDUCE_PIXLIST_MAX 1000
 
-struct sweep_opts {
+struct stray_reduce_sweep_opts {
 	struct stray_bayer_map map;
 	struct stray_response_opts response;
 	struct stray_ghost_opts ghost;
@@ -34,14 +34,14 @@ struct sweep_opts {
 	double image_theta_deg;
 };
 
-void sweep_opts_default(struct sweep_opts *o);
+void stray_reduce_sweep_opts_default(struct stray_reduce_sweep_opts *o);
 
-struct sweep_pixel {
+struct stray_reduce_sweep_pixel {
 	long row, col;		/* detector coordinates */
 	int flag;		/* enum stray_pixel_flag */
 };
 
-struct sweep_result {
+struct stray_reduce_sweep_result {
 	size_t n_rows, n_cols, n_frames, n_darks;
 	long col0;		/* detector column of stored column 0 */
 	size_t n_points;
@@ -55,12 +55,12 @@ struct sweep_result {
 	/* Pixels. */
 	struct stray_mask_stats mask;
 	size_t n_pixlist;
-	struct sweep_pixel pixlist[SWEEP_PIXLIST_MAX];
+	struct stray_reduce_sweep_pixel pixlist[STRAY_REDUCE_PIXLIST_MAX];
 	unsigned long n_sat_samples;	/* saturated samples left out */
 	size_t n_sat_pixels;		/* pixel-visits saturated throughout */
 	/* Ghost tracks (ascending theta), points owned by the result. */
 	size_t n_tracks;
-	struct stray_ghost_track tracks[SWEEP_TRACKS_MAX];
+	struct stray_ghost_track tracks[STRAY_REDUCE_TRACKS_MAX];
 	double p0;		/* P(0) the curve is normalised by */
 	/* J at the requested angle (fig. 3.8), n_rows * n_cols, or NULL. */
 	float *image;
@@ -69,9 +69,11 @@ struct sweep_result {
 };
 
 /* Reduce DIR; res is zeroed first and must be freed. */
-int sweep_reduce(const char *dir, const struct sweep_opts *o,
-		 struct sweep_result *res, struct stray_error *err);
+int stray_reduce_sweep(const char *dir,
+		       const struct stray_reduce_sweep_opts *o,
+		       struct stray_reduce_sweep_result *res,
+		       struct stray_error *err);
 
-void sweep_result_free(struct sweep_result *res);
+void stray_reduce_sweep_result_free(struct stray_reduce_sweep_result *res);
 
-#endif /* STRAY_TOOLS_SWEEP_REDUCE_H */
+#endif /* STRAY_REDUCE_SWEEP_H */

@@ -1,0 +1,132 @@
+/*
+ * fits_write.c - one lab frame as a FITS file with cfitsio (sweep_store.h):
+ * primary HDU, 16-bit unsigned (BITPIX 16, BZERO 32768, which cfitsio
+ * writes for USHORT_IMG), keywords of docs/formats.md.  Written to a
+ * temporary, fsynced and renamed, so a crash never leaves half a frame
+ * under the real name.
+ */
+#include <fcntl.h>
+#include <fitsio.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "stray/errfmt.h"
+#include "stray/sweep_store.h"
+#include "sweep_priv.h"
+
+static void rows_keyword(const struct stray_sweep_image *img, char *out,
+			 size_t size)
+{
+	size_t n = 0, r;
+
+	out[0] = '\0';
+	for (r = 0; r < img->n_rows && n < size; r++)
+		n += (size_t)snprintf(out + n, size - n, "%s%u", r ? "," : "",
+				      img->rows[r]);
+}
+
+static int write_keys(fitsfile *f, const struct stray_sweep_image *img,
+		      const struct stray_sweep_frame *m, char *rows,
+		      size_t rows_size, int *status)
+{
+	char type[16];
+	double angle = m->angle_deg, t = m->exptime_s, nd = m->ndtrans;
+	int seq = (int)m->seqnum, col0 = (int)img->col0, row0 = img->rows[0];
+	int sat = (int)m->sat_dn;
+
+	snprintf(type, sizeof(type), "%s",
+		 stray_sweep_frametyp_name(m->type));
+	fits_write_key(f, TSTRING, STRAY_SWEEP_KEY_FRAMETYP, type,
+		       "DARK, AMBIENT (beam blocked) or FULL", status);
+	fits_write_key(f, TDOUBLE, STRAY_SWEEP_KEY_ANGLE, &angle,
+		       "[deg] boresight offset from the beam", status);
+	fits_write_key(f, TDOUBLE, STRAY_SWEEP_KEY_EXPTIME, &t,
+		       "[s] exposure time", status);
+	fits_write_key(f, TDOUBLE, STRAY_SWEEP_KEY_NDTRANS, &nd,
+		       "transmission of the ND filters in the beam", status);
+	fits_write_key(f, TINT, STRAY_SWEEP_KEY_SEQNUM, &seq,
+		       "index within its (angle, type) group", status);
+	if (!m->full_frame) {
+		rows_keyword(img, rows, rows_size);
+		fits_write_key_longstr(f, STRAY_SWEEP_KEY_ROWS, rows,
+				       "detector rows of the stored rows",
+				       status);
+	}
+	fits_write_key(f, TINT, STRAY_SWEEP_KEY_COL0, &col0,
+		       "detector column of the first pixel", status);
+	fits_write_key(f, TINT, STRAY_SWEEP_KEY_ROW0, &row0,
+		       "detector row of the first pixel", status);
+	fits_write_key(f, TINT, STRAY_SWEEP_KEY_SATLEVEL, &sat,
+		       "[DN] counts at which a pixel saturates", status);
+	if (m->has_monitor)
+		fits_write_key(f, TDOUBLE, STRAY_SWEEP_KEY_MONITOR,
+			       (void *)&m->monitor,
+			       "lamp level from the monitor, 1 = nominal",
+			       status);
+	fits_write_key(f, TSTRING, "INSTRUME", "strayrigd",
+		       "written by the straylight lab daemon", status);
+	return *status;
+}
+
+static int sync_path(const char *path, int flags)
+{
+	int fd = open(path, flags), rc;
+
+	if (fd < 0)
+		return -1;
+	rc = fsync(fd);
+	close(fd);
+	return rc;
+}
+
+int stray_sweep_fits_write(const char *dir, const char *name,
+		      const struct stray_sweep_image *img,
+		      const struct stray_sweep_frame *m,
+		      char sha_hex[STRAY_SWEEP_SHA256_HEX],
+		      struct stray_error *err)
+{
+	char path[STRAY_SWEEP_DIR_MAX + STRAY_SWEEP_FILE_MAX + 2];
+	char tmp[sizeof(path) + 4], ftmp[sizeof(tmp) + 1];
+	long naxes[2] = { (long)img->n_cols, (long)img->n_rows };
+	size_t rows_size = img->n_rows * 6 + 1;
+	char *rows = malloc(rows_size);
+	fitsfile *f = NULL;
+	int status = 0;
+
+	if (!rows)
+		return stray_error_at(err, STRAY_ENOMEM, name, 0, "file",
+				      "no memory for the ROWS keyword");
+	snprintf(path, sizeof(path), "%s/%s", dir, name);
+	snprintf(tmp, sizeof(tmp), "%s.tmp", path);
+	snprintf(ftmp, sizeof(ftmp), "!%s", tmp);	/* '!' = overwrite */
+	fits_create_file(&f, ftmp, &status);
+	fits_create_img(f, USHORT_IMG, 2, naxes, &status);
+	write_keys(f, img, m, rows, rows_size, &status);
+	fits_write_img(f, TUSHORT, 1, (LONGLONG)img->n_rows * img->n_cols,
+		       (void *)img->px, &status);
+	free(rows);
+	if (f) {
+		int st2 = 0;
+
+		fits_close_file(f, status ? &st2 : &status);
+	}
+	if (status) {
+		char text[FLEN_STATUS];
+
+		fits_get_errstatus(status, text);
+		unlink(tmp);
+		stray_error_at(err, STRAY_EIO, path, 0, "file",
+			       "cfitsio cannot write the frame");
+		stray_error_text(err, text);
+		return STRAY_EIO;
+	}
+	if (sync_path(tmp, O_RDONLY) != 0 || rename(tmp, path) != 0 ||
+	    sync_path(dir, O_RDONLY | O_DIRECTORY) != 0) {
+		unlink(tmp);
+		return stray_error_at(err, STRAY_EIO, path, 0, "file",
+				      "cannot sync or rename the frame");
+	}
+	return stray_sweep_sha256_file(path, sha_hex, err);
+}
