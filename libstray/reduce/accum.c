@@ -94,7 +94,8 @@ int stray_accum_add(struct stray_accum *a, const struct stray_dark_model *d,
 				a->n_sat++;	/* never averaged in (§3.2) */
 				continue;
 			}
-			/* eq. 3.4-3.5: L = I - D(t), per unit t alpha_nd */
+			/* eq. 3.4 (FULL), eq. 3.5 (AMBIENT): L = I - D(t),
+			 * per unit t alpha_nd as eq. 3.6 weighs it */
 			welford(a, r * f->n_cols + c, (row[c] - lvl[c & 3]) * inv,
 				inv_next);
 		}

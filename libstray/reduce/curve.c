@@ -96,7 +96,12 @@ static int fit_p0(const struct stray_visit *v, size_t n, struct p0_line *f,
 	return STRAY_OK;
 }
 
-/* eq. 3.12 with the drift line: alpha = P(theta) / P0(order). */
+/*
+ * eq. 3.12 with the drift line: alpha = P(theta) / P0(order).  By eq. 3.11,
+ * P = F_src A_px abar_px n_ppi, so the ratio is the mean per-pixel
+ * attenuation abar_px(theta) / abar_px(0) of eq. 3.10 (F_src, A_px and
+ * n_ppi cancel), and eq. 3.7's J(theta) / J(0) summed over the image.
+ */
 static void visit_alpha(const struct stray_visit *v, const struct p0_line *f,
 			double pbar0, double *alpha, double *var, double *nf)
 {

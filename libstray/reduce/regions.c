@@ -31,7 +31,8 @@ int stray_region_map_from_image(const float *j, size_t n, unsigned n_regions,
 		scratch[i] = j[i];
 		mean += j[i];
 	}
-	mean /= (double)n;	/* eq. 3.13: Pbar */
+	mean /= (double)n;	/* eq. 3.13: Pbar; J_i / Pbar = alpha_px,i / abar_px
+				 * by eq. 3.8 and eq. 3.10 */
 	if (!(mean > 0.0))
 		return stray_error_set_value(err, STRAY_EINVAL, "J",
 			"image mean must be > 0 for a map", mean);

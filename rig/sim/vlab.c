@@ -150,7 +150,9 @@ static double light_rate(const struct rig_vlab_cfg *c,
 
 	if (!st->lamp_on)
 		return 0;
+	/* eq. 3.2: I_amb = f(theta, t_exp, alpha_nd), the beam blocked */
 	r = c->ambient_dn_s + c->atmos_frac * c->lamp_rate_dn_s * lamp;
+	/* eq. 3.1: I_ful = f(theta, t_exp, alpha_nd), direct light added */
 	if (!st->beam_blocked)
 		r += lamp * rig_vlab_direct_rate(c, st->theta_deg, row, col);
 	return r;
@@ -167,7 +169,7 @@ void rig_vlab_render(const struct rig_vlab_cfg *c,
 	for (r = 0; r < n_rows; r++)
 		for (k = 0; k < n_cols; k++) {
 			int row = rows[r], col = col0 + k;
-			double rate = c->dark_dn_s, e, dn;
+			double rate = c->dark_dn_s, e, dn; /* eq. 3.3: D */
 
 			if (st->shutter_open)
 				rate += st->nd_trans * light_rate(c, st, row,
