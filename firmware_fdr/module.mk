@@ -56,18 +56,20 @@ $(B)/tests/firmware_fdr/%: $(B)/obj/tests/firmware_fdr/%.o $(FDRFW_TEST_DEPS)
 	$(FDRFW_TEST_LINK)
 
 # libstray's core built as on the target (STRAY_REAL_FLOAT) for
-# test_float_core: its objects and the shim float_core.c are linked into
-# one relocatable object that keeps only fcore_* global, so the float core
-# sits beside the double libstray in one binary and is compared with it.
+# test_float_core: its objects, the module's table-to-model mapping and
+# the shim float_core.c are linked into one relocatable object that keeps
+# only fcore_* global, so the float core sits beside the double libstray
+# in one binary and is compared with it.
 FCORE_SRC := $(addprefix libstray/core/,fdr.c tail.c root.c error.c) \
-	tests/firmware_fdr/float_core.c
+	firmware_fdr/model_map.c tests/firmware_fdr/float_core.c
 FCORE_OBJ := $(FCORE_SRC:%.c=$(B)/obj/fcore/%.o)
 FCORE_REL := $(B)/obj/fcore/float_core_all.o
 
 $(B)/obj/fcore/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_BASE) $(CPPFLAGS_HOST) -DSTRAY_REAL_FLOAT \
-		-Wdouble-promotion -ffreestanding -Itests/firmware_fdr -c $< -o $@
+		-Wdouble-promotion -ffreestanding -Ifirmware_fdr/include \
+		-Itests/firmware_fdr -c $< -o $@
 
 $(FCORE_REL): $(FCORE_OBJ)
 	$(CC) -r -nostdlib -o $@.all $^

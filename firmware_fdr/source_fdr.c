@@ -16,6 +16,7 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "fdrfw/model_map.h"
 #include "fdrfw/vec.h"
 #include "source_fdr.h"
 #include "stray/fdr.h"
@@ -29,18 +30,7 @@ int fdrfw_fdr_init(struct fdrfw_ctx *ctx)
 	struct stray_fdr_model *m = &ctx->model;
 
 	/* The thesis model (Gaussian, uniform light, no detector noise). */
-	m->f_src_ph_s_m2 = 0;
-	m->f_drs_ph_s_m2 = (stray_real)t->f_drs_ph_s_m2;
-	m->t_exp_s = (stray_real)t->t_exp_nominal_s;
-	m->a_px_m2 = (stray_real)t->a_px_m2;
-	m->a_cs_m2 = (stray_real)t->a_cs_m2;
-	m->n_pps = (stray_real)t->n_pps;
-	m->n_tot = (stray_real)t->n_tot;
-	m->pr_drs = (stray_real)t->pr_drs;
-	m->read_noise_e = 0;
-	m->dark_current_e_s = 0;
-	m->noise = STRAY_NOISE_GAUSS;
-	m->map = NULL;
+	fdrfw_model_from_table(t, m);
 	if (stray_fdr_model_check(m, NULL) != 0 ||
 	    stray_gauss_q_inv(m->pr_drs, &ctx->z_drs, NULL) != 0)
 		return FDRFW_ERANGE;

@@ -2,6 +2,7 @@
  * table.c - the flight table: CRC, blob encoding, checks, and the lookup
  * of the attenuation curve alpha_sys(theta) (thesis §5.1).
  */
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -103,13 +104,23 @@ static int positive(float v)
 	return isfinite(v) && v > 0.0f;
 }
 
-/* The FDR model fields and the sources. */
+static int at_least_one(float v)
+{
+	return in_range(v, 1.0f, FLT_MAX);
+}
+
+static int probability(float v)
+{
+	return in_range(v, 1e-6f, 0.999999f);
+}
+
+/* The FDR model fields, each in its domain (model_map.h), and the
+ * sources. */
 static int model_fields_ok(const struct fdrfw_table *t)
 {
-	return positive(t->t_exp_nominal_s) && positive(t->a_px_m2) &&
-	       positive(t->a_cs_m2) && in_range(t->n_pps, 1.0f, t->n_tot) &&
-	       positive(t->n_tot) && in_range(t->pr_drs, 1e-6f, 0.999999f) &&
-	       positive(t->f_drs_ph_s_m2) && isfinite(t->i_sdt_e) &&
+#define FDRFW_FIELD_OK(tf, mf, domain) domain(t->tf) &&
+	return FDRFW_MODEL_FIELDS(FDRFW_FIELD_OK)
+	       (t->n_pps <= t->n_tot) && isfinite(t->i_sdt_e) &&
 	       positive(t->fdr_tolerated) && positive(t->f_sun_ph_s_m2) &&
 	       positive(t->f_moon_full_ph_s_m2) &&
 	       isfinite(t->moon_full_mag) &&

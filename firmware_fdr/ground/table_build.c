@@ -10,6 +10,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "fdrfw/model_map.h"
 #include "fdrfw/table_build.h"
 #include "stray/config.h"
 #include "stray/fdr.h"
@@ -90,13 +91,7 @@ static int model_fill(const struct stray_curve_view *c,
 	    (rc = stray_fdr_alpha_required(&m, rate, &alpha_req, err)) ||
 	    (rc = stray_exclusion_angle(c, alpha_req, &theta_x, err)))
 		return rc;
-	t->t_exp_nominal_s = (float)m.t_exp_s;
-	t->a_px_m2 = (float)m.a_px_m2;
-	t->a_cs_m2 = (float)m.a_cs_m2;
-	t->n_pps = (float)m.n_pps;
-	t->n_tot = (float)m.n_tot;
-	t->pr_drs = (float)m.pr_drs;
-	t->f_drs_ph_s_m2 = (float)m.f_drs_ph_s_m2;
+	fdrfw_table_from_model(&m, t);
 	t->i_sdt_e = (float)i_sdt;
 	t->fdr_tolerated = (float)rate;
 	t->f_sun_ph_s_m2 = (float)p->f_sun_ph_s_m2;
@@ -156,8 +151,9 @@ int fdrfw_table_write_c(FILE *out, const struct fdrfw_table *t,
 		(unsigned long)t->version, (unsigned long)t->n_curve);
 #define F(field) fprintf(out, "\t." #field " = %af, /* %.9g */\n", \
 			 (double)t->field, (double)t->field)
-	F(t_exp_nominal_s); F(a_px_m2); F(a_cs_m2); F(n_pps); F(n_tot);
-	F(pr_drs); F(f_drs_ph_s_m2); F(i_sdt_e); F(fdr_tolerated);
+#define FDRFW_WRITE_FIELD(tf, mf, domain) F(tf);
+	FDRFW_MODEL_FIELDS(FDRFW_WRITE_FIELD)
+	F(i_sdt_e); F(fdr_tolerated);
 	F(f_sun_ph_s_m2); F(f_moon_full_ph_s_m2); F(moon_full_mag);
 	F(earth_albedo); F(fov_half_deg); F(hysteresis_deg);
 	F(alpha_req_sun); F(exclusion_sun_deg);

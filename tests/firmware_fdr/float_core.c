@@ -5,6 +5,7 @@
  */
 #include <stddef.h>
 
+#include "fdrfw/model_map.h"
 #include "float_core.h"
 #include "stray/fdr.h"
 #include "stray/root.h"
@@ -12,18 +13,9 @@
 
 static void model_of(const struct fcore_model *d, struct stray_fdr_model *m)
 {
-	m->f_src_ph_s_m2 = (stray_real)d->f_src_ph_s_m2;
-	m->f_drs_ph_s_m2 = (stray_real)d->f_drs_ph_s_m2;
+	fdrfw_model_from_table(d->table, m);
 	m->t_exp_s = (stray_real)d->t_exp_s;
-	m->a_px_m2 = (stray_real)d->a_px_m2;
-	m->a_cs_m2 = (stray_real)d->a_cs_m2;
-	m->n_pps = (stray_real)d->n_pps;
-	m->n_tot = (stray_real)d->n_tot;
-	m->pr_drs = (stray_real)d->pr_drs;
-	m->read_noise_e = (stray_real)d->read_noise_e;
-	m->dark_current_e_s = (stray_real)d->dark_current_e_s;
-	m->noise = d->poisson ? STRAY_NOISE_POISSON : STRAY_NOISE_GAUSS;
-	m->map = NULL;
+	m->f_src_ph_s_m2 = (stray_real)d->f_src_ph_s_m2;
 }
 
 int fcore_real_is_float(void)

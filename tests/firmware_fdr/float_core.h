@@ -10,11 +10,16 @@
 #ifndef FDRFW_TEST_FLOAT_CORE_H
 #define FDRFW_TEST_FLOAT_CORE_H
 
-/* The thesis model's fields (Gaussian, uniform light), as doubles. */
+#include "fdrfw/table.h"
+
+/*
+ * The thesis model (Gaussian, uniform light) of a flight table, through
+ * the module's own mapping (fdrfw_model_from_table, built in float here),
+ * at an exposure and a source flux of the test's choosing.
+ */
 struct fcore_model {
-	double f_src_ph_s_m2, f_drs_ph_s_m2, t_exp_s, a_px_m2, a_cs_m2;
-	double n_pps, n_tot, pr_drs, read_noise_e, dark_current_e_s;
-	int poisson;		/* 1: the exact-Poisson noise model */
+	const struct fdrfw_table *table;
+	double t_exp_s, f_src_ph_s_m2;
 };
 
 /* Nonzero when the object was built with float as its real type. */

@@ -22,6 +22,7 @@ static const struct { const char *rule; int allowed; } justified[] = {
 	{ "12.1", 69 }, { "15.6", 25 }, { "15.5", 21 }, { "10.8", 15 },
 	{ "12.3", 16 }, { "10.4", 7 }, { "2.5", 17 }, { "2.3", 3 },
 	{ "2.4", 2 }, { "8.9", 2 }, { "20.10", 2 }, { "8.7", 2 },
+	{ "20.7", 5 },
 };
 
 #define N_JUSTIFIED (sizeof(justified) / sizeof(justified[0]))

@@ -17,6 +17,7 @@
 #include <cmocka.h>
 
 #include "fixture.h"
+#include "fdrfw/model_map.h"
 #include "float_core.h"
 #include "stray/fdr.h"
 #include "stray/table.h"
@@ -25,20 +26,18 @@
 #define EPS_F ((double)FLT_EPSILON)
 #define LN_FDR_FLOOR (-69.07755278982137)	/* ln 1e-30 */
 
-/* The flight table's model: the same float inputs reach both cores. */
+/* The flight table's model, through the module's mapping in both cores:
+ * the same float inputs reach both.  The table outlives the calls. */
 static void models(double t_exp_s, struct fcore_model *f,
 		   struct stray_fdr_model *d)
 {
-	struct fdrfw_table t;
+	static struct fdrfw_table t;
 
 	fixture_table(&t);
-	*f = (struct fcore_model){ (double)t.f_sun_ph_s_m2,
-		(double)t.f_drs_ph_s_m2, t_exp_s, (double)t.a_px_m2,
-		(double)t.a_cs_m2, (double)t.n_pps, (double)t.n_tot,
-		(double)t.pr_drs, 0.0, 0.0, 0 };
-	*d = (struct stray_fdr_model){ f->f_src_ph_s_m2, f->f_drs_ph_s_m2,
-		f->t_exp_s, f->a_px_m2, f->a_cs_m2, f->n_pps, f->n_tot,
-		f->pr_drs, 0.0, 0.0, STRAY_NOISE_GAUSS, NULL };
+	*f = (struct fcore_model){ &t, t_exp_s, (double)t.f_sun_ph_s_m2 };
+	fdrfw_model_from_table(&t, d);
+	d->t_exp_s = f->t_exp_s;
+	d->f_src_ph_s_m2 = f->f_src_ph_s_m2;
 }
 
 /* The option took effect: the object really computes in float. */
@@ -185,7 +184,7 @@ static void test_threshold_closed_form(void **state)
 
 	(void)state;
 	models(0.25, &fm, &dm);
-	assert_int_equal(fcore_gauss_q_inv(fm.pr_drs, &z), STRAY_OK);
+	assert_int_equal(fcore_gauss_q_inv(dm.pr_drs, &z), STRAY_OK);
 	assert_int_equal(fcore_fdr_threshold(&fm, &i_full), STRAY_OK);
 	i_closed = fcore_fdr_threshold_gauss(&fm, z);
 	assert_true(i_closed == i_full);

@@ -16,6 +16,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "fdrfw/model_map.h"
+
 #define FDRFW_TABLE_MAGIC 0x52444646u	/* "FFDR" little-endian */
 #define FDRFW_TABLE_VERSION 1u
 #define FDRFW_CURVE_MAX 128		/* samples of the attenuation curve */
@@ -27,14 +29,12 @@ struct fdrfw_table {
 	uint32_t magic;
 	uint32_t version;
 	uint32_t n_curve;		/* samples used, 2..FDRFW_CURVE_MAX */
-	/* FDR model constants, thesis eq. 2.3-2.18 (stray_fdr_model). */
-	float t_exp_nominal_s;		/* exposure I_sdt was computed for */
-	float a_px_m2;			/* A_px, eq. 2.3 */
-	float a_cs_m2;			/* A_cs, eq. 2.12 */
-	float n_pps;			/* pixels per star window, eq. 2.7 */
-	float n_tot;			/* pixels on the detector, eq. 2.18 */
-	float pr_drs;			/* DRS detection prob., eq. 2.16 */
-	float f_drs_ph_s_m2;		/* F_drs, eq. 2.12 */
+	/* FDR model constants, thesis eq. 2.3-2.18 (stray_fdr_model), one
+	 * float each in model_map.h's order: t_exp_nominal_s (the exposure
+	 * I_sdt was computed for), a_px_m2, a_cs_m2, n_pps, n_tot, pr_drs,
+	 * f_drs_ph_s_m2. */
+#define FDRFW_TABLE_FIELD(tf, mf, domain) float tf;
+	FDRFW_MODEL_FIELDS(FDRFW_TABLE_FIELD)
 	float i_sdt_e;			/* I_sdt at t_exp_nominal_s, eq. 2.16 */
 	float fdr_tolerated;		/* false stars per image allowed */
 	/* Sources (photon fluxes in the sensor passband, eq. 2.1). */
