@@ -114,13 +114,28 @@ static int probability(float v)
 	return in_range(v, 1e-6f, 0.999999f);
 }
 
+int fdrfw_table_is_thesis(const struct fdrfw_table *t)
+{
+	return t->k_px == 1.0f;
+}
+
+/* k_px is the thesis's 1 or A_cs / (n_tot A_px) of the table's own
+ * fields (eq. 2.3 with eq. 3.11-3.12's alpha), to float rounding. */
+static int k_px_ok(const struct fdrfw_table *t)
+{
+	float k = t->a_cs_m2 / (t->n_tot * t->a_px_m2);
+
+	return fdrfw_table_is_thesis(t) ||
+	       (fabsf(t->k_px - k) <= (1e-5f * k));
+}
+
 /* The FDR model fields, each in its domain (model_map.h), and the
  * sources. */
 static int model_fields_ok(const struct fdrfw_table *t)
 {
 #define FDRFW_FIELD_OK(tf, mf, domain) domain(t->tf) &&
 	return FDRFW_MODEL_FIELDS(FDRFW_FIELD_OK)
-	       (t->n_pps <= t->n_tot) && isfinite(t->i_sdt_e) &&
+	       (t->n_pps <= t->n_tot) && k_px_ok(t) && isfinite(t->i_sdt_e) &&
 	       positive(t->fdr_tolerated) && positive(t->f_sun_ph_s_m2) &&
 	       positive(t->f_moon_full_ph_s_m2) &&
 	       isfinite(t->moon_full_mag) &&

@@ -95,6 +95,7 @@ static int print_json(const struct fdr_setup *s, const struct excl_args *a,
 	cJSON_AddStringToObject(o, "curve", a->curve);
 	cJSON_AddStringToObject(o, "sensor", s->sensor.name);
 	cJSON_AddItemToObject(o, "rate", cli_json_number(s->rate));
+	fdr_setup_json(s, o);
 	cJSON_AddItemToObject(o, "fov_half_deg", cli_json_number(s->sensor.fov_half_deg));
 	cJSON_AddItemToObject(o, "sun_deg", cli_json_number(b[0].angle_deg));
 	cJSON_AddItemToObject(o, "moon_deg", cli_json_number(b[1].angle_deg));
@@ -113,6 +114,7 @@ static void print_text(const struct fdr_setup *s, const struct excl_args *a,
 
 	printf("Exclusion angles of %s for %s at %g false stars per image\n",
 	       a->curve, s->sensor.name, s->rate);
+	fdr_setup_print_normalisation(s);
 	for (i = 0; i < nb; i++) {
 		printf("  %-6s alpha_required %.3e  ", b[i].name, b[i].alpha_req);
 		if (!b[i].excluded && isnan(b[i].angle_deg)) {

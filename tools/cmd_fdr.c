@@ -106,6 +106,7 @@ static int print_result(const struct fdr_setup *s, const struct fdr_args *a,
 		cJSON_AddStringToObject(o, "source", a->source);
 		cJSON_AddStringToObject(o, "noise", s->poisson ? "poisson" : "gauss");
 		cJSON_AddBoolToObject(o, "detector_noise", s->detector_noise);
+		fdr_setup_json(s, o);
 		cJSON_AddItemToObject(o, "source_flux", cli_json_number(r->f_src));
 		cJSON_AddItemToObject(o, "rate", cli_json_number(s->rate));
 		cJSON_AddItemToObject(o, "drs_e", cli_json_number(r->i_drs));
@@ -131,6 +132,7 @@ static int print_result(const struct fdr_setup *s, const struct fdr_args *a,
 	printf("  noise model             %s%s\n",
 	       s->poisson ? "exact Poisson" : "Gaussian (thesis)",
 	       s->detector_noise ? " + read noise and dark current" : "");
+	fdr_setup_print_normalisation(s);
 	printf("  alpha_required          %.4e   (FDR = %g per image)\n",
 	       r->alpha_req, s->rate);
 	if (a->has_alpha)

@@ -33,7 +33,7 @@ static const char usage[] =
 	"  --hysteresis-deg H  flags clear H deg past the edge (default 0.5)\n"
 	"  --earth-albedo A    Lambertian albedo of the Earth (default 0.3)\n"
 	"  --json              machine-readable summary\n"
-	SENSOR_USAGE;
+	SENSOR_USAGE NORMALISATION_USAGE;
 
 struct ft_args {
 	const char *curve, *out_c, *out_bin, *name;
@@ -54,6 +54,7 @@ static int parse_args(int argc, char **argv, struct fdr_setup *s,
 		{ "hysteresis-deg", required_argument, NULL, 'H' },
 		{ "earth-albedo", required_argument, NULL, 'e' },
 		SENSOR_LONG_OPTIONS,
+		NORMALISATION_LONG_OPTION,
 		{ NULL, 0, NULL, 0 }
 	};
 	const char *cmd = "firmware-table";
@@ -142,6 +143,9 @@ static int print_summary(const struct ft_args *a, const struct fdrfw_table *t)
 		cJSON_AddItemToObject(o, "blob_bytes",
 				      cJSON_CreateNumber(FDRFW_BLOB_SIZE));
 		cJSON_AddItemToObject(o, "crc32", cJSON_CreateNumber(t->crc32));
+		cJSON_AddStringToObject(o, "normalisation",
+			fdrfw_table_is_thesis(t) ? "thesis" : "consistent");
+		cJSON_AddItemToObject(o, "k_px", cli_json_number((double)t->k_px));
 		cJSON_AddItemToObject(o, "threshold_e",
 				      cli_json_number((double)t->i_sdt_e));
 		cJSON_AddItemToObject(o, "alpha_required_sun",
@@ -153,10 +157,13 @@ static int print_summary(const struct ft_args *a, const struct fdrfw_table *t)
 		return cli_json_emit(o);
 	}
 	printf("flight table from %s: %lu angles, %lu bytes, CRC-32 0x%08lX\n"
+	       "  normalisation %s, k_px %.4g (eq. 2.3)\n"
 	       "  threshold I_sdt %.6g e-, Sun alpha_required %.4g, "
 	       "exclusion %.3f deg (hysteresis %.2f deg)\n",
 	       a->curve, (unsigned long)t->n_curve,
 	       (unsigned long)FDRFW_BLOB_SIZE, (unsigned long)t->crc32,
+	       fdrfw_table_is_thesis(t) ? "thesis" : "consistent",
+	       (double)t->k_px,
 	       (double)t->i_sdt_e, (double)t->alpha_req_sun,
 	       (double)t->exclusion_sun_deg, (double)t->hysteresis_deg);
 	return CLI_OK;
@@ -189,6 +196,7 @@ int cmd_firmware_table(int argc, char **argv)
 	p.rate = isnan(a.rate) ? 0.0 : a.rate;
 	p.hysteresis_deg = a.hysteresis_deg;
 	p.earth_albedo = a.albedo;
+	p.normalisation = s.normalisation;
 	v = stray_curve_view_of(&c);
 	rc = fdrfw_table_build(&v, &s.sensor, &p, &t, &err);
 	stray_curve_free(&c);

@@ -22,11 +22,13 @@
 static const char usage[] =
 	"usage: stray orbit --table F.bin [--epoch YYYY-MM-DD] [--hours H]\n"
 	"                   [--step-s S] [--altitude-km A] [--ltan-h L]\n"
-	"                   [--out F.csv] [--plot PREFIX] [--json]\n"
+	"                   [--out F.csv] [--plot PREFIX]\n"
+	"                   [--normalisation consistent|thesis] [--json]\n"
 	"\n"
 	"Evaluate the flight module frame by frame along a circular\n"
 	"sun-synchronous orbit (J2 nodal regression), tracker boresight at the\n"
 	"zenith (anti-nadir), with the module's own Sun and Moon ephemeris.\n"
+	"The normalisation of eq. 2.3 (k_px) is the table's.\n"
 	"\n"
 	"  --table F.bin       flight table (stray firmware-table --out-bin)\n"
 	"  --epoch D           start, 00:00 TT of that date (2026-06-21)\n"
@@ -36,10 +38,13 @@ static const char usage[] =
 	"  --ltan-h L          local time of the ascending node (22.5)\n"
 	"  --out F.csv         the timeline, one row per frame\n"
 	"  --plot PREFIX       PREFIX.png (angles) and PREFIX_fdr.png (false stars)\n"
+	"  --normalisation N   require a table built with this normalisation\n"
+	"                      (stray firmware-table --normalisation N)\n"
 	"  --json              machine-readable summary\n";
 
 struct orbit_args {
 	const char *table, *out, *plot;
+	const char *normalisation;	/* required of the table, or NULL */
 	int year, month, day;
 	double hours, step_s, altitude_km, ltan_h;
 };
@@ -209,7 +214,28 @@ static int plot_run(const char *prefix, const struct orbit_run *r,
 	}
 }
 
-static int summary(const struct orbit_args *a, const struct orbit_run *r)
+static const char *table_normalisation(const struct fdrfw_table *t)
+{
+	return fdrfw_table_is_thesis(t) ? "thesis" : "consistent";
+}
+
+/* --normalisation: the table must have been built with it. */
+static int normalisation_check(const struct orbit_args *a,
+			       const struct fdrfw_table *t,
+			       struct stray_error *err)
+{
+	if (!a->normalisation ||
+	    strcmp(a->normalisation, table_normalisation(t)) == 0)
+		return STRAY_OK;
+	return stray_error_at(err, STRAY_EINVAL, a->table, 0, "k_px",
+		strcmp(a->normalisation, "thesis") == 0 ?
+		"the table is consistent, not thesis (stray firmware-table "
+		"--normalisation thesis)" : "the table is thesis, not "
+		"consistent (stray firmware-table --normalisation consistent)");
+}
+
+static int summary(const struct orbit_args *a, const struct fdrfw_table *t,
+		   const struct orbit_run *r)
 {
 	size_t i, k, count[N_FLAGS] = { 0 }, toggles = 0;
 	double max_stars = 0.0, frac;
@@ -227,6 +253,8 @@ static int summary(const struct orbit_args *a, const struct orbit_run *r)
 	cJSON_AddNumberToObject(o, "hours", a->hours);
 	cJSON_AddNumberToObject(o, "step_s", a->step_s);
 	cJSON_AddNumberToObject(o, "altitude_km", a->altitude_km);
+	cJSON_AddStringToObject(o, "normalisation", table_normalisation(t));
+	cJSON_AddItemToObject(o, "k_px", cli_json_number((double)t->k_px));
 	cJSON_AddNumberToObject(o, "sun_exclusion_toggles", (double)toggles);
 	cJSON_AddNumberToObject(o, "max_false_stars", max_stars);
 	for (k = 0; k < N_FLAGS; k++)
@@ -236,6 +264,8 @@ static int summary(const struct orbit_args *a, const struct orbit_run *r)
 		return cli_json_emit(o);
 	printf("stray orbit: %zu frames over %.1f h at %.0f km\n", r->n,
 	       a->hours, a->altitude_km);
+	printf("  normalisation %s, k_px %.4g (eq. 2.3, from the table)\n",
+	       table_normalisation(t), (double)t->k_px);
 	for (k = 0; k < N_FLAGS; k++) {
 		frac = (double)count[k] / r->n;
 		printf("  %-16s %6.2f %% of frames\n", flag_names[k], 100.0 * frac);
@@ -257,6 +287,7 @@ static int parse_args(int argc, char **argv, struct orbit_args *a)
 		{ "ltan-h", required_argument, NULL, 'l' },
 		{ "out", required_argument, NULL, 'o' },
 		{ "plot", required_argument, NULL, 'p' },
+		{ "normalisation", required_argument, NULL, 'N' },
 		{ "json", no_argument, &cli.json, 1 },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 }
@@ -270,6 +301,12 @@ static int parse_args(int argc, char **argv, struct orbit_args *a)
 		case 't': a->table = optarg; break;
 		case 'o': a->out = optarg; break;
 		case 'p': a->plot = optarg; break;
+		case 'N':
+			if (strcmp(optarg, "consistent") != 0 &&
+			    strcmp(optarg, "thesis") != 0)
+				return cli_usage_error("orbit", "option '--normalisation': '%s' is not consistent or thesis", optarg);
+			a->normalisation = optarg;
+			break;
 		case 'e':
 			if (sscanf(optarg, "%d-%d-%d", &a->year, &a->month, &a->day) != 3 ||
 			    a->year < 1935 || a->year > 2065 || a->month < 1 ||
@@ -300,8 +337,8 @@ static int parse_args(int argc, char **argv, struct orbit_args *a)
 
 int cmd_orbit(int argc, char **argv)
 {
-	struct orbit_args a = { NULL, NULL, NULL, 2026, 6, 21, 24.0, 10.0,
-				550.0, 22.5 };
+	struct orbit_args a = { NULL, NULL, NULL, NULL, 2026, 6, 21, 24.0,
+				10.0, 550.0, 22.5 };
 	struct fdrfw_table table;
 	struct orbit_run run;
 	struct stray_error err;
@@ -310,7 +347,8 @@ int cmd_orbit(int argc, char **argv)
 	if (rc != CLI_OK)
 		return rc < 0 ? CLI_OK : rc;
 	stray_error_clear(&err);
-	if (load_table(a.table, &table, &err) != STRAY_OK)
+	if (load_table(a.table, &table, &err) != STRAY_OK ||
+	    normalisation_check(&a, &table, &err) != STRAY_OK)
 		return cli_fail("orbit", &err);
 	if (!run_alloc(&run, (size_t)(a.hours * 3600.0 / a.step_s) + 1)) {
 		run_free(&run);
@@ -323,7 +361,7 @@ int cmd_orbit(int argc, char **argv)
 		run_free(&run);
 		return cli_fail("orbit", &err);
 	}
-	rc = summary(&a, &run);
+	rc = summary(&a, &table, &run);
 	run_free(&run);
 	return rc;
 }

@@ -33,7 +33,7 @@ static const struct section sections[] = {
 	  "Photon fluxes of the bright sources and the designed reference star in the sensor's passband (eq. 2.1-2.2).",
 	  "photometry.json", NULL, { NULL } },
 	{ "fdr", "False-detection rate and the attenuation it requires (fig. 2.7)",
-	  "False stars per image against system attenuation, the tolerated rate, and alpha_required where they cross (eq. 2.3-2.18).",
+	  "False stars per image against system attenuation, the tolerated rate, and alpha_required where they cross (eq. 2.3-2.18). normalisation and k_px say how a power-ratio curve (eq. 3.11-3.12, a trace) meets eq. 2.3: consistent, I_px = alpha F t A_px k_px with k_px = A_cs / (n_tot A_px), or the thesis, k_px = 1 (docs/normalisation.md).",
 	  "fdr_sun.json", NULL, { "fdr_sun.png", NULL } },
 	{ "lens", "Lens attenuation curve, noise floor and ghosts (thesis ch. 3)",
 	  "The lens curve reduced from the lab sweep with its image noise floor (eq. 3.13-3.15), the row-collapsed profiles over angle and the internal-reflection ghosts tracked across angles (figs 3.7-3.9).",

@@ -49,7 +49,7 @@ static const char usage[] =
 	"  --alpha-at LIST     angles to report alpha at (default 20,30,40)\n"
 	"  --rays N, --seed K, --threads T, --batches B, --lens L.csv,\n"
 	"  --set key=value     as 'stray trace' (rays default 300000)\n"
-	SENSOR_USAGE;
+	SENSOR_USAGE NORMALISATION_USAGE;
 
 #define SETS_MAX 64
 
@@ -78,6 +78,7 @@ static const struct option sweep_opts[] = {
 	{ "json", no_argument, NULL, 'j' },
 	{ "help", no_argument, NULL, 'h' },
 	SENSOR_LONG_OPTIONS,
+	NORMALISATION_LONG_OPTION,
 	{ NULL, 0, NULL, 0 }
 };
 
@@ -329,8 +330,10 @@ static int sweep(struct sweep_args *a, struct fdr_setup *fs,
 		rc = run_design(a, i, &lens, alpha_req, &d[i], err);
 	if (!rc) {
 		struct sweep_summary s = { d, a->grid.n_designs, a->at,
-					   a->n_at, alpha_req, fs->sensor_spec ?
-					   fs->sensor_spec : "st16-like" };
+			a->n_at, alpha_req, fs->sensor_spec ?
+			fs->sensor_spec : "st16-like",
+			stray_normalisation_name(fs->normalisation),
+			fdr_setup_k_px(fs) };
 
 		if (a->out)
 			rc = design_write_csv(&s, a->out, err);

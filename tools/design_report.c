@@ -79,8 +79,8 @@ void design_print_text(const struct sweep_summary *s)
 	int k;
 
 	printf("Sun exclusion angle per design (sensor %s, alpha_required "
-	       "%.3g; interval from alpha -/+ sigma)\n", s->sensor,
-	       s->alpha_req);
+	       "%.3g with k_px %.4g, %s; interval from alpha -/+ sigma)\n",
+	       s->sensor, s->alpha_req, s->k_px, s->normalisation);
 	printf("%-4s %8s %15s", "#", "sun_deg", "interval");
 	for (k = 0; k < s->n_at; k++)
 		printf("  alpha@%-5g", s->at_deg[k]);
@@ -122,6 +122,8 @@ int design_print_json(const struct sweep_summary *s)
 	cJSON_AddStringToObject(o, "sensor", s->sensor);
 	cJSON_AddItemToObject(o, "alpha_required",
 			      cli_json_number(s->alpha_req));
+	cJSON_AddStringToObject(o, "normalisation", s->normalisation);
+	cJSON_AddItemToObject(o, "k_px", cli_json_number(s->k_px));
 	for (i = 0; i < s->n; i++) {
 		const struct design_result *d = &s->d[i];
 		cJSON *e = cJSON_CreateObject(), *at = cJSON_CreateObject();

@@ -28,6 +28,8 @@ struct sweep_summary {
 	int n_at;
 	double alpha_req;
 	const char *sensor;
+	const char *normalisation;	/* eq. 2.3's k_px: its name, value */
+	double k_px;
 };
 
 /* Best (smallest finite Sun exclusion angle) and worst; -1 when none. */

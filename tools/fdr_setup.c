@@ -3,6 +3,7 @@
  * `stray exclusion`.
  */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -55,6 +56,14 @@ int fdr_setup_option(struct fdr_setup *s, const char *cmd, int opt,
 	case 1010:
 		return cli_parse_double(cmd, "altitude-km", arg,
 					&s->altitude_km) ? CLI_USAGE : 1;
+	case 1011:
+		if (strcmp(arg, "consistent") != 0 && strcmp(arg, "thesis") != 0)
+			return cli_usage_error(cmd,
+				"option '--normalisation': '%s' is not consistent or thesis",
+				arg);
+		s->normalisation = strcmp(arg, "thesis") == 0 ?
+			STRAY_NORM_THESIS : STRAY_NORM_CONSISTENT;
+		return 1;
 	default:
 		return 0;
 	}
@@ -120,12 +129,32 @@ void fdr_setup_model(const struct fdr_setup *s, double f_src,
 		     struct stray_fdr_model *m)
 {
 	stray_sensor_fdr_model(&s->sensor, f_src, s->flux.drs, m);
+	m->k_px = fdr_setup_k_px(s);
 	if (s->detector_noise) {
 		m->read_noise_e = s->sensor.read_noise_e;
 		m->dark_current_e_s = s->sensor.dark_current_e_s;
 	}
 	m->noise = s->poisson ? STRAY_NOISE_POISSON : STRAY_NOISE_GAUSS;
 	m->map = s->map_path ? &s->map : NULL;
+}
+
+double fdr_setup_k_px(const struct fdr_setup *s)
+{
+	return stray_sensor_k_px(&s->sensor, s->normalisation);
+}
+
+void fdr_setup_json(const struct fdr_setup *s, cJSON *o)
+{
+	cJSON_AddStringToObject(o, "normalisation",
+				stray_normalisation_name(s->normalisation));
+	cJSON_AddItemToObject(o, "k_px", cli_json_number(fdr_setup_k_px(s)));
+}
+
+void fdr_setup_print_normalisation(const struct fdr_setup *s)
+{
+	printf("  normalisation           %s, k_px = %.4g (eq. 2.3; "
+	       "docs/normalisation.md)\n",
+	       stray_normalisation_name(s->normalisation), fdr_setup_k_px(s));
 }
 
 double fdr_setup_moon_flux(const struct fdr_setup *s)

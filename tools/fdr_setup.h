@@ -6,6 +6,7 @@
 #ifndef STRAY_TOOLS_FDR_SETUP_H
 #define STRAY_TOOLS_FDR_SETUP_H
 
+#include <cJSON.h>
 #include <getopt.h>
 
 #include "stray/fdr.h"
@@ -23,6 +24,8 @@ struct fdr_setup {
 	double earth_albedo;		/* --earth-albedo (0.3) */
 	double altitude_km;		/* --altitude-km (550) */
 	int earth_given;		/* --earth-albedo was given */
+	/* --normalisation: k_px of eq. 2.3 (docs/normalisation.md) */
+	enum stray_normalisation normalisation;
 	/* Filled by fdr_setup_load. */
 	struct stray_sensor sensor;
 	struct stray_fluxes flux;
@@ -36,8 +39,18 @@ struct fdr_setup {
 	{ "vega", required_argument, NULL, 1002 }, \
 	{ "qe", required_argument, NULL, 1003 }
 
+/* --normalisation, for every command where a curve meets eq. 2.3. */
+#define NORMALISATION_LONG_OPTION \
+	{ "normalisation", required_argument, NULL, 1011 }
+
+#define NORMALISATION_USAGE \
+	"  --normalisation consistent|thesis\n" \
+	"                      eq. 2.3's per-pixel factor k_px: A_cs / (n_tot A_px)\n" \
+	"                      for a power-ratio curve (default), or the thesis's 1\n"
+
 #define FDR_SETUP_LONG_OPTIONS \
 	SENSOR_LONG_OPTIONS, \
+	NORMALISATION_LONG_OPTION, \
 	{ "noise", required_argument, NULL, 1004 }, \
 	{ "detector-noise", no_argument, NULL, 1005 }, \
 	{ "map", required_argument, NULL, 1006 }, \
@@ -51,7 +64,7 @@ struct fdr_setup {
 	"  --sun F, --vega F, --qe F\n" \
 	"                      spectrum CSVs or builtin:NAME, replacing the sensor's\n"
 
-#define FDR_SETUP_USAGE SENSOR_USAGE \
+#define FDR_SETUP_USAGE SENSOR_USAGE NORMALISATION_USAGE \
 	"  --noise gauss|poisson\n" \
 	"                      shot-noise model: the thesis's Gaussian (default)\n" \
 	"                      or exact Poisson tails\n" \
@@ -75,6 +88,15 @@ int fdr_setup_load(struct fdr_setup *s, struct stray_error *err);
 /* The FDR model for a source of photon flux f_src. */
 void fdr_setup_model(const struct fdr_setup *s, double f_src,
 		     struct stray_fdr_model *m);
+
+/* eq. 2.3's k_px for the chosen normalisation and sensor. */
+double fdr_setup_k_px(const struct fdr_setup *s);
+
+/* "normalisation" and "k_px" into a command's --json object. */
+void fdr_setup_json(const struct fdr_setup *s, cJSON *o);
+
+/* The same as one line of text output. */
+void fdr_setup_print_normalisation(const struct fdr_setup *s);
 
 /* The Moon's photon flux at the chosen phase. */
 double fdr_setup_moon_flux(const struct fdr_setup *s);

@@ -33,6 +33,11 @@ static int params_check(const struct fdrfw_build_params *p,
 	      p->earth_albedo <= 1.0))
 		return stray_error_set_value(err, STRAY_EINVAL, "albedo",
 			"must lie in [0, 1]", p->earth_albedo);
+	if (p->normalisation != STRAY_NORM_CONSISTENT &&
+	    p->normalisation != STRAY_NORM_THESIS)
+		return stray_error_set_value(err, STRAY_EINVAL,
+			"normalisation", "must be consistent or thesis",
+			(double)p->normalisation);
 	if (!isfinite(p->rate))
 		return stray_error_set_value(err, STRAY_EINVAL, "rate",
 			"must be finite", p->rate);
@@ -87,6 +92,7 @@ static int model_fill(const struct stray_curve_view *c,
 	int rc;
 
 	stray_sensor_fdr_model(s, p->f_sun_ph_s_m2, p->f_drs_ph_s_m2, &m);
+	m.k_px = stray_sensor_k_px(s, p->normalisation);
 	if ((rc = stray_fdr_threshold(&m, &i_sdt, err)) != STRAY_OK ||
 	    (rc = stray_fdr_alpha_required(&m, rate, &alpha_req, err)) ||
 	    (rc = stray_exclusion_angle(c, alpha_req, &theta_x, err)))

@@ -79,6 +79,9 @@ int stray_fdr_model_check(const struct stray_fdr_model *m,
 	if (!positive(m->a_px_m2))
 		return stray_error_set_value(err, STRAY_EINVAL, "a_px",
 			STRAY_MSG("must be finite and > 0"), m->a_px_m2);
+	if (!positive(m->k_px))
+		return stray_error_set_value(err, STRAY_EINVAL, "k_px",
+			STRAY_MSG("must be finite and > 0"), m->k_px);
 	if (!positive(m->a_cs_m2))
 		return stray_error_set_value(err, STRAY_EINVAL, "a_cs",
 			STRAY_MSG("must be finite and > 0"), m->a_cs_m2);
@@ -110,8 +113,9 @@ int stray_fdr_model_check(const struct stray_fdr_model *m,
 stray_real stray_fdr_pixel_photons(const struct stray_fdr_model *m,
 				   stray_real alpha)
 {
-	/* eq. 2.3: I_px = alpha_sys F_src t_exp A_px */
-	return alpha * m->f_src_ph_s_m2 * m->t_exp_s * m->a_px_m2;
+	/* eq. 2.3: I_px = alpha_sys F_src t_exp A_px, times k_px for a
+	 * power-ratio alpha (eq. 3.11-3.12; k_px = 1 is the thesis) */
+	return alpha * m->f_src_ph_s_m2 * m->t_exp_s * m->a_px_m2 * m->k_px;
 }
 
 stray_real stray_fdr_drs_photons(const struct stray_fdr_model *m)

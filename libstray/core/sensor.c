@@ -89,17 +89,46 @@ int stray_sensor_check(const struct stray_sensor *s, struct stray_error *err)
 	return STRAY_OK;
 }
 
+/* A_px = pitch^2 (eq. 2.3) [m^2]. */
+static double pixel_area_m2(const struct stray_sensor *s)
+{
+	double pitch_m = s->pixel_pitch_um * 1e-6;
+
+	return pitch_m * pitch_m;
+}
+
+/* A_cs = pi d^2 / 4 (eq. 2.12) [m^2]. */
+static double collecting_area_m2(const struct stray_sensor *s)
+{
+	double radius_m = 0.5 * s->aperture_diameter_mm * 1e-3;
+
+	return PI * radius_m * radius_m;
+}
+
+const char *stray_normalisation_name(enum stray_normalisation n)
+{
+	return n == STRAY_NORM_THESIS ? "thesis" : "consistent";
+}
+
+double stray_sensor_k_px(const struct stray_sensor *s,
+			 enum stray_normalisation n)
+{
+	if (n == STRAY_NORM_THESIS)
+		return 1.0;
+	/* eq. 2.3 with eq. 3.11-3.12's alpha: A_cs / A_det */
+	return collecting_area_m2(s) /
+	       (s->pixels_x * s->pixels_y * pixel_area_m2(s));
+}
+
 void stray_sensor_fdr_model(const struct stray_sensor *s, double f_src,
 			    double f_drs, struct stray_fdr_model *m)
 {
-	double pitch_m = s->pixel_pitch_um * 1e-6;
-	double radius_m = 0.5 * s->aperture_diameter_mm * 1e-3;
-
 	m->f_src_ph_s_m2 = f_src;
 	m->f_drs_ph_s_m2 = f_drs;
 	m->t_exp_s = s->t_exp_s;
-	m->a_px_m2 = pitch_m * pitch_m;
-	m->a_cs_m2 = PI * radius_m * radius_m;
+	m->a_px_m2 = pixel_area_m2(s);
+	m->k_px = stray_sensor_k_px(s, STRAY_NORM_CONSISTENT);
+	m->a_cs_m2 = collecting_area_m2(s);
 	m->n_pps = s->star_window_px;
 	m->n_tot = s->pixels_x * s->pixels_y;
 	m->pr_drs = s->pr_drs;

@@ -59,8 +59,10 @@ static void test_blob_and_c_source(void **state)
 	char bin[256], src[256];
 	char *argv[] = { "stray", "firmware-table", "--curve", CURVE,
 			 "--out-bin", bin, "--out-c", src, NULL };
-	struct fdrfw_build_params p = { 0, 0, 0, 0, FDRFW_BUILD_HYSTERESIS_DEG,
-					FDRFW_BUILD_ALBEDO };
+	struct fdrfw_build_params p = {
+		.hysteresis_deg = FDRFW_BUILD_HYSTERESIS_DEG,
+		.earth_albedo = FDRFW_BUILD_ALBEDO,
+	};
 	struct fdrfw_table got, t;
 	struct stray_curve c;
 	struct stray_curve_view v;
@@ -124,6 +126,87 @@ static void test_json_summary(void **state)
 	cJSON_Delete(o);
 }
 
+/* The summary of one `stray firmware-table --json [--normalisation N]`. */
+static cJSON *summary_json(char *normalisation)
+{
+	static struct cli_run r;
+	char *argv[] = { "stray", "firmware-table", "--curve", CURVE, "--json",
+			 normalisation ? "--normalisation" : NULL,
+			 normalisation, NULL };
+	cJSON *o;
+
+	assert_int_equal(run_stray(&r, argv), 0);
+	o = cJSON_Parse(r.out);
+	assert_non_null(o);
+	return o;
+}
+
+static double json_num(const cJSON *o, const char *key)
+{
+	const cJSON *v = cJSON_GetObjectItem(o, key);
+
+	assert_non_null(v);
+	return v->valuedouble;
+}
+
+/* eq. 2.3's k_px from the st16-like data sheet (ref4-baffle.md: 13 mm
+ * aperture, 2592 x 1944 pixels of 2.2 um), written out here: the table
+ * carries it, or 1 with --normalisation thesis.  The Gaussian FDR depends
+ * on alpha only through I_px = alpha F t A_px k_px, so the thesis's
+ * alpha_required is k_px times the consistent one. */
+static void test_normalisation(void **state)
+{
+	const double k_px = 3.14159265358979 * 6.5 * 6.5 /
+			    (2592.0 * 1944.0 * 2.2e-3 * 2.2e-3);
+	cJSON *c = summary_json(NULL), *cc = summary_json("consistent");
+	cJSON *th = summary_json("thesis");
+
+	(void)state;
+	assert_string_equal(cJSON_GetObjectItem(c, "normalisation")->valuestring,
+			    "consistent");
+	assert_string_equal(cJSON_GetObjectItem(th, "normalisation")->valuestring,
+			    "thesis");
+	assert_near(json_num(c, "k_px"), k_px, 1e-5 * k_px);
+	assert_near(json_num(cc, "k_px"), json_num(c, "k_px"), 0);
+	assert_near(json_num(th, "k_px"), 1.0, 0);
+	assert_near(json_num(th, "alpha_required_sun") /
+		    json_num(c, "alpha_required_sun"), k_px, 1e-5 * k_px);
+	/* less light tolerated per pixel: the Sun is excluded further out */
+	assert_true(json_num(c, "sun_deg") > json_num(th, "sun_deg"));
+	cJSON_Delete(c);
+	cJSON_Delete(cc);
+	cJSON_Delete(th);
+}
+
+/* `stray orbit` says which normalisation its table carries, and refuses a
+ * table built with another than the one it is asked for. */
+static void test_orbit_normalisation(void **state)
+{
+	static struct cli_run r;
+	char bin[256];
+	char *build[] = { "stray", "firmware-table", "--curve", CURVE,
+			  "--normalisation", "thesis", "--out-bin", bin, NULL };
+	char *fly[] = { "stray", "orbit", "--table", bin, "--hours", "1",
+			"--step-s", "60", "--json", NULL };
+	char *want[] = { "stray", "orbit", "--table", bin, "--hours", "1",
+			 "--normalisation", "consistent", NULL };
+	cJSON *o;
+
+	(void)state;
+	snprintf(bin, sizeof(bin), "%s/thesis.bin", dir);
+	assert_int_equal(run_stray(&r, build), 0);
+	assert_int_equal(run_stray(&r, fly), 0);
+	o = cJSON_Parse(r.out);
+	assert_non_null(o);
+	assert_string_equal(cJSON_GetObjectItem(o, "normalisation")->valuestring,
+			    "thesis");
+	assert_near(json_num(o, "k_px"), 1.0, 0);
+	cJSON_Delete(o);
+	assert_int_equal(run_stray(&r, want), 2);
+	assert_int_equal(r.err_lines, 1);
+	assert_non_null(strstr(r.err, "thesis.bin: k_px"));
+}
+
 /* A bad input: the expected exit status, one stderr line with `what`. */
 static void expect_error(char *const argv[], int status, const char *what)
 {
@@ -158,6 +241,8 @@ static void test_bad_input(void **state)
 			 "--hysteresis-deg", "20", "--json", NULL };
 	char *unwritable[] = { "stray", "firmware-table", "--curve", CURVE,
 			       "--out-bin", out, NULL };
+	char *norm[] = { "stray", "firmware-table", "--curve", CURVE,
+			 "--normalisation", "pixel", "--json", NULL };
 	int i, k = 0;
 
 	(void)state;
@@ -177,6 +262,7 @@ static void test_bad_input(void **state)
 	expect_error(long_run, 2, "128");
 	expect_error(hyst, 2, "hysteresis_deg");
 	expect_error(unwritable, 1, "t.bin");
+	expect_error(norm, 2, "'pixel' is not consistent or thesis");
 }
 
 int main(void)
@@ -185,6 +271,8 @@ int main(void)
 		cmocka_unit_test(test_help),
 		cmocka_unit_test(test_blob_and_c_source),
 		cmocka_unit_test(test_json_summary),
+		cmocka_unit_test(test_normalisation),
+		cmocka_unit_test(test_orbit_normalisation),
 		cmocka_unit_test(test_bad_input),
 	};
 

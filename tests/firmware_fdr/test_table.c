@@ -123,6 +123,24 @@ static void test_out_of_range_rejected(void **state)
 	fdrfw_table_seal(&t);
 	assert_int_equal(fdrfw_table_check(&t), FDRFW_ERANGE);
 
+	/* eq. 2.3's k_px: the thesis's 1 or A_cs / (n_tot A_px), nothing
+	 * else (st16-like: 132.7 mm^2 / 24.39 mm^2 = 5.44). */
+	fixture_table(&t);
+	assert_near((double)t.k_px, 3.14159265358979 * 6.5 * 6.5 /
+		    (2592.0 * 1944.0 * 2.2e-3 * 2.2e-3), 1e-5);
+	assert_false(fdrfw_table_is_thesis(&t));
+	t.k_px = 1.0f;
+	fdrfw_table_seal(&t);
+	assert_int_equal(fdrfw_table_check(&t), FDRFW_OK);
+	assert_true(fdrfw_table_is_thesis(&t));
+	t.k_px = 2.0f;
+	fdrfw_table_seal(&t);
+	assert_int_equal(fdrfw_table_check(&t), FDRFW_ERANGE);
+	fixture_table(&t);
+	t.k_px *= 1.001f;
+	fdrfw_table_seal(&t);
+	assert_int_equal(fdrfw_table_check(&t), FDRFW_ERANGE);
+
 	fixture_table(&t);
 	t.version = FDRFW_TABLE_VERSION + 1;
 	fdrfw_table_seal(&t);

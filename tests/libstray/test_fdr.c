@@ -16,12 +16,14 @@
 #define Z95 1.6448536269514722	/* Q(Z95) = 0.05, tabulated */
 #define LN_Q30 (-454.3212439563431971)	/* mpmath, tests/vectors */
 
-/* st16-like numbers with round fluxes, independent of the photometry. */
+/* st16-like numbers with round fluxes, independent of the photometry;
+ * k_px = 1 is eq. 2.3 as the thesis prints it (test_fdr_k_px: others). */
 static struct stray_fdr_model base(void)
 {
 	struct stray_fdr_model m = {
 		.f_src_ph_s_m2 = 9e20, .f_drs_ph_s_m2 = 9e7, .t_exp_s = 0.1,
-		.a_px_m2 = 2.2e-6 * 2.2e-6, .a_cs_m2 = PI * 6.5e-3 * 6.5e-3,
+		.a_px_m2 = 2.2e-6 * 2.2e-6, .k_px = 1.0,
+		.a_cs_m2 = PI * 6.5e-3 * 6.5e-3,
 		.n_pps = 113.0, .n_tot = 2592.0 * 1944.0, .pr_drs = 0.95,
 	};
 	return m;
@@ -92,13 +94,13 @@ static void test_fdr_rate_closed_form(void **state)
 }
 
 /* The inverse in closed form: at FDR = R, Pr_fd = R n_pps / n_tot, so
- * sigma = I_sdt / Q^-1(Pr_fd) and alpha = sigma^2 / (n_pps F t A_px). */
+ * sigma = I_sdt / Q^-1(Pr_fd) and alpha = sigma^2 / (n_pps F t A_px k_px). */
 static double alpha_closed(const struct stray_fdr_model *m, double z)
 {
 	double sigma = threshold(m) / z;
 
-	return sigma * sigma /
-	       (m->n_pps * m->f_src_ph_s_m2 * m->t_exp_s * m->a_px_m2);
+	return sigma * sigma / (m->n_pps * m->f_src_ph_s_m2 * m->t_exp_s *
+				m->a_px_m2 * m->k_px);
 }
 
 static void test_fdr_alpha_required_inverts_closed_form(void **state)
@@ -112,6 +114,26 @@ static void test_fdr_alpha_required_inverts_closed_form(void **state)
 	/* Pr_fd = Q(30) ~ 5e-198: the far tail, rate ~ 2e-193 per image */
 	assert_rel(alpha_req(&m, exp(LN_Q30) * windows), alpha_closed(&m, 30.0),
 		   1e-9);
+}
+
+/* eq. 2.3 with the per-pixel factor of a power-ratio curve: st16-like's
+ * A_cs / (n_tot A_px) = 132.7 mm^2 / 24.39 mm^2 multiplies I_px, and so
+ * divides alpha_req (the closed form with k_px); the DRS (eq. 2.12) and
+ * so I_sdt do not change. */
+static void test_fdr_k_px(void **state)
+{
+	struct stray_fdr_model m = base(), t = base();
+	double k = PI * 6.5 * 6.5 / (2592.0 * 1944.0 * 2.2e-3 * 2.2e-3);
+
+	(void)state;
+	m.k_px = k;
+	assert_rel(stray_fdr_pixel_photons(&m, 1e-6),
+		   1e-6 * 9e20 * 0.1 * 4.84e-12 * k, 1e-14);
+	assert_rel(threshold(&m), threshold(&t), 1e-15);
+	assert_rel(alpha_req(&m, 0.05 * m.n_tot / m.n_pps),
+		   alpha_closed(&m, Z95), 1e-9);
+	assert_rel(alpha_req(&t, 5.0) / alpha_req(&m, 5.0), k, 1e-8);
+	assert_near(k, 5.4425, 1e-4);
 }
 
 /* Far tail: ln FDR stays exact where FDR itself underflows. */
@@ -265,6 +287,9 @@ static void test_fdr_rejects_bad_models(void **state)
 	m = base(); m.n_pps = 0.5; stray_error_clear(&err);
 	assert_int_equal(stray_fdr_rate(&m, 1e-6, &v, &err), STRAY_EINVAL);
 	assert_string_equal(err.field, "n_pps");
+	m = base(); m.k_px = 0.0; stray_error_clear(&err);
+	assert_int_equal(stray_fdr_rate(&m, 1e-6, &v, &err), STRAY_EINVAL);
+	assert_string_equal(err.field, "k_px");
 	m = base(); m.map = &bad_map; stray_error_clear(&err);
 	assert_int_equal(stray_fdr_rate(&m, 1e-6, &v, &err), STRAY_EINVAL);
 	assert_string_equal(err.field, "map_fraction");
@@ -282,6 +307,7 @@ int main(void)
 		cmocka_unit_test(test_fdr_threshold_gaussian),
 		cmocka_unit_test(test_fdr_rate_closed_form),
 		cmocka_unit_test(test_fdr_alpha_required_inverts_closed_form),
+		cmocka_unit_test(test_fdr_k_px),
 		cmocka_unit_test(test_fdr_far_tail_log_accuracy),
 		cmocka_unit_test(test_fdr_alpha_required_scales_with_flux),
 		cmocka_unit_test(test_fdr_monotone_in_alpha),

@@ -135,6 +135,46 @@ static void test_cli_photometry_other_spectra(void **state)
 	assert_near(g173 / e490 - 1.0, 0.00075, 0.0002);
 }
 
+/* eq. 2.3's per-pixel factor for st16-like from its data sheet
+ * (ref4-baffle.md: 13 mm aperture, 2592 x 1944 pixels of 2.2 um):
+ * A_cs / (n_tot A_px), written out here (docs/normalisation.md). */
+#define K_PX_ST16 (3.14159265358979 * 6.5 * 6.5 / \
+		   (2592.0 * 1944.0 * 2.2e-3 * 2.2e-3))
+
+static const char *str(const cJSON *o, const char *key)
+{
+	const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
+
+	if (!cJSON_IsString(v))
+		fail_msg("JSON key '%s' missing or not a string", key);
+	return v->valuestring;
+}
+
+/* The normalisation is explicit: consistent by default, k_px in the JSON,
+ * and the thesis's alpha_required (k_px = 1, 1.92e-6) is k_px times the
+ * consistent one, since the Gaussian FDR sees alpha only through I_px. */
+static void test_cli_fdr_normalisation(void **state)
+{
+	double a_c, a_t;
+	cJSON *j;
+
+	(void)state;
+	assert_int_equal(STRAY("fdr", "--json"), 0);
+	j = json_out();
+	assert_string_equal(str(j, "normalisation"), "consistent");
+	assert_rel(num(j, "k_px"), K_PX_ST16, 1e-9);
+	a_c = num(j, "alpha_required");
+	cJSON_Delete(j);
+	assert_int_equal(STRAY("fdr", "--json", "--normalisation", "thesis"), 0);
+	j = json_out();
+	assert_string_equal(str(j, "normalisation"), "thesis");
+	assert_rel(num(j, "k_px"), 1.0, 0.0);
+	a_t = num(j, "alpha_required");
+	cJSON_Delete(j);
+	assert_rel(a_t / a_c, K_PX_ST16, 1e-8);
+	assert_rel(a_t, 1.92e-6, 0.005);	/* the thesis's fig. 2.7 */
+}
+
 /* Done-when: alpha_required for st16-like at 5 per image; FDR there is 5. */
 static void test_cli_fdr_alpha_required(void **state)
 {
@@ -187,6 +227,18 @@ static void test_cli_exclusion_closed_form(void **state)
 	assert_near(num(j, "sun_deg"), -4.0 * log(a_sun), 1e-6);
 	/* the Moon: its FDR angle, or the field edge if that is larger */
 	assert_near(num(j, "moon_deg"), fmax(-4.0 * log(a_moon), 10.0), 1e-6);
+	assert_string_equal(str(j, "normalisation"), "consistent");
+	assert_rel(num(j, "k_px"), K_PX_ST16, 1e-9);
+	cJSON_Delete(j);
+	/* the thesis's k_px = 1 tolerates k_px times more: 4 ln k_px nearer */
+	assert_int_equal(STRAY("exclusion", "--curve", path, "--json",
+			       "--normalisation", "thesis"), 0);
+	j = json_out();
+	assert_string_equal(str(j, "normalisation"), "thesis");
+	assert_rel(num(cJSON_GetObjectItem(j, "sun"), "alpha_required"),
+		   K_PX_ST16 * a_sun, 1e-8);
+	assert_near(num(j, "sun_deg"), -4.0 * log(a_sun) - 4.0 * log(K_PX_ST16),
+		    1e-6);
 	cJSON_Delete(j);
 }
 
@@ -248,6 +300,9 @@ static void test_cli_bad_input(void **state)
 	expect_bad_input("alpha -1: must be finite and >= 0");
 	STRAY("fdr", "--moon-phase", "270");
 	expect_bad_input("outside 0..180");
+	STRAY("exclusion", "--curve", "/no/such/curve.csv", "--normalisation",
+	      "pixel");
+	expect_bad_input("'--normalisation': 'pixel' is not consistent or thesis");
 	STRAY("fdr", "--bogus");
 	expect_bad_input("unknown option '--bogus'");
 	STRAY("fdr", "--map", write_temp("fraction,rel_alpha\n0.5,1\n0.6,2\n", ".csv"));
@@ -278,6 +333,7 @@ int main(void)
 		cmocka_unit_test(test_cli_photometry_matches_independent),
 		cmocka_unit_test(test_cli_photometry_other_spectra),
 		cmocka_unit_test(test_cli_fdr_alpha_required),
+		cmocka_unit_test(test_cli_fdr_normalisation),
 		cmocka_unit_test(test_cli_exclusion_closed_form),
 		cmocka_unit_test(test_cli_plots_are_png),
 		cmocka_unit_test(test_cli_bad_input),

@@ -20,6 +20,7 @@
 #define FDRFW_MODEL_FIELDS(X) \
 	X(t_exp_nominal_s, t_exp_s, positive)	/* I_sdt's exposure */ \
 	X(a_px_m2, a_px_m2, positive)		/* A_px, eq. 2.3 */ \
+	X(k_px, k_px, positive)			/* eq. 2.3's k_px */ \
 	X(a_cs_m2, a_cs_m2, positive)		/* A_cs, eq. 2.12 */ \
 	X(n_pps, n_pps, at_least_one)		/* window, eq. 2.7 */ \
 	X(n_tot, n_tot, positive)		/* pixels, eq. 2.18 */ \

@@ -19,7 +19,7 @@
 #include "fdrfw/model_map.h"
 
 #define FDRFW_TABLE_MAGIC 0x52444646u	/* "FFDR" little-endian */
-#define FDRFW_TABLE_VERSION 1u
+#define FDRFW_TABLE_VERSION 2u	/* 2: k_px (docs/normalisation.md) */
 #define FDRFW_CURVE_MAX 128		/* samples of the attenuation curve */
 
 /* alpha = 0 in a curve is stored as this log10 (a floor, not -inf). */
@@ -31,8 +31,9 @@ struct fdrfw_table {
 	uint32_t n_curve;		/* samples used, 2..FDRFW_CURVE_MAX */
 	/* FDR model constants, thesis eq. 2.3-2.18 (stray_fdr_model), one
 	 * float each in model_map.h's order: t_exp_nominal_s (the exposure
-	 * I_sdt was computed for), a_px_m2, a_cs_m2, n_pps, n_tot, pr_drs,
-	 * f_drs_ph_s_m2. */
+	 * I_sdt was computed for), a_px_m2, k_px (eq. 2.3's per-pixel
+	 * factor: 1, the thesis, or A_cs / (n_tot A_px), checked), a_cs_m2,
+	 * n_pps, n_tot, pr_drs, f_drs_ph_s_m2. */
 #define FDRFW_TABLE_FIELD(tf, mf, domain) float tf;
 	FDRFW_MODEL_FIELDS(FDRFW_TABLE_FIELD)
 	float i_sdt_e;			/* I_sdt at t_exp_nominal_s, eq. 2.16 */
@@ -86,6 +87,12 @@ int fdrfw_table_parse(const uint8_t *buf, size_t len, struct fdrfw_table *t);
  * is never used.  Returns an enum fdrfw_status.
  */
 int fdrfw_table_check(const struct fdrfw_table *t);
+
+/*
+ * The table's normalisation (docs/normalisation.md): 1 when k_px is the
+ * thesis's 1, 0 when it is A_cs / (n_tot A_px) of its own fields.
+ */
+int fdrfw_table_is_thesis(const struct fdrfw_table *t);
 
 /* alpha_sys(theta) from the table: log-linear, clamped at both ends. */
 float fdrfw_alpha_at(const struct fdrfw_table *t, float theta_deg);

@@ -20,6 +20,8 @@ struct fdrfw_build_params {
 	double rate;			/* tolerated FDR; <= 0: the sensor's */
 	double hysteresis_deg;
 	double earth_albedo;
+	/* k_px of eq. 2.3 (docs/normalisation.md); zero: consistent. */
+	enum stray_normalisation normalisation;
 };
 
 /* Defaults: hysteresis 0.5 deg, albedo 0.3, the sensor's rate. */

@@ -38,6 +38,11 @@ struct stray_fdr_model {
 	stray_real f_drs_ph_s_m2;	/* F_drs: reference-star flux (2.12) */
 	stray_real t_exp_s;		/* exposure time t_exp */
 	stray_real a_px_m2;		/* pixel area A_px (eq. 2.3) */
+	/* Per-pixel factor of eq. 2.3: I_px = alpha F t A_px k_px.  A power-
+	 * ratio curve (eq. 3.11-3.12, a trace) is normalised by the on-axis
+	 * beam over A_cs, so k_px = A_cs / (n_tot A_px); the thesis uses 1
+	 * (stray_sensor_k_px, docs/normalisation.md). */
+	stray_real k_px;
 	stray_real a_cs_m2;		/* collecting area A_cs (eq. 2.12) */
 	stray_real n_pps;		/* pixels per star window (eq. 2.7) */
 	stray_real n_tot;		/* pixels on the detector (eq. 2.18) */
@@ -53,7 +58,8 @@ struct stray_fdr_model {
 int stray_fdr_model_check(const struct stray_fdr_model *m,
 			  struct stray_error *err);
 
-/* eq. 2.3: expected stray photons in one pixel at attenuation alpha. */
+/* eq. 2.3: expected stray photons in one pixel at attenuation alpha,
+ * alpha F_src t_exp A_px k_px. */
 stray_real stray_fdr_pixel_photons(const struct stray_fdr_model *m,
 				   stray_real alpha);
 

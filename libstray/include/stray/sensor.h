@@ -34,6 +34,29 @@ struct stray_sensor {
 	char vega[STRAY_PATH_MAX];
 };
 
+/*
+ * How a curve alpha(theta) meets eq. 2.3 (docs/normalisation.md).  The
+ * curves the toolkit makes are power ratios P(theta)/P(0) (eq. 3.11-3.12,
+ * a trace): the on-axis beam fills the collecting area A_cs, so spread
+ * over the detector the photons per pixel are alpha F t A_cs / n_tot =
+ * alpha F t A_px k_px.  The thesis reads alpha as a per-pixel ratio.
+ */
+enum stray_normalisation {
+	STRAY_NORM_CONSISTENT = 0,	/* k_px = A_cs / (n_tot A_px) */
+	STRAY_NORM_THESIS = 1		/* k_px = 1, eq. 2.3 as printed */
+};
+
+/* "consistent" or "thesis". */
+const char *stray_normalisation_name(enum stray_normalisation n);
+
+/*
+ * The per-pixel factor k_px of eq. 2.3 for a sensor: A_cs / (n_tot A_px)
+ * with A_cs = pi d^2 / 4 (eq. 2.12), n_tot = pixels_x pixels_y and
+ * A_px = pitch^2 (5.44 for st16-like); 1 for STRAY_NORM_THESIS.
+ */
+double stray_sensor_k_px(const struct stray_sensor *s,
+			 enum stray_normalisation n);
+
 /* The built-in reference sensor `st16-like`. */
 const struct stray_sensor *stray_sensor_st16_like(void);
 
@@ -42,7 +65,9 @@ int stray_sensor_check(const struct stray_sensor *s, struct stray_error *err);
 
 /*
  * Fill an FDR model (thesis defaults: Gaussian, uniform, no detector
- * noise) from a sensor and the photon fluxes of source and DRS.
+ * noise) from a sensor and the photon fluxes of source and DRS, with the
+ * consistent normalisation (k_px = stray_sensor_k_px(s, CONSISTENT); set
+ * m->k_px for another).
  */
 void stray_sensor_fdr_model(const struct stray_sensor *s, double f_src,
 			    double f_drs, struct stray_fdr_model *m);
