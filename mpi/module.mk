@@ -10,7 +10,8 @@ STRAY_MPI_BIN := $(B)/bin/stray-mpi
 MPI_PIECE_OBJ := $(B)/obj/mpi/piece.o
 MPI_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard mpi/*.c))
 MPI_TOOLS_OBJ := $(patsubst %,$(B)/obj/tools/%.o,cli cmd_trace cmd_sweep \
-	design_grid design_report fdr_setup plot trace_run cmd_diagnose) \
+	design_grid design_report fdr_setup plot trace_run cmd_diagnose \
+	focal_map_io image_cv) \
 	$(DIAG_OBJ)
 
 $(MPI_OBJ): EXTRA_CFLAGS += -Impi -Itools -Itracer/include \
@@ -21,7 +22,8 @@ $(B)/obj/tools/design_report.o: EXTRA_CFLAGS += -Itracer/include
 $(STRAY_MPI_BIN): $(MPI_OBJ) $(MPI_TOOLS_OBJ) $(TRACER_LIB) $(STRAY_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_BASE) -o $@ $(MPI_OBJ) $(MPI_TOOLS_OBJ) $(TRACER_LIB) \
-		$(STRAY_LIB) $(TRACER_LDLIBS) -lplplot -lcjson $(STRAY_LDLIBS) \
+		$(STRAY_LIB) $(TRACER_LDLIBS) -lplplot -lcjson -lcfitsio \
+		$(OPENCV_LDLIBS) -lstdc++ $(STRAY_LDLIBS) \
 		$(MPI_LDLIBS) -lpthread
 
 all: $(STRAY_MPI_BIN)
