@@ -42,7 +42,14 @@ int focal_map_option(int opt, char *text, struct focal_map_args *f, int *rc)
 
 	switch (opt) {
 	case 1100: f->fits = text; return 0;
-	case 1101: f->png = text; return 0;
+	case 1101:
+		f->png = text;
+		/* OpenCV picks the encoder by the name's ending */
+		if (strlen(text) < 4 ||
+		    strcmp(text + strlen(text) - 4, ".png") != 0)
+			*rc = cli_usage_error("trace", "--focal-map-png '%s' "
+					      "must end in .png", text);
+		return 0;
 	case 1102: f->sensor = text; return 0;
 	case 1104: f->lens_map = text; return 0;
 	case 1103:
@@ -112,19 +119,6 @@ static int load_lens_map(const char *path, double **fr, double **rel,
 	}
 	stray_table_free(&t);
 	return rc;
-}
-
-/* Sum over all paths of every contribution at angle j (all orders). */
-static double power_sum(const struct tracer_result *r, size_t j)
-{
-	double sum = 0.0;
-	int b, k;
-
-	for (b = 0; b < r->n_batches; b++)
-		for (k = 0; k < TRACER_ORDERS; k++)
-			sum += r->power[((size_t)b * r->n_theta + j) *
-					TRACER_ORDERS + (size_t)k];
-	return sum;
 }
 
 /* Where the spread's brightest cells go: the source direction's image. */
@@ -247,7 +241,7 @@ static int make_map(struct focal_map_args *f, const struct tracer_result *r,
 {
 	size_t n = (size_t)f->fp.nx * f->fp.ny, k, j = f->fp.theta_index;
 	struct tracer_focal_spread sp = { 0, NULL, NULL, 0.0, 0.0 };
-	double *fr = NULL, *rel = NULL, a_cs, sum = 0.0;
+	double *fr = NULL, *rel = NULL, a_cs, sum = 0.0, p0, s0;
 	double *map = malloc(n * sizeof(double));
 	int rc = map ? STRAY_OK : STRAY_ENOMEM;
 
@@ -259,8 +253,9 @@ static int make_map(struct focal_map_args *f, const struct tracer_result *r,
 	a_cs = M_PI * f->sen.aperture_diameter_mm *
 	       f->sen.aperture_diameter_mm / 4.0;
 	/* r->theta_deg[0] is 0: cmd_trace adds the reference angle */
+	tracer_result_power(r, 0, -1, &p0, &s0);
 	if (!rc)
-		rc = tracer_focal_finish(&f->fp, r->focal, power_sum(r, 0),
+		rc = tracer_focal_finish(&f->fp, r->focal, p0,
 					 a_cs, &sp, map, &f->in_field, err);
 	for (k = 0; !rc && k < n; k++) {
 		img[k] = (float)map[k];

@@ -79,3 +79,8 @@ fuzz-tracer-smoke: $(TRACER_FUZZ)
 		|| { cat build/fuzz/fuzz_tracer_args.log; exit 1; }
 	@grep -E '^#[0-9]+.*DONE' build/fuzz/fuzz_tracer_args.log | tail -n 1
 fuzz-smoke: fuzz-tracer-smoke
+
+# The focal-map CLI test runs build/bin/stray and reads its FITS back.
+$(B)/tests/tracer/test_cmd_focal_map: $(STRAY_BIN)
+$(B)/obj/tests/tracer/test_cmd_focal_map.o: EXTRA_CFLAGS += -I/usr/include/cjson
+$(B)/tests/tracer/test_cmd_focal_map: TRACER_LDLIBS += -lcjson -lcfitsio

@@ -121,9 +121,12 @@ static void merge_maps(const struct tracer_scene *s, struct worker_ctx *w)
 	double a_px = 4.0 * r->map_half_w_mm * r->map_half_h_mm / px;
 	int b;
 
+	/* focal cells: the mean of batch means, as tracer_result_power */
 	for (b = 0; r->focal && b < r->n_batches; b++)	/* batch order */
 		for (i = 0; i < r->focal_slots; i++)
-			r->focal[i] += r->focal_batch[b * r->focal_slots + i];
+			r->focal[i] += r->focal_batch[b * r->focal_slots + i] /
+				       ((double)r->batch_paths[b] *
+					r->n_batches);
 	if (!r->map)
 		return;
 	for (b = 0; b < r->n_batches; b++)

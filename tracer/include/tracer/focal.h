@@ -61,8 +61,9 @@ struct tracer_focal_spread {
 };
 
 /*
- * The map from the integrator's sums (slots as above) and the sum p0 of
- * all contributions at theta = 0 over the same paths:
+ * The map from the integrator's cells (tracer_result.focal: P_c / (E A_det),
+ * slots as above) and p0 = P(0) / (E A_det) of the same trace
+ * (tracer_result_power at theta = 0):
  * map[c] = (P_c / P(0)) A_cs / A_cell, P_c counting the cell's share of the
  * spread outside slot.  The mean of map is (P(theta)/P(0)) A_cs / A_det =
  * k_px alpha exactly.  *in_field: the share of P(theta) imaged in the

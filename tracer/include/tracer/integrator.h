@@ -86,8 +86,10 @@ struct tracer_result {
 	int map_n;
 	double map_theta_deg;
 	double map_half_w_mm, map_half_h_mm;	/* extent, detector frame */
-	/* with opts.focal: sums of contributions per focal cell, the last
-	 * slot outside the detector (focal.h), all batches and per batch */
+	/* with opts.focal: per focal cell, the last slot outside the
+	 * detector (focal.h), P_cell / (E A_det) estimated as
+	 * tracer_result_power does (mean of batch means), and the per-batch
+	 * sums of contributions */
 	size_t focal_slots;
 	double *focal;		/* [slot] */
 	double *focal_batch;	/* [batch][slot] */
