@@ -36,17 +36,25 @@ void focal_map_defaults(struct focal_map_args *f)
 	f->cell_px = 36;
 }
 
+/* OpenCV picks the encoder by the name's ending. */
+static int is_png(const char *name)
+{
+	size_t n = strlen(name);
+
+	return n >= 4 && strcmp(name + n - 4, ".png") == 0;
+}
+
 int focal_map_option(int opt, char *text, struct focal_map_args *f, int *rc)
 {
 	double v;
 
 	switch (opt) {
-	case 1100: f->fits = text; return 0;
+	case 1100:	/* a .png name: the PNG instead of FITS */
+		*(is_png(text) ? &f->png : &f->fits) = text;
+		return 0;
 	case 1101:
 		f->png = text;
-		/* OpenCV picks the encoder by the name's ending */
-		if (strlen(text) < 4 ||
-		    strcmp(text + strlen(text) - 4, ".png") != 0)
+		if (!is_png(text))
 			*rc = cli_usage_error("trace", "--focal-map-png '%s' "
 					      "must end in .png", text);
 		return 0;

@@ -36,8 +36,9 @@ struct focal_map_args {
 
 #define FOCAL_MAP_USAGE \
 	"  --focal-map M.fits  focal-plane stray-light map at --map-angle:\n" \
-	"                    per-pixel E_px/E_src, mean k_px*alpha (FITS)\n" \
-	"  --focal-map-png P   the same map as a false-colour PNG (log)\n" \
+	"                    per-pixel E_px/E_src, mean k_px*alpha (FITS;\n" \
+	"                    a name ending in .png writes the PNG instead)\n" \
+	"  --focal-map-png P.png  the map as a false-colour PNG (log, +y up)\n" \
 	"  --sensor S        sensor of the map (default st16-like)\n" \
 	"  --map-cell PX     detector pixels per map cell (default 36)\n" \
 	"  --lens-map R.csv  spread out-of-field light by this region map\n" \
