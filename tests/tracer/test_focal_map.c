@@ -210,6 +210,10 @@ static void test_focal_map_kpx_first_principles(void **state)
 	/* k_px: per-pixel irradiance ratio over power ratio = A_cs / A_det */
 	assert_near(e_cf / alpha, a_p / a_det, 4.0 * s_alpha / alpha *
 		    (a_p / a_det) + 3e-4 * a_p / a_det);
+	/* and the traced map's own mean over the traced alpha */
+	assert_near(e_tr / alpha, a_p / a_det, (4.0 * s_alpha / alpha +
+		    4.0 * sqrt(var) / e_tr) * (a_p / a_det) +
+		    3e-4 * a_p / a_det);
 	tracer_result_free(&r);
 	tracer_result_free(&r0);
 }
