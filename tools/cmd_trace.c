@@ -165,8 +165,8 @@ static int parse_args(int argc, char **argv, struct trace_args *a)
 	if (!rc && !a->scene)
 		rc = cli_usage_error("trace", "--scene is required");
 	if (!rc && !a->out && !a->export_obj && !cli.json && !a->plot &&
-	    !a->plot_orders && !a->paths_out && !a->top && !a->dump && !a->map &&
-	    !focal_map_wanted(&a->fm))
+	    !a->plot_orders && !a->paths_out && !a->top && !a->dump &&
+	    !a->map && !focal_map_wanted(&a->fm))
 		rc = cli_usage_error("trace", "nothing to do: give --out, "
 				     "--export-obj or --json");
 	return rc;

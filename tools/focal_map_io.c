@@ -116,7 +116,7 @@ static int load_lens_map(const char *path, double **fr, double **rel,
 	if (cf < 0 || ca < 0 || t.n_rows < 1) {
 		rc = stray_error_at(err, STRAY_EPARSE, path, 0,
 				    cf < 0 ? "fraction" : "rel_alpha",
-				    "region map needs rows of fraction,rel_alpha");
+				    "region map needs fraction,rel_alpha rows");
 	} else {
 		*fr = stray_table_column(&t, (size_t)cf);
 		*rel = stray_table_column(&t, (size_t)ca);
@@ -205,7 +205,7 @@ static int write_fits(const struct focal_map_args *f, const float *img,
 	char name[4096];
 	int st = 0;
 
-	snprintf(name, sizeof(name), "!%s", f->fits);	/* '!': overwrite */
+	snprintf(name, sizeof(name), "!%s", f->fits);	/* '!': replace */
 	fits_create_file(&fp, name, &st);
 	fits_create_img(fp, FLOAT_IMG, 2, naxes, &st);
 	fits_keys(fp, f, o, &st);
@@ -287,7 +287,7 @@ int focal_map_write(struct focal_map_args *f, const struct tracer_result *r,
 	size_t n = (size_t)f->fp.nx * f->fp.ny;
 	float *img = malloc(n * sizeof(float));
 	int rc = img ? STRAY_OK : stray_error_set(err, STRAY_ENOMEM,
-						  "--focal-map", "out of memory");
+				"--focal-map", "out of memory");
 
 	if (!rc && !r->focal)
 		rc = stray_error_set(err, STRAY_EINVAL, "--focal-map",

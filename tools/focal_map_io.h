@@ -17,7 +17,7 @@
 struct focal_map_args {
 	const char *fits, *png;		/* outputs; NULL: not wanted */
 	const char *sensor;		/* 'st16-like' or a sensor file */
-	const char *lens_map;		/* region map CSV, or NULL: uniform */
+	const char *lens_map;		/* region map CSV; NULL: uniform */
 	int cell_px;			/* detector pixels per cell side */
 	/* filled by focal_map_prepare / focal_map_write */
 	struct stray_sensor sen;
@@ -38,7 +38,7 @@ struct focal_map_args {
 	"  --focal-map M.fits  focal-plane stray-light map at --map-angle:\n" \
 	"                    per-pixel E_px/E_src, mean k_px*alpha (FITS;\n" \
 	"                    a name ending in .png writes the PNG instead)\n" \
-	"  --focal-map-png P.png  the map as a false-colour PNG (log, +y up)\n" \
+	"  --focal-map-png P.png  the map as false-colour PNG (log, +y up)\n" \
 	"  --sensor S        sensor of the map (default st16-like)\n" \
 	"  --map-cell PX     detector pixels per map cell (default 36)\n" \
 	"  --lens-map R.csv  spread out-of-field light by this region map\n" \

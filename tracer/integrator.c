@@ -18,7 +18,7 @@ struct path_state {
 	double *acc;		/* this batch's [theta][order] */
 	double *map;		/* this batch's irradiance map, or NULL */
 	long pixel;		/* map pixel of the path's detector point */
-	double *focal;		/* this batch's focal-plane sums, or NULL */
+	double *focal;		/* this batch's focal sums, or NULL */
 	size_t focal_cell;	/* focal cell of the path's first direction */
 	struct tracer_vertex *dump;	/* this path's dump slots, or NULL */
 	int *dump_len;

@@ -8,7 +8,8 @@ TRACER_LDLIBS := -lembree3 -lassimp -lcjson -lpthread
 
 $(TRACER_OBJ): EXTRA_CFLAGS += -Itracer/include -I/usr/include/cjson -D_DEFAULT_SOURCE
 $(B)/obj/tools/cmd_trace.o: EXTRA_CFLAGS += -Itracer/include
-$(B)/obj/tools/focal_map_io.o: EXTRA_CFLAGS += -Itracer/include -D_DEFAULT_SOURCE
+$(B)/obj/tools/focal_map_io.o: \
+	EXTRA_CFLAGS += -Itracer/include -D_DEFAULT_SOURCE
 
 $(TRACER_LIB): $(TRACER_OBJ)
 	@mkdir -p $(dir $@)

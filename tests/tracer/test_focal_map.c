@@ -177,7 +177,7 @@ static void test_focal_map_kpx_first_principles(void **state)
 	glow_scene(&s, &gl, 1);
 	trace_focal(&s, th_lit, 1, 2000000, &fp, &r);
 	tracer_scene_free(&s);
-	assert_true(r.focal[n] == 0.0);	/* all of the disk lies in the field */
+	assert_true(r.focal[n] == 0.0);	/* the disk is in the field */
 	peak = cell_closed_form(&fp, &gl, fp.nx / 2, fp.ny / 2);
 	for (c = 0; c < n; c++) {
 		double cf = cell_closed_form(&fp, &gl, (int)(c % fp.nx),
@@ -261,9 +261,9 @@ static void test_focal_map_mean_is_kpx_alpha(void **state)
 		tracer_result_alpha(&r, j, 0, -1, &alpha, &sg);
 		tracer_result_power(&r, 0, -1, &p0, &s0);
 		assert_true(alpha > 0.0);
-		assert_true(tracer_focal_point(&fp, &f, tracer_source_dir(th[j]),
-					       &sp[1].src_x_mm,
-					       &sp[1].src_y_mm));
+		assert_true(tracer_focal_point(&fp, &f,
+			tracer_source_dir(th[j]), &sp[1].src_x_mm,
+			&sp[1].src_y_mm));
 		for (m = 0; m < 2; m++) {
 			double mean = 0.0, near, far;
 

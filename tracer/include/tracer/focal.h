@@ -26,7 +26,7 @@
 struct tracer_focal {
 	double f_mm;			/* ideal lens focal length */
 	double half_w_mm, half_h_mm;	/* detector half sizes along s, t */
-	int nx, ny;			/* cells along s (columns), t (rows) */
+	int nx, ny;			/* cells along s (cols), t (rows) */
 	size_t theta_index;		/* the sweep angle mapped */
 };
 
