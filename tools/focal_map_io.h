@@ -65,4 +65,23 @@ int focal_map_write(struct focal_map_args *f, const struct tracer_result *r,
 /* Add "focal_map" to a --json summary (when a map was written). */
 void focal_map_json(const struct focal_map_args *f, cJSON *o);
 
+/* A focal map read back (for `stray frames --map M.fits`). */
+struct focal_map_file {
+	long nx, ny;			/* cells: columns (x), rows (y) */
+	long cell_px;			/* detector pixels per cell side */
+	long npix_x, npix_y;		/* detector pixels */
+	double theta_deg, alpha, k_px, mean;
+	char spread[16];		/* "uniform" or "lensmap" */
+	float *cell;			/* [row][col], row 0 at -y */
+};
+
+/* Read a --focal-map FITS; errors name the file and keyword. */
+int focal_map_load(const char *path, struct focal_map_file *m,
+		   struct stray_error *err);
+
+/* E_px / E_src at detector pixel (px, py), 0-based; its cell's value. */
+double focal_map_pixel(const struct focal_map_file *m, long px, long py);
+
+void focal_map_file_free(struct focal_map_file *m);
+
 #endif /* STRAY_TOOLS_FOCAL_MAP_IO_H */

@@ -81,7 +81,15 @@ fuzz-tracer-smoke: $(TRACER_FUZZ)
 	@grep -E '^#[0-9]+.*DONE' build/fuzz/fuzz_tracer_args.log | tail -n 1
 fuzz-smoke: fuzz-tracer-smoke
 
-# The focal-map CLI test runs build/bin/stray and reads its FITS back.
-$(B)/tests/tracer/test_cmd_focal_map: $(STRAY_BIN)
-$(B)/obj/tests/tracer/test_cmd_focal_map.o: EXTRA_CFLAGS += -I/usr/include/cjson
-$(B)/tests/tracer/test_cmd_focal_map: TRACER_LDLIBS += -lcjson -lcfitsio
+# The focal-map CLI test runs build/bin/stray and reads its FITS back,
+# also through the reader `stray frames` uses (tools/focal_map_io.c).
+FOCAL_IO_OBJ := $(patsubst %,$(B)/obj/tools/%.o,focal_map_io cli image_cv)
+$(B)/obj/tests/tracer/test_cmd_focal_map.o: \
+	EXTRA_CFLAGS += -I/usr/include/cjson -Itools
+$(B)/tests/tracer/test_cmd_focal_map: \
+		$(B)/obj/tests/tracer/test_cmd_focal_map.o $(FOCAL_IO_OBJ) \
+		$(TRACER_LIB) $(STRAY_LIB) $(STRAY_BIN)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_BASE) -o $@ $(filter %.o,$^) $(TRACER_LIB) $(STRAY_LIB) \
+		$(CMOCKA_LIBS) $(TRACER_LDLIBS) -lcjson -lcfitsio \
+		$(OPENCV_LDLIBS) -lstdc++ $(STRAY_LDLIBS)

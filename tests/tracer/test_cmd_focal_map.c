@@ -7,6 +7,7 @@
 #include <cJSON.h>
 #include <fitsio.h>
 
+#include "focal_map_io.h"
 #include "tracer_test.h"
 #include "../tools/run_cli.h"
 
@@ -73,6 +74,24 @@ static void test_cmd_focal_map_fits_and_json(void **state)
 	assert_near(mean, k_px * alpha, 1e-5 * mean);	/* float cells */
 	assert_near(kmean, k_px * alpha, 1e-9 * kmean);
 	assert_string_equal(spread, "uniform");
+	{	/* the reader `stray frames --map` uses */
+		struct focal_map_file fm;
+		double sum = 0.0;
+		long px;
+
+		assert_int_equal(focal_map_load(fits, &fm, NULL), 0);
+		assert_int_equal(fm.nx, 72);
+		assert_int_equal(fm.cell_px, 36);
+		assert_near(fm.theta_deg, 40.0, 0.0);
+		assert_near(fm.mean, kmean, 0.0);
+		assert_string_equal(fm.spread, "uniform");
+		for (px = 0; px < fm.npix_x; px += 36)	/* row of cells 10 */
+			sum += focal_map_pixel(&fm, px, 10 * 36 + 5);
+		assert_near(sum / 72.0, k_px * alpha, 1e-5 * k_px * alpha);
+		assert_near(focal_map_pixel(&fm, 2592, 0), 0.0, 0.0);
+		focal_map_file_free(&fm);
+		assert_int_not_equal(focal_map_load(png, &fm, NULL), 0);
+	}
 	j = cJSON_Parse(r.out);
 	m = cJSON_GetObjectItem(j, "focal_map");
 	assert_non_null(m);
