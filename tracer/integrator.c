@@ -118,7 +118,8 @@ static void connect_direct(struct worker_ctx *w, struct path_state *ps,
 					      acos(fmin(c, 1.0)) * 180.0 / M_PI);
 		ps->acc[j * TRACER_ORDERS] += c;
 		add_to_map(w, ps, j, c);
-		if (ps->focal)	/* direct light arrives from the source */
+		if (ps->focal && j == w->o->focal->theta_index)
+			/* direct light arrives from the source */
 			add_to_focal(w, ps, j, c, tracer_focal_cell(
 				w->o->focal, &w->focal_frame, d));
 	}
