@@ -403,12 +403,12 @@ int farm_trace(const struct tracer_scene_spec *spec,
 	MPI_Comm_size(MPI_COMM_WORLD, &size);
 	memset(&farm_last, 0, sizeof(farm_last));
 	if ((o->record_paths && !farm_config.paths_any_order) ||
-	    o->dump_paths || o->map_n) {
+	    o->dump_paths || o->map_n || o->focal) {
 		if (size == 1)	/* one rank: the whole trace, threads and all */
 			return tracer_trace(s, o, res, err);
 		return stray_error_set(err, STRAY_EINVAL, "mpi",
-			"--paths-out, --top, --dump-paths and --map need one "
-			"rank (run without mpirun)");
+			"--paths-out, --top, --dump-paths, --map and "
+			"--focal-map need one rank (run without mpirun)");
 	}
 	rc = tracer_trace_check(s, o, err);	/* before any rank is bothered */
 	if (rc)

@@ -5,13 +5,16 @@
 # their runner (tracer/runner.h), in place of stray.c's main.  It links
 # the tools objects those commands need and the diagnose library.
 
-MPI_CFLAGS := $(shell pkg-config --cflags ompi-c 2>/dev/null)
-MPI_LDLIBS := $(shell pkg-config --libs ompi-c 2>/dev/null)
+# Resolved when a recipe runs (=, not :=): on a bare machine pkg-config
+# and Open MPI arrive with `make deps`, after the Makefile is parsed.
+MPI_CFLAGS = $(shell pkg-config --cflags ompi-c 2>/dev/null)
+MPI_LDLIBS = $(shell pkg-config --libs ompi-c 2>/dev/null)
 STRAY_MPI_BIN := $(B)/bin/stray-mpi
 MPI_PIECE_OBJ := $(B)/obj/mpi/piece.o
 MPI_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard mpi/*.c))
 MPI_TOOLS_OBJ := $(patsubst %,$(B)/obj/tools/%.o,cli cmd_trace cmd_sweep \
-	design_grid design_report fdr_setup plot trace_run) $(DIAG_TOOLS_OBJ)
+	design_grid design_report fdr_setup plot trace_run focal_map_io \
+	image_cv) $(DIAG_TOOLS_OBJ)
 
 $(MPI_OBJ): EXTRA_CFLAGS += -Impi -Itools/include -Itracer/include \
 	-I/usr/include/cjson $(MPI_CFLAGS) -D_DEFAULT_SOURCE
@@ -21,7 +24,7 @@ $(STRAY_MPI_BIN): $(MPI_OBJ) $(MPI_TOOLS_OBJ) $(DIAG_LIB) $(TRACER_LIB) \
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_BASE) -o $@ $(MPI_OBJ) $(MPI_TOOLS_OBJ) $(DIAG_LIB) \
 		$(TRACER_LIB) $(STRAY_LIB) $(TRACER_LDLIBS) -lplplot -lcjson \
-		$(STRAY_LDLIBS) $(MPI_LDLIBS) -lpthread
+		$(OPENCV_LDLIBS) -lstdc++ $(STRAY_LDLIBS) $(MPI_LDLIBS) -lpthread
 
 all: $(STRAY_MPI_BIN)
 

@@ -12,6 +12,7 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "focal_map_io.h"
 #include "plot.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"
@@ -31,6 +32,7 @@ static const char usage[] =
 	"                   [--paths-out P.csv] [--top N] [--plot F.png]\n"
 	"                   [--plot-orders F.png] [--dump-paths D.csv]\n"
 	"                   [--map M.csv --map-angle DEG] [--json]\n"
+	"                   [--focal-map M.fits] [--focal-map-png P.png]\n"
 	"\n"
 	"Attenuation curve alpha(theta) = P_det(theta) / P_det(0) of a scene\n"
 	"under a collimated beam, by adjoint Monte Carlo with next-event\n"
@@ -54,6 +56,7 @@ static const char usage[] =
 	"  --dump-count N    how many paths to dump (default 100)\n"
 	"  --map M.csv       detector irradiance map at --map-angle\n"
 	"  --map-size N      map pixels per side (default 64)\n"
+	FOCAL_MAP_USAGE
 	"  --json            print a run summary (paths_per_s, ...)\n";
 
 #define SETS_MAX 64
@@ -67,6 +70,7 @@ struct trace_args {
 	const char *sets[SETS_MAX];
 	int n_sets, top;
 	struct tracer_trace_opts o;
+	struct focal_map_args fm;	/* --focal-map (focal_map_io.h) */
 };
 
 static const struct option trace_opts[] = {
@@ -86,6 +90,7 @@ static const struct option trace_opts[] = {
 	{ "map", required_argument, NULL, 'M' },
 	{ "map-angle", required_argument, NULL, 'A' },
 	{ "map-size", required_argument, NULL, 'Z' },
+	FOCAL_MAP_LONG_OPTIONS,
 	{ "json", no_argument, NULL, 'j' },
 	{ "help", no_argument, NULL, 'h' },
 	{ NULL, 0, NULL, 0 }
@@ -139,6 +144,7 @@ static int parse_args(int argc, char **argv, struct trace_args *a)
 	while (!rc && (opt = getopt_long(argc, argv, "h", trace_opts,
 					 NULL)) != -1) {
 		if (!parse_file(opt, optarg, a) ||
+		    !focal_map_option(opt, optarg, &a->fm, &rc) ||
 		    !parse_number(opt, optarg, a, &rc))
 			continue;
 		if (opt == 'j') {
@@ -161,7 +167,8 @@ static int parse_args(int argc, char **argv, struct trace_args *a)
 	if (!rc && !a->scene)
 		rc = cli_usage_error("trace", "--scene is required");
 	if (!rc && !a->out && !a->export_obj && !cli.json && !a->plot &&
-	    !a->plot_orders && !a->paths_out && !a->top && !a->dump && !a->map)
+	    !a->plot_orders && !a->paths_out && !a->top && !a->dump &&
+	    !a->map && !focal_map_wanted(&a->fm))
 		rc = cli_usage_error("trace", "nothing to do: give --out, "
 				     "--export-obj or --json");
 	return rc;
@@ -307,6 +314,7 @@ static cJSON *summary_json(const struct trace_args *a,
 	cJSON_AddItemToObject(o, "worst_rel_sigma", cli_json_number(worst));
 	if (a->out)
 		cJSON_AddStringToObject(o, "out", a->out);
+	focal_map_json(&a->fm, o);
 	return o;
 }
 
@@ -399,6 +407,15 @@ static int run_trace(struct trace_args *a, struct tracer_scene *s,
 		if (rc)
 			goto out_free;
 	}
+	if (focal_map_wanted(&a->fm)) {
+		size_t j;
+
+		rc = map_index(a, theta, n, &j, err);
+		if (!rc)
+			rc = focal_map_prepare(&a->fm, j, &a->o, err);
+		if (rc)
+			goto out_free;
+	}
 	if (isatty(STDERR_FILENO)) {
 		a->o.progress = progress;
 		a->o.progress_user = &last;
@@ -421,6 +438,8 @@ static int run_trace(struct trace_args *a, struct tracer_scene *s,
 		rc = tracer_dump_write_csv(&r, s, a->dump, err);
 	if (!rc && a->map)
 		rc = tracer_map_write_csv(&r, a->map, err);
+	if (!rc && focal_map_wanted(&a->fm))
+		rc = focal_map_write(&a->fm, &r, s, &a->o, err);
 	if (!rc && a->top && !cli.json)
 		tracer_paths_print_top(&r, s, first, a->top, stdout);
 	if (!rc && cli.json)
@@ -444,6 +463,7 @@ int cmd_trace(int argc, char **argv, const struct tracer_runner *runner)
 	trace_run_defaults(&a.o, 1500000);	/* about 1 % at every angle */
 	a.dump_count = 100;
 	a.map_size = 64;
+	focal_map_defaults(&a.fm);
 	rc = parse_args(argc, argv, &a);
 	if (rc)
 		return rc < 0 ? CLI_OK : rc;
@@ -451,7 +471,8 @@ int cmd_trace(int argc, char **argv, const struct tracer_runner *runner)
 	tracer_scene_init(&s);
 	rc = load_scene(&a, &s, &err);
 	if (!rc && (a.out || cli.json || a.paths_out || a.top || a.plot ||
-		    a.plot_orders || a.dump || a.map))
+		    a.plot_orders || a.dump || a.map ||
+		    focal_map_wanted(&a.fm)))
 		rc = run_trace(&a, &s, &err);
 	tracer_scene_free(&s);
 	return rc ? cli_fail("trace", &err) : CLI_OK;

@@ -18,6 +18,8 @@ struct path_state {
 	double *acc;		/* this batch's [theta][order] */
 	double *map;		/* this batch's irradiance map, or NULL */
 	long pixel;		/* map pixel of the path's detector point */
+	double *focal;		/* this batch's focal sums, or NULL */
+	size_t focal_cell;	/* focal cell of the path's first direction */
 	struct tracer_vertex *dump;	/* this path's dump slots, or NULL */
 	int *dump_len;
 	struct tracer_path_table *table;
@@ -57,6 +59,14 @@ static void add_to_map(const struct worker_ctx *w, struct path_state *ps,
 {
 	if (ps->map && ps->pixel >= 0 && j == w->o->map_theta_index)
 		ps->map[ps->pixel] += c;
+}
+
+/* Focal-plane cell of light arriving from w, at the mapped angle only. */
+static void add_to_focal(const struct worker_ctx *w, struct path_state *ps,
+			 size_t j, double c, size_t cell)
+{
+	if (ps->focal && j == w->o->focal->theta_index)
+		ps->focal[cell] += c;
 }
 
 /* Map pixel of detector point x (detector frame), or -1 outside. */
@@ -108,6 +118,10 @@ static void connect_direct(struct worker_ctx *w, struct path_state *ps,
 					      acos(fmin(c, 1.0)) * 180.0 / M_PI);
 		ps->acc[j * TRACER_ORDERS] += c;
 		add_to_map(w, ps, j, c);
+		if (ps->focal && j == w->o->focal->theta_index)
+			/* direct light arrives from the source */
+			add_to_focal(w, ps, j, c, tracer_focal_cell(
+				w->o->focal, &w->focal_frame, d));
 	}
 }
 
@@ -142,6 +156,7 @@ static void connect_vertex(struct worker_ctx *w, struct path_state *ps,
 		c = T * fv * cos_d;
 		ps->acc[j * TRACER_ORDERS + order] += c;
 		add_to_map(w, ps, j, c);
+		add_to_focal(w, ps, j, c, ps->focal_cell);
 		if (ps->path_c) {
 			if (ps->path_c[j] == 0.0)
 				ps->touched[ps->n_touched++] = j;
@@ -209,6 +224,10 @@ static double start_path(struct worker_ctx *w, struct path_state *ps,
 	g = w->guide ? tracer_guide_sample(w->guide, &u[2], &u[3]) : 1.0;
 	*guide_weight = g;
 	*dir = tracer_detector_sample_dir(&s->det, u[2], u[3], &proj);
+	/* scattered light reaches the pupil along the first direction */
+	if (ps->focal)
+		ps->focal_cell = tracer_focal_cell(w->o->focal,
+						   &w->focal_frame, *dir);
 	*o = tracer_offset_origin(x, s->det.normal);
 	c = fmin(1.0, v3_dot(*dir, s->det.normal));
 	return g * proj * tracer_lens_transmission(w->o->lens,
@@ -323,6 +342,8 @@ static void run_batch(struct worker_ctx *w, int b, uint64_t *casts,
 	ps.batch_first = tracer_batch_start(r, b);
 	ps.map = r->map ? w->batch_maps + (size_t)b * r->map_n * r->map_n :
 		 NULL;
+	ps.focal = r->focal_batch ? r->focal_batch + (size_t)b * r->focal_slots
+				  : NULL;
 	/* the shift's stream lies beyond every path index */
 	tracer_rng_init(&rng, w->o->seed, UINT64_MAX - (uint64_t)b);
 	for (k = 0; k < 6; k++)

@@ -8,6 +8,8 @@ TRACER_LDLIBS := -lembree3 -lassimp -lcjson -lpthread
 
 $(TRACER_OBJ): EXTRA_CFLAGS += -Itracer/include -I/usr/include/cjson -D_DEFAULT_SOURCE
 $(B)/obj/tools/cmd_trace.o: EXTRA_CFLAGS += -Itracer/include
+$(B)/obj/tools/focal_map_io.o: \
+	EXTRA_CFLAGS += -Itracer/include -D_DEFAULT_SOURCE
 
 $(TRACER_LIB): $(TRACER_OBJ)
 	@mkdir -p $(dir $@)
@@ -78,3 +80,16 @@ fuzz-tracer-smoke: $(TRACER_FUZZ)
 		|| { cat build/fuzz/fuzz_tracer_args.log; exit 1; }
 	@grep -E '^#[0-9]+.*DONE' build/fuzz/fuzz_tracer_args.log | tail -n 1
 fuzz-smoke: fuzz-tracer-smoke
+
+# The focal-map CLI test runs build/bin/stray and reads its FITS back,
+# also through the reader `stray frames` uses (tools/focal_map_io.c).
+FOCAL_IO_OBJ := $(patsubst %,$(B)/obj/tools/%.o,focal_map_io cli image_cv)
+$(B)/obj/tests/tracer/test_cmd_focal_map.o: \
+	EXTRA_CFLAGS += -I/usr/include/cjson -Itools
+$(B)/tests/tracer/test_cmd_focal_map: \
+		$(B)/obj/tests/tracer/test_cmd_focal_map.o $(FOCAL_IO_OBJ) \
+		$(TRACER_LIB) $(STRAY_LIB) $(STRAY_BIN)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_BASE) -o $@ $(filter %.o,$^) $(TRACER_LIB) $(STRAY_LIB) \
+		$(CMOCKA_LIBS) $(TRACER_LDLIBS) -lcjson -lcfitsio \
+		$(OPENCV_LDLIBS) -lstdc++ $(STRAY_LDLIBS)

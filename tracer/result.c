@@ -17,6 +17,8 @@ void tracer_result_free(struct tracer_result *res)
 	free(res->dump);
 	free(res->dump_len);
 	free(res->map);
+	free(res->focal);
+	free(res->focal_batch);
 	tracer_paths_free(&res->paths);
 	memset(res, 0, sizeof(*res));
 }

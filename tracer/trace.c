@@ -61,6 +61,11 @@ static int check_opts(const struct tracer_scene *s,
 	    (o->map_n && o->map_theta_index >= o->n_theta))
 		return stray_error_set_value(err, STRAY_EINVAL, "map",
 			"size must be 0 to 4096 at a traced angle", o->map_n);
+	if (o->focal && (o->focal->theta_index >= o->n_theta ||
+			 tracer_focal_check(o->focal, err)))
+		return stray_error_set_value(err, STRAY_EINVAL, "focal map",
+			"needs a traced angle and a valid lens and size",
+			(double)o->focal->theta_index);
 	if (o->dump_paths > 1000000 || o->dump_paths > o->n_paths)
 		return stray_error_set_value(err, STRAY_EINVAL, "dump",
 			"at most 1e6 paths, and no more than traced",
@@ -83,6 +88,14 @@ static int alloc_extras(const struct tracer_scene *s,
 		if (!r->dump || !r->dump_len)
 			return STRAY_ENOMEM;
 	}
+	if (o->focal) {
+		r->focal_slots = tracer_focal_slots(o->focal);
+		r->focal = calloc(r->focal_slots, sizeof(double));
+		r->focal_batch = calloc(r->focal_slots * (size_t)o->n_batches,
+					sizeof(double));
+		if (!r->focal || !r->focal_batch)
+			return STRAY_ENOMEM;
+	}
 	if (!o->map_n)
 		return STRAY_OK;
 	r->map_n = o->map_n;
@@ -97,7 +110,8 @@ static int alloc_extras(const struct tracer_scene *s,
 }
 
 /*
- * Batch maps summed in batch order (bit-identical), then turned into
+ * Batch maps (and focal sums) summed in batch order (bit-identical), the
+ * detector map then turned into
  * irradiance over beam irradiance: sum / N * A_det / A_pixel.
  */
 static void merge_maps(const struct tracer_scene *s, struct worker_ctx *w)
@@ -107,6 +121,12 @@ static void merge_maps(const struct tracer_scene *s, struct worker_ctx *w)
 	double a_px = 4.0 * r->map_half_w_mm * r->map_half_h_mm / px;
 	int b;
 
+	/* focal cells: the mean of batch means, as tracer_result_power */
+	for (b = 0; r->focal && b < r->n_batches; b++)	/* batch order */
+		for (i = 0; i < r->focal_slots; i++)
+			r->focal[i] += r->focal_batch[b * r->focal_slots + i] /
+				       ((double)r->batch_paths[b] *
+					r->n_batches);
 	if (!r->map)
 		return;
 	for (b = 0; b < r->n_batches; b++)
@@ -193,6 +213,7 @@ static int run_pass(const struct tracer_scene *s,
 	w.res = res;
 	w.guide = guide;
 	w.pilot_s2 = pilot_s2;
+	w.focal_frame = frame_from_normal(s->det.normal);
 	w.next_batch = b0;
 	w.end_batch = b0 + nb;
 	w.n_run = nb;
@@ -243,6 +264,7 @@ void tracer_pilot_opts(const struct tracer_trace_opts *o,
 	po->record_paths = 0;
 	po->dump_paths = 0;
 	po->map_n = 0;
+	po->focal = NULL;
 }
 
 int tracer_guide_from_pilot(struct tracer_guide *g,
@@ -318,7 +340,7 @@ int tracer_trace_batches(const struct tracer_scene *s,
 		return rc;
 	/* path records are kept: each batch's table is merged alone, so a
 	 * piece's entries are that batch's sums (mpi/ merges them in order) */
-	if (o->dump_paths || o->map_n)
+	if (o->dump_paths || o->map_n || o->focal)
 		return stray_error_set(err, STRAY_EINVAL, "trace",
 			"dumps and maps need the whole trace");
 	if (first_batch < 0 || n_batches < 1 ||

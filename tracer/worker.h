@@ -17,6 +17,7 @@ struct worker_ctx {
 	struct vec3 *dir;		/* source direction per angle */
 	struct tracer_path_table *batch_tables;
 	double *batch_maps;		/* [batch][pixel] */
+	struct frame focal_frame;	/* the pupil's frame (focal cells) */
 	const struct tracer_guide *guide;	/* main pass: sample by it */
 	double *pilot_s2;		/* pilot pass: [batch][cell][theta] */
 	pthread_mutex_t lock;

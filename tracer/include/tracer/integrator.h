@@ -27,6 +27,7 @@
 
 #include "stray/error.h"
 #include "tracer/detector.h"
+#include "tracer/focal.h"
 #include "tracer/paths.h"
 #include "tracer/scene.h"
 
@@ -53,6 +54,8 @@ struct tracer_trace_opts {
 	uint64_t dump_paths;	/* keep the vertices of paths 0..n-1 (fig. 5.6) */
 	int map_n;		/* > 0: n x n detector irradiance map ... */
 	size_t map_theta_index;	/* ... at this angle */
+	/* non-NULL: focal-plane sums at focal->theta_index (focal.h) */
+	const struct tracer_focal *focal;
 	void (*progress)(void *user, double fraction);
 	void *progress_user;
 };
@@ -83,6 +86,13 @@ struct tracer_result {
 	int map_n;
 	double map_theta_deg;
 	double map_half_w_mm, map_half_h_mm;	/* extent, detector frame */
+	/* with opts.focal: per focal cell, the last slot outside the
+	 * detector (focal.h), P_cell / (E A_det) estimated as
+	 * tracer_result_power does (mean of batch means), and the per-batch
+	 * sums of contributions */
+	size_t focal_slots;
+	double *focal;		/* [slot] */
+	double *focal_batch;	/* [batch][slot] */
 };
 
 /* Defaults: 1 thread, 64 batches, roulette after 2 vertices, depth 64,

@@ -1,0 +1,434 @@
+/*
+ * focal_map_io.c - `stray trace --focal-map`: the sensor's focal geometry
+ * for the tracer, and the map it returns as FITS (cfitsio) and PNG
+ * (OpenCV false colour); see focal_map_io.h and tracer/README.md.
+ */
+#include <fitsio.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "focal_map_io.h"
+#include "image_cv.h"
+#include "stray/errfmt.h"
+#include "stray/sensor_io.h"
+#include "stray/table.h"
+#include "tracer/source.h"
+
+/*
+ * k_px = A_cs / (n_px A_px) (issue 13): the per-pixel factor between a
+ * power ratio and a per-pixel irradiance ratio.  Local until libstray
+ * carries it (the lead unifies with the flight module's).
+ */
+static double sensor_k_px(const struct stray_sensor *s)
+{
+	double d = s->aperture_diameter_mm, p = s->pixel_pitch_um * 1e-3;
+
+	return (M_PI * d * d / 4.0) / (s->pixels_x * s->pixels_y * p * p);
+}
+
+void focal_map_defaults(struct focal_map_args *f)
+{
+	memset(f, 0, sizeof(*f));
+	f->sensor = "st16-like";
+	f->cell_px = 36;
+}
+
+/* OpenCV picks the encoder by the name's ending. */
+static int is_png(const char *name)
+{
+	size_t n = strlen(name);
+
+	return n >= 4 && strcmp(name + n - 4, ".png") == 0;
+}
+
+int focal_map_option(int opt, char *text, struct focal_map_args *f, int *rc)
+{
+	double v;
+
+	switch (opt) {
+	case 1100:	/* a .png name: the PNG instead of FITS */
+		*(is_png(text) ? &f->png : &f->fits) = text;
+		return 0;
+	case 1101:
+		f->png = text;
+		if (!is_png(text))
+			*rc = cli_usage_error("trace", "--focal-map-png '%s' "
+					      "must end in .png", text);
+		return 0;
+	case 1102: f->sensor = text; return 0;
+	case 1104: f->lens_map = text; return 0;
+	case 1103:
+		*rc = cli_parse_count("trace", "map-cell", text, 1, 4096, &v);
+		f->cell_px = (int)v;
+		return 0;
+	default:
+		return 1;
+	}
+}
+
+int focal_map_wanted(const struct focal_map_args *f)
+{
+	return f->fits || f->png;
+}
+
+int focal_map_prepare(struct focal_map_args *f, size_t theta_index,
+		      struct tracer_trace_opts *o, struct stray_error *err)
+{
+	struct stray_sensor *s = &f->sen;
+	double pitch_mm, half_diag;
+	int rc = stray_sensor_load(f->sensor, s, err);
+
+	if (rc)
+		return rc;
+	if (fmod(s->pixels_x, f->cell_px) != 0.0 ||
+	    fmod(s->pixels_y, f->cell_px) != 0.0)
+		return stray_error_set_value(err, STRAY_EINVAL, "--map-cell",
+			"must divide the sensor's pixels_x and pixels_y",
+			f->cell_px);
+	pitch_mm = s->pixel_pitch_um * 1e-3;
+	f->fp.half_w_mm = 0.5 * s->pixels_x * pitch_mm;
+	f->fp.half_h_mm = 0.5 * s->pixels_y * pitch_mm;
+	/* the field half-angle is the circle holding the detector */
+	half_diag = hypot(f->fp.half_w_mm, f->fp.half_h_mm);
+	f->fp.f_mm = half_diag / tan(s->fov_half_deg * M_PI / 180.0);
+	f->fp.nx = (int)(s->pixels_x / f->cell_px);
+	f->fp.ny = (int)(s->pixels_y / f->cell_px);
+	f->fp.theta_index = theta_index;
+	f->k_px = sensor_k_px(s);
+	o->focal = &f->fp;
+	return tracer_focal_check(&f->fp, err);
+}
+
+/* fraction,rel_alpha of a region map CSV (stray reduce --map). */
+static int load_lens_map(const char *path, double **fr, double **rel,
+			 size_t *n, struct stray_error *err)
+{
+	struct stray_table t;
+	int cf, ca, rc = stray_table_read(path, &t, err);
+
+	if (rc)
+		return rc;
+	cf = stray_table_find(&t, "fraction");
+	ca = stray_table_find(&t, "rel_alpha");
+	if (cf < 0 || ca < 0 || t.n_rows < 1) {
+		rc = stray_error_at(err, STRAY_EPARSE, path, 0,
+				    cf < 0 ? "fraction" : "rel_alpha",
+				    "region map needs fraction,rel_alpha rows");
+	} else {
+		*fr = stray_table_column(&t, (size_t)cf);
+		*rel = stray_table_column(&t, (size_t)ca);
+		*n = t.n_rows;
+		if (!*fr || !*rel)
+			rc = stray_error_set(err, STRAY_ENOMEM, "--lens-map",
+					     "out of memory");
+	}
+	stray_table_free(&t);
+	return rc;
+}
+
+/* Where the spread's brightest cells go: the source direction's image. */
+static void source_point(const struct focal_map_args *f,
+			 const struct tracer_scene *s, double theta_deg,
+			 struct tracer_focal_spread *sp)
+{
+	struct frame fr = frame_from_normal(s->det.normal);
+
+	if (!tracer_focal_point(&f->fp, &fr, tracer_source_dir(theta_deg),
+				&sp->src_x_mm, &sp->src_y_mm)) {
+		sp->src_x_mm = 0.0;	/* behind the pupil: the +y side */
+		sp->src_y_mm = 1e6;
+	}
+}
+
+static int fits_failed(const char *path, int status, struct stray_error *err)
+{
+	char text[FLEN_STATUS] = "";
+
+	fits_get_errstatus(status, text);
+	fits_clear_errmsg();
+	stray_error_at(err, STRAY_EIO, path, 0, "--focal-map",
+		       "cannot write the FITS map");
+	stray_error_text(err, text);
+	return STRAY_EIO;
+}
+
+static void fits_keys(fitsfile *fp, const struct focal_map_args *f,
+		      const struct tracer_trace_opts *o, int *st)
+{
+	const struct stray_sensor *s = &f->sen;
+	const char *spread = f->lens_map ? "lensmap" : "uniform";
+	double theta = o->theta_deg[f->fp.theta_index];
+	long paths = (long)o->n_paths, seed = (long)o->seed;
+	long npx = (long)s->pixels_x, npy = (long)s->pixels_y;
+	int cell = f->cell_px;
+
+	fits_write_key(fp, TSTRING, "BUNIT", "E_px/E_src",
+		       "pixel irradiance / source irradiance", st);
+	fits_write_key(fp, TDOUBLE, "THETA", &theta, "source angle, deg", st);
+	fits_write_key(fp, TDOUBLE, "ALPHA", (void *)&f->alpha,
+		       "alpha(theta) = P(theta)/P(0)", st);
+	fits_write_key(fp, TDOUBLE, "ALPHASIG", (void *)&f->sigma,
+		       "standard error of ALPHA", st);
+	fits_write_key(fp, TDOUBLE, "KPX", (void *)&f->k_px,
+		       "A_cs / (n_px A_px)", st);
+	fits_write_key(fp, TSTRING, "NORM", "consistent",
+		       "image mean = KPX * ALPHA; P(0) = E_src A_cs", st);
+	fits_write_key(fp, TDOUBLE, "MEAN", (void *)&f->mean,
+		       "mean of the image", st);
+	fits_write_key(fp, TINT, "CELLPX", &cell, "pixels per cell side", st);
+	fits_write_key(fp, TLONG, "NPIXX", &npx, "detector pixels, x", st);
+	fits_write_key(fp, TLONG, "NPIXY", &npy, "detector pixels, y", st);
+	fits_write_key(fp, TDOUBLE, "PITCHUM", (void *)&s->pixel_pitch_um,
+		       "pixel pitch, um", st);
+	fits_write_key(fp, TDOUBLE, "FOCALMM", (void *)&f->fp.f_mm,
+		       "ideal lens focal length, mm", st);
+	fits_write_key(fp, TDOUBLE, "APERTMM", (void *)&s->aperture_diameter_mm,
+		       "aperture diameter (A_cs), mm", st);
+	fits_write_key(fp, TSTRING, "SPREAD", (void *)spread,
+		       "out-of-field light: uniform or lens region map", st);
+	fits_write_key(fp, TDOUBLE, "INFIELD", (void *)&f->in_field,
+		       "share of P(theta) imaged in the field", st);
+	fits_write_key(fp, TSTRING, "SENSOR", (void *)s->name, "sensor", st);
+	fits_write_key(fp, TLONG, "PATHS", &paths, "traced paths", st);
+	fits_write_key(fp, TLONG, "SEED", &seed, "random seed", st);
+}
+
+static int write_fits(const struct focal_map_args *f, const float *img,
+		      const struct tracer_trace_opts *o,
+		      struct stray_error *err)
+{
+	fitsfile *fp = NULL;
+	long naxes[2] = { f->fp.nx, f->fp.ny };
+	char name[4096];
+	int st = 0;
+
+	snprintf(name, sizeof(name), "!%s", f->fits);	/* '!': replace */
+	fits_create_file(&fp, name, &st);
+	fits_create_img(fp, FLOAT_IMG, 2, naxes, &st);
+	fits_keys(fp, f, o, &st);
+	fits_write_img(fp, TFLOAT, 1, naxes[0] * naxes[1], (void *)img, &st);
+	if (fp) {
+		int st2 = 0;
+
+		fits_close_file(fp, st ? &st2 : &st);
+	}
+	return st ? fits_failed(f->fits, st, err) : STRAY_OK;
+}
+
+/* PNG with +y up (FITS row 1 is -y): flip the rows. */
+static int write_png(const struct focal_map_args *f, const float *img,
+		     struct stray_error *err)
+{
+	size_t nx = (size_t)f->fp.nx, ny = (size_t)f->fp.ny, i;
+	float *up = malloc(nx * ny * sizeof(float));
+	char msg[256] = "";
+	int rc;
+
+	if (!up)
+		return stray_error_set(err, STRAY_ENOMEM, "--focal-map-png",
+				       "out of memory");
+	for (i = 0; i < ny; i++)
+		memcpy(up + i * nx, img + (ny - 1 - i) * nx,
+		       nx * sizeof(float));
+	rc = image_cv_false_colour(f->png, up, ny, nx, 1, 648, msg,
+				   sizeof(msg));
+	free(up);
+	if (rc)
+		return stray_error_at(err, STRAY_EIO, f->png, 0,
+				      "--focal-map-png", msg);
+	return STRAY_OK;
+}
+
+/* The normalised map (tracer_focal_finish) into img, with the summary. */
+static int make_map(struct focal_map_args *f, const struct tracer_result *r,
+		    const struct tracer_scene *s, float *img,
+		    struct stray_error *err)
+{
+	size_t n = (size_t)f->fp.nx * f->fp.ny, k, j = f->fp.theta_index;
+	struct tracer_focal_spread sp = { 0, NULL, NULL, 0.0, 0.0 };
+	double *fr = NULL, *rel = NULL, a_cs, sum = 0.0, p0, s0;
+	double *map = malloc(n * sizeof(double));
+	int rc = map ? STRAY_OK : STRAY_ENOMEM;
+
+	if (!rc && f->lens_map)
+		rc = load_lens_map(f->lens_map, &fr, &rel, &sp.n, err);
+	sp.fraction = fr;
+	sp.rel_alpha = rel;
+	source_point(f, s, r->theta_deg[j], &sp);
+	a_cs = M_PI * f->sen.aperture_diameter_mm *
+	       f->sen.aperture_diameter_mm / 4.0;
+	/* r->theta_deg[0] is 0: cmd_trace adds the reference angle */
+	tracer_result_power(r, 0, -1, &p0, &s0);
+	if (!rc)
+		rc = tracer_focal_finish(&f->fp, r->focal, p0,
+					 a_cs, &sp, map, &f->in_field, err);
+	for (k = 0; !rc && k < n; k++) {
+		img[k] = (float)map[k];
+		sum += map[k];
+	}
+	f->mean = sum / (double)n;
+	tracer_result_alpha(r, j, 0, -1, &f->alpha, &f->sigma);
+	f->theta_deg = r->theta_deg[j];
+	free(map);
+	free(fr);
+	free(rel);
+	if (rc == STRAY_ENOMEM)
+		stray_error_set(err, rc, "--focal-map", "out of memory");
+	return rc;
+}
+
+int focal_map_write(struct focal_map_args *f, const struct tracer_result *r,
+		    const struct tracer_scene *s,
+		    const struct tracer_trace_opts *o, struct stray_error *err)
+{
+	size_t n = (size_t)f->fp.nx * f->fp.ny;
+	float *img = malloc(n * sizeof(float));
+	int rc = img ? STRAY_OK : stray_error_set(err, STRAY_ENOMEM,
+				"--focal-map", "out of memory");
+
+	if (!rc && !r->focal)
+		rc = stray_error_set(err, STRAY_EINVAL, "--focal-map",
+				     "the trace kept no focal-plane sums");
+	if (!rc)
+		rc = make_map(f, r, s, img, err);
+	if (!rc && f->fits)
+		rc = write_fits(f, img, o, err);
+	if (!rc && f->png)
+		rc = write_png(f, img, err);
+	f->has_result = !rc;
+	free(img);
+	return rc;
+}
+
+void focal_map_json(const struct focal_map_args *f, cJSON *o)
+{
+	cJSON *m;
+
+	if (!f->has_result)
+		return;
+	m = cJSON_AddObjectToObject(o, "focal_map");
+	if (f->fits)
+		cJSON_AddStringToObject(m, "path", f->fits);
+	if (f->png)
+		cJSON_AddStringToObject(m, "png", f->png);
+	cJSON_AddItemToObject(m, "theta_deg", cli_json_number(f->theta_deg));
+	cJSON_AddItemToObject(m, "alpha", cli_json_number(f->alpha));
+	cJSON_AddItemToObject(m, "alpha_sigma", cli_json_number(f->sigma));
+	cJSON_AddItemToObject(m, "k_px", cli_json_number(f->k_px));
+	cJSON_AddItemToObject(m, "mean", cli_json_number(f->mean));
+	cJSON_AddStringToObject(m, "normalisation", "consistent");
+	cJSON_AddStringToObject(m, "spread",
+				f->lens_map ? "lensmap" : "uniform");
+	cJSON_AddItemToObject(m, "in_field_fraction",
+			      cli_json_number(f->in_field));
+	cJSON_AddNumberToObject(m, "cells_x", f->fp.nx);
+	cJSON_AddNumberToObject(m, "cells_y", f->fp.ny);
+	cJSON_AddNumberToObject(m, "cell_px", f->cell_px);
+	cJSON_AddItemToObject(m, "focal_mm", cli_json_number(f->fp.f_mm));
+	cJSON_AddStringToObject(m, "sensor", f->sen.name);
+}
+
+/* One numeric keyword of a map; status KEY_NO_EXIST names it. */
+static int read_key(fitsfile *fp, const char *path, const char *key,
+		    double *v, struct stray_error *err)
+{
+	int st = 0;
+
+	if (fits_read_key(fp, TDOUBLE, key, v, NULL, &st) == 0 &&
+	    isfinite(*v))
+		return STRAY_OK;
+	fits_clear_errmsg();
+	return stray_error_at(err, STRAY_EPARSE, path, 0, key,
+			      "focal map keyword missing or not a number");
+}
+
+static int load_keys(fitsfile *fp, const char *path,
+		     struct focal_map_file *m, struct stray_error *err)
+{
+	double cell, nx, ny;
+	int st = 0, rc;
+
+	rc = read_key(fp, path, "THETA", &m->theta_deg, err);
+	if (!rc)
+		rc = read_key(fp, path, "ALPHA", &m->alpha, err);
+	if (!rc)
+		rc = read_key(fp, path, "KPX", &m->k_px, err);
+	if (!rc)
+		rc = read_key(fp, path, "MEAN", &m->mean, err);
+	if (!rc)
+		rc = read_key(fp, path, "CELLPX", &cell, err);
+	if (!rc)
+		rc = read_key(fp, path, "NPIXX", &nx, err);
+	if (!rc)
+		rc = read_key(fp, path, "NPIXY", &ny, err);
+	if (rc)
+		return rc;
+	m->cell_px = (long)cell;
+	m->npix_x = (long)nx;
+	m->npix_y = (long)ny;
+	if (m->cell_px < 1 || m->npix_x != m->nx * m->cell_px ||
+	    m->npix_y != m->ny * m->cell_px)
+		return stray_error_at(err, STRAY_EPARSE, path, 0, "CELLPX",
+				      "NAXIS * CELLPX must be NPIXX, NPIXY");
+	if (fits_read_key(fp, TSTRING, "SPREAD", m->spread, NULL, &st))
+		snprintf(m->spread, sizeof(m->spread), "unknown");
+	fits_clear_errmsg();
+	return STRAY_OK;
+}
+
+int focal_map_load(const char *path, struct focal_map_file *m,
+		   struct stray_error *err)
+{
+	fitsfile *fp = NULL;
+	long naxes[2] = { 0, 0 };
+	int st = 0, nax = 0, rc;
+
+	memset(m, 0, sizeof(*m));
+	if (fits_open_file(&fp, path, READONLY, &st) ||
+	    fits_get_img_dim(fp, &nax, &st) || nax != 2 ||
+	    fits_get_img_size(fp, 2, naxes, &st) || naxes[0] < 1 ||
+	    naxes[1] < 1) {
+		if (fp)
+			fits_close_file(fp, &st);
+		fits_clear_errmsg();
+		return stray_error_at(err, STRAY_EPARSE, path, 0, "NAXIS",
+				      "not a 2-D focal map image");
+	}
+	m->nx = naxes[0];
+	m->ny = naxes[1];
+	rc = load_keys(fp, path, m, err);
+	if (!rc) {
+		m->cell = malloc((size_t)(m->nx * m->ny) * sizeof(float));
+		if (!m->cell)
+			rc = stray_error_set(err, STRAY_ENOMEM, "focal map",
+					     "out of memory");
+	}
+	if (!rc && fits_read_img(fp, TFLOAT, 1, m->nx * m->ny, NULL, m->cell,
+				 NULL, &st))
+		rc = stray_error_at(err, STRAY_EPARSE, path, 0, "image",
+				    "cannot read the focal map's cells");
+	st = 0;
+	fits_close_file(fp, &st);
+	fits_clear_errmsg();
+	if (rc)
+		focal_map_file_free(m);
+	return rc;
+}
+
+double focal_map_pixel(const struct focal_map_file *m, long px, long py)
+{
+	long col = px / m->cell_px, row = py / m->cell_px;
+
+	if (px < 0 || py < 0 || col >= m->nx || row >= m->ny)
+		return 0.0;
+	return m->cell[row * m->nx + col];
+}
+
+void focal_map_file_free(struct focal_map_file *m)
+{
+	free(m->cell);
+	m->cell = NULL;
+}

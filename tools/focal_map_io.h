@@ -1,0 +1,87 @@
+/*
+ * focal_map_io.h - `stray trace --focal-map M.fits [--focal-map-png P.png]`:
+ * the focal-plane stray-light map of the sensor at --map-angle
+ * (issue 13 item 2; physics and FITS format in tracer/README.md).
+ * cmd_trace.c takes the options here, sets the tracer up before the
+ * trace and writes the map after it.
+ */
+#ifndef STRAY_TOOLS_FOCAL_MAP_IO_H
+#define STRAY_TOOLS_FOCAL_MAP_IO_H
+
+#include <cJSON.h>
+
+#include "stray/sensor.h"
+#include "tracer/focal.h"
+#include "tracer/integrator.h"
+
+struct focal_map_args {
+	const char *fits, *png;		/* outputs; NULL: not wanted */
+	const char *sensor;		/* 'st16-like' or a sensor file */
+	const char *lens_map;		/* region map CSV; NULL: uniform */
+	int cell_px;			/* detector pixels per cell side */
+	/* filled by focal_map_prepare / focal_map_write */
+	struct stray_sensor sen;
+	struct tracer_focal fp;
+	double theta_deg, k_px, alpha, sigma, mean, in_field;
+	int has_result;
+};
+
+/* The long options (codes 1100..1104) for trace_opts[]. */
+#define FOCAL_MAP_LONG_OPTIONS \
+	{ "focal-map", required_argument, NULL, 1100 }, \
+	{ "focal-map-png", required_argument, NULL, 1101 }, \
+	{ "sensor", required_argument, NULL, 1102 }, \
+	{ "map-cell", required_argument, NULL, 1103 }, \
+	{ "lens-map", required_argument, NULL, 1104 }
+
+#define FOCAL_MAP_USAGE \
+	"  --focal-map M.fits  focal-plane stray-light map at --map-angle:\n" \
+	"                    per-pixel E_px/E_src, mean k_px*alpha (FITS;\n" \
+	"                    a name ending in .png writes the PNG instead)\n" \
+	"  --focal-map-png P.png  the map as false-colour PNG (log, +y up)\n" \
+	"  --sensor S        sensor of the map (default st16-like)\n" \
+	"  --map-cell PX     detector pixels per map cell (default 36)\n" \
+	"  --lens-map R.csv  spread out-of-field light by this region map\n" \
+	"                    (stray reduce --map); default uniform\n"
+
+void focal_map_defaults(struct focal_map_args *f);
+
+/* Take one of FOCAL_MAP_LONG_OPTIONS: 0 when it was one (*rc says
+ * whether the value was good), 1 otherwise. */
+int focal_map_option(int opt, char *text, struct focal_map_args *f,
+		     int *rc);
+
+int focal_map_wanted(const struct focal_map_args *f);
+
+/* Sensor and cells into the focal geometry; o->focal points at it. */
+int focal_map_prepare(struct focal_map_args *f, size_t theta_index,
+		      struct tracer_trace_opts *o, struct stray_error *err);
+
+/* The map from a finished trace, written as FITS and/or PNG. */
+int focal_map_write(struct focal_map_args *f, const struct tracer_result *r,
+		    const struct tracer_scene *s,
+		    const struct tracer_trace_opts *o, struct stray_error *err);
+
+/* Add "focal_map" to a --json summary (when a map was written). */
+void focal_map_json(const struct focal_map_args *f, cJSON *o);
+
+/* A focal map read back (for `stray frames --map M.fits`). */
+struct focal_map_file {
+	long nx, ny;			/* cells: columns (x), rows (y) */
+	long cell_px;			/* detector pixels per cell side */
+	long npix_x, npix_y;		/* detector pixels */
+	double theta_deg, alpha, k_px, mean;
+	char spread[16];		/* "uniform" or "lensmap" */
+	float *cell;			/* [row][col], row 0 at -y */
+};
+
+/* Read a --focal-map FITS; errors name the file and keyword. */
+int focal_map_load(const char *path, struct focal_map_file *m,
+		   struct stray_error *err);
+
+/* E_px / E_src at detector pixel (px, py), 0-based; its cell's value. */
+double focal_map_pixel(const struct focal_map_file *m, long px, long py);
+
+void focal_map_file_free(struct focal_map_file *m);
+
+#endif /* STRAY_TOOLS_FOCAL_MAP_IO_H */
