@@ -68,6 +68,7 @@ demo-check: all
 # TESTS_SLOW: tests too slow under the sanitizers, run in the normal pass only.
 check: all $(TESTS) $(if $(filter 1,$(SAN)),,$(TESTS_SLOW))
 	@scripts/check-core.sh $(STRAY_CORE_LIB)
+	@scripts/check-equations.sh
 ifneq ($(SAN),1)	# an instrumented library is not for installing
 	@scripts/check-install.sh $(B)
 endif

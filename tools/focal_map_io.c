@@ -17,18 +17,6 @@
 #include "stray/table.h"
 #include "tracer/source.h"
 
-/*
- * k_px = A_cs / (n_px A_px) (issue 13): the per-pixel factor between a
- * power ratio and a per-pixel irradiance ratio.  Local until libstray
- * carries it (the lead unifies with the flight module's).
- */
-static double sensor_k_px(const struct stray_sensor *s)
-{
-	double d = s->aperture_diameter_mm, p = s->pixel_pitch_um * 1e-3;
-
-	return (M_PI * d * d / 4.0) / (s->pixels_x * s->pixels_y * p * p);
-}
-
 void focal_map_defaults(struct focal_map_args *f)
 {
 	memset(f, 0, sizeof(*f));
@@ -97,7 +85,7 @@ int focal_map_prepare(struct focal_map_args *f, size_t theta_index,
 	f->fp.nx = (int)(s->pixels_x / f->cell_px);
 	f->fp.ny = (int)(s->pixels_y / f->cell_px);
 	f->fp.theta_index = theta_index;
-	f->k_px = sensor_k_px(s);
+	f->k_px = stray_sensor_k_px(s, STRAY_NORM_CONSISTENT);
 	o->focal = &f->fp;
 	return tracer_focal_check(&f->fp, err);
 }

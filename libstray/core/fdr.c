@@ -171,7 +171,11 @@ static int drs_residual(stray_real i, void *ctx, stray_real *y)
 stray_real stray_fdr_threshold_gauss(const struct stray_fdr_model *m,
 				     stray_real z_drs)
 {
-	/* eq. 2.13-2.16: Pr_drs = Q((I_sdt - mu) / sigma) */
+	/*
+	 * eq. 2.13: the DRS count is Gaussian, eq. 2.14: mu_drs = I_drs,
+	 * eq. 2.15: sigma^2_drs = I_drs (+ b); eq. 2.16: Pr_drs =
+	 * Q((I_sdt - mu_drs) / sigma_drs), solved for I_sdt
+	 */
 	stray_real i_drs = stray_fdr_drs_photons(m);
 
 	return i_drs + z_drs * stray_sqrt(i_drs + window_noise_var(m));
@@ -210,7 +214,13 @@ int stray_fdr_log_pr_fd(const struct stray_fdr_model *m, stray_real alpha,
 			stray_real i_sdt, stray_real *log_pr_fd,
 			struct stray_error *err)
 {
-	/* eq. 2.9-2.11: re-centred window, sigma^2 = n_pps I_px (+ b) */
+	/*
+	 * eq. 2.4: each pixel Gaussian, eq. 2.5: mu_px = I_px, eq. 2.6:
+	 * sigma^2_px = I_px; eq. 2.7: the window sums n_pps of them, and
+	 * eq. 2.8: the sum is Gaussian with eq. 2.9: mu_samp = n_pps I_px,
+	 * eq. 2.10: sigma^2_samp = n_pps I_px (+ b); eq. 2.11: re-centred on
+	 * the mean background, mu_samp = 0
+	 */
 	stray_real var = m->n_pps * stray_fdr_pixel_photons(m, alpha) +
 		     window_noise_var(m);
 
