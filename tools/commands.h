@@ -23,5 +23,6 @@ int cmd_trace(int argc, char **argv);
 int cmd_diagnose(int argc, char **argv);
 int cmd_rig(int argc, char **argv);
 int cmd_sweep(int argc, char **argv);
+int cmd_frames(int argc, char **argv);
 
 #endif /* STRAY_TOOLS_COMMANDS_H */
