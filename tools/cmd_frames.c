@@ -334,7 +334,7 @@ static int save_frame(const struct frames_state *st, int i, size_t n_stars,
 	char path[4096];
 
 	snprintf(path, sizeof(path), "%s/frame_%03d.fits", st->a.out_dir, i);
-	m.theta_deg = st->a.has_theta ? st->a.theta_deg : NAN;
+	m.theta_deg = st->a.has_theta ? st->a.theta_deg : 0.0;	/* --alpha */
 	m.t_exp_s = st->s.sensor.t_exp_s;
 	m.alpha = st->alpha;
 	m.k_px = st->k_px;
@@ -353,7 +353,7 @@ static int run_frames(struct frames_state *st, struct stray_error *err)
 {
 	struct stray_frame_cfg c;
 	struct stray_star_field f;
-	double min_e = 0.1 * stray_fdr_drs_photons(&st->fm.m);
+	double min_e = 0.0;	/* any true star, however faint, is not false */
 	size_t n_stars, t, nt = (size_t)st->ev[0].tiles_x * st->ev[0].tiles_y;
 	char msg[256];
 	int i, d, rc;
@@ -382,8 +382,12 @@ static int run_frames(struct frames_state *st, struct stray_error *err)
 		for (t = 0; t < nt; t++)
 			st->ev[0].tile_sum[t] += st->tiles[t];
 		for (d = 0; d < 2; d++) {
+			/* The window sum places a star only to within its
+			 * window (radius r); the threshold detector's
+			 * centroids to a few px. */
+			double match = d == 0 ? st->dc.window_radius_px : 4.0;
 			size_t nf = frames_count_false(&st->out[d], st->stars,
-				n_stars, min_e, 4.0, st->ev[d].fx, st->ev[d].fy,
+				n_stars, min_e, match, st->ev[d].fx, st->ev[d].fy,
 				&st->ev[d].n_f, st->ev[d].max_f);
 
 			st->n_false[d] += (long)nf;

@@ -93,8 +93,16 @@ static int cluster_rate(const struct frames_model *fm, double *rate,
 
 	*rate = 0.0;
 	if (!map) {
-		rc = stray_fdr_log_rate_clusters(n, fm->stray_e + fm->dark_e, var,
-			fm->pixel_threshold_e, (unsigned)fm->min_px, &lf, err);
+		/* Uniform light: every pixel compares the same ADC steps of g
+		 * e- with the same level, so the threshold is where the first
+		 * step above level + t begins (rounding: half a step below);
+		 * no quantisation variance then. */
+		double g = STRAY_FRAMES_GAIN_E_PER_DN, level = fm->stray_e + fm->dark_e;
+		double t = g * floor((level + fm->pixel_threshold_e) / g) + 0.5 * g -
+			   level;
+
+		rc = stray_fdr_log_rate_clusters(n, level, var - fm->quant_var_e,
+			t, (unsigned)fm->min_px, &lf, err);
 		*rate = exp(lf);
 		return rc;
 	}
