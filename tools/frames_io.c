@@ -109,6 +109,16 @@ static int read_image(const char *path, float **img, long *nx, long *ny,
 	return STRAY_OK;
 }
 
+/* A detector pixel's position in map cells, measured between cell
+ * centres (a map samples a smooth distribution: bilinear, not steps),
+ * held at the outer centres. */
+static double cell_coord(int px, int det, long n)
+{
+	double f = (px + 0.5) * (double)n / det - 0.5;
+
+	return f < 0.0 ? 0.0 : f > (double)(n - 1) ? (double)(n - 1) : f;
+}
+
 int frames_map_read(const char *path, int det_x, int det_y, int col0,
 		    int row0, int cols, int rows, float *weight,
 		    struct stray_error *err)
@@ -135,13 +145,20 @@ int frames_map_read(const char *path, int det_x, int det_y, int col0,
 				      "the map carries no light");
 	}
 	for (y = 0; y < rows; y++) {
-		long cy = (long)(row0 + y) * ny / det_y;
+		double fy = cell_coord(row0 + y, det_y, ny);
+		long y0 = (long)fy, y1 = y0 + 1 < ny ? y0 + 1 : y0;
 
+		fy -= (double)y0;
 		for (x = 0; x < cols; x++) {
-			long cx = (long)(col0 + x) * nx / det_x;
+			double fx = cell_coord(col0 + x, det_x, nx);
+			long x0 = (long)fx, x1 = x0 + 1 < nx ? x0 + 1 : x0;
+			double top, bot;
 
+			fx -= (double)x0;
+			top = img[y0 * nx + x0] + fx * (img[y0 * nx + x1] - img[y0 * nx + x0]);
+			bot = img[y1 * nx + x0] + fx * (img[y1 * nx + x1] - img[y1 * nx + x0]);
 			weight[(size_t)y * cols + x] =
-				(float)(img[cy * nx + cx] / mean);
+				(float)((top + fy * (bot - top)) / mean);
 		}
 	}
 	free(img);

@@ -28,9 +28,9 @@ int frames_fits_write(const char *path, const uint16_t *dn, int cols,
 
 /*
  * Read a map and resample it to the window [col0, col0 + cols) x
- * [row0, row0 + rows) of a det_x x det_y detector (each detector pixel
- * takes the map cell that covers it), divided by the mean of the whole
- * map: weight has mean 1 over the detector.  A non-finite or negative
+ * [row0, row0 + rows) of a det_x x det_y detector (bilinear between cell
+ * centres: the map samples a smooth distribution), divided by the mean of
+ * the whole map: weight has mean about 1 over the detector.  A non-finite or negative
  * cell, or a map with no light, is STRAY_EINVAL naming the file.
  */
 int frames_map_read(const char *path, int det_x, int det_y, int col0,
