@@ -111,12 +111,18 @@ static int read_image(const char *path, float **img, long *nx, long *ny,
 
 /* A detector pixel's position in map cells, measured between cell
  * centres (a map samples a smooth distribution: bilinear, not steps),
- * held at the outer centres. */
+ * extrapolated linearly past the outer centres (half a cell). */
 static double cell_coord(int px, int det, long n)
 {
-	double f = (px + 0.5) * (double)n / det - 0.5;
+	return (px + 0.5) * (double)n / det - 0.5;
+}
 
-	return f < 0.0 ? 0.0 : f > (double)(n - 1) ? (double)(n - 1) : f;
+/* The cell left of (below) f, so that f lies in [i, i + 1] inside. */
+static long cell_base(double f, long n)
+{
+	long i = (long)floor(f);
+
+	return n < 2 ? 0 : i < 0 ? 0 : i > n - 2 ? n - 2 : i;
 }
 
 int frames_map_read(const char *path, int det_x, int det_y, int col0,
@@ -146,19 +152,18 @@ int frames_map_read(const char *path, int det_x, int det_y, int col0,
 	}
 	for (y = 0; y < rows; y++) {
 		double fy = cell_coord(row0 + y, det_y, ny);
-		long y0 = (long)fy, y1 = y0 + 1 < ny ? y0 + 1 : y0;
+		long y0 = cell_base(fy, ny), y1 = ny > 1 ? y0 + 1 : y0;
 
 		fy -= (double)y0;
 		for (x = 0; x < cols; x++) {
-			double fx = cell_coord(col0 + x, det_x, nx);
-			long x0 = (long)fx, x1 = x0 + 1 < nx ? x0 + 1 : x0;
-			double top, bot;
+			double fx = cell_coord(col0 + x, det_x, nx), top, bot, v;
+			long x0 = cell_base(fx, nx), x1 = nx > 1 ? x0 + 1 : x0;
 
 			fx -= (double)x0;
 			top = img[y0 * nx + x0] + fx * (img[y0 * nx + x1] - img[y0 * nx + x0]);
 			bot = img[y1 * nx + x0] + fx * (img[y1 * nx + x1] - img[y1 * nx + x0]);
-			weight[(size_t)y * cols + x] =
-				(float)((top + fy * (bot - top)) / mean);
+			v = (top + fy * (bot - top)) / mean;
+			weight[(size_t)y * cols + x] = (float)(v > 0.0 ? v : 0.0);
 		}
 	}
 	free(img);
