@@ -16,7 +16,9 @@
 #include "commands.h"
 #include "fdr_setup.h"
 #include "frames_io.h"
+#include "frames_plot.h"
 #include "frames_run.h"
+#include "image_cv.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"
 
@@ -46,11 +48,15 @@ static const char usage[] =
 	"                      its shape spreads the stray light, alpha sets the level\n"
 	"  --out-dir D         write the first --save (3) frames as FITS there\n"
 	"  --mag-max M         faintest star rendered (10)\n"
+	"  --png F.png         the first frame in false colour (log scale)\n"
+	"  --plot-validation V.csv --plot F.png\n"
+	"                      only draw measured vs predicted false stars from the\n"
+	"                      table scripts/validate-frames.sh writes\n"
 	"  --json              machine-readable output\n"
 	SENSOR_USAGE;
 
 struct frames_args {
-	const char *curve, *map, *out_dir;
+	const char *curve, *map, *out_dir, *png, *plot_csv, *plot;
 	double theta_deg, alpha, frames, window, seed, save, mag_max;
 	int has_theta, has_alpha, detector, thesis_norm;
 };
@@ -94,6 +100,9 @@ static int parse_opt(struct fdr_setup *s, struct frames_args *a, int opt)
 	case 'c': a->curve = optarg; return CLI_OK;
 	case 'm': a->map = optarg; return CLI_OK;
 	case 'o': a->out_dir = optarg; return CLI_OK;
+	case 'P': a->png = optarg; return CLI_OK;
+	case 'V': a->plot_csv = optarg; return CLI_OK;
+	case 'p': a->plot = optarg; return CLI_OK;
 	case 't': a->has_theta = 1;
 		return cli_parse_double("frames", "theta", optarg, &a->theta_deg);
 	case 'a': a->has_alpha = 1;
@@ -121,6 +130,9 @@ static int parse_opt(struct fdr_setup *s, struct frames_args *a, int opt)
 
 static int check_args(const struct frames_args *a)
 {
+	if (a->plot_csv || a->plot)
+		return a->plot_csv && a->plot ? CLI_OK : cli_usage_error("frames",
+			"--plot-validation and --plot go together");
 	if (a->has_alpha == (a->curve != NULL))
 		return cli_usage_error("frames", "give --curve with --theta, or --alpha");
 	if (a->curve && !a->has_theta)
@@ -154,6 +166,9 @@ static int parse_args(int argc, char **argv, struct fdr_setup *s,
 		{ "normalisation", required_argument, NULL, 'N' },
 		{ "map", required_argument, NULL, 'm' },
 		{ "out-dir", required_argument, NULL, 'o' },
+		{ "png", required_argument, NULL, 'P' },
+		{ "plot-validation", required_argument, NULL, 'V' },
+		{ "plot", required_argument, NULL, 'p' },
 		{ "json", no_argument, &cli.json, 1 },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 }
@@ -348,6 +363,22 @@ static int save_frame(const struct frames_state *st, int i, size_t n_stars,
 	return frames_fits_write(path, st->dn, st->cols, st->rows, &m, err);
 }
 
+/* The first frame in e- as a false-colour PNG (the expectation buffer is
+ * free once the frame is sampled). */
+static int save_png(struct frames_state *st, struct stray_error *err)
+{
+	size_t i, n = (size_t)st->cols * st->rows;
+	char msg[256];
+
+	for (i = 0; i < n; i++)
+		st->expect[i] = (float)((st->dn[i] - STRAY_FRAMES_BIAS_DN) *
+					STRAY_FRAMES_GAIN_E_PER_DN);
+	if (image_cv_false_colour(st->a.png, st->expect, (size_t)st->rows,
+				  (size_t)st->cols, 1, 0, msg, sizeof(msg)))
+		return stray_error_at(err, STRAY_EIO, st->a.png, 0, 0, msg);
+	return STRAY_OK;
+}
+
 /* Render, detect and count every frame. */
 static int run_frames(struct frames_state *st, struct stray_error *err)
 {
@@ -396,6 +427,8 @@ static int run_frames(struct frames_state *st, struct stray_error *err)
 		}
 		if (st->a.out_dir && i < (int)st->a.save &&
 		    (rc = save_frame(st, i, n_stars, err)) != STRAY_OK)
+			return rc;
+		if (st->a.png && i == 0 && (rc = save_png(st, err)) != STRAY_OK)
 			return rc;
 	}
 	return STRAY_OK;
@@ -509,7 +542,10 @@ int cmd_frames(int argc, char **argv)
 	st->a.mag_max = 10.0;
 	st->a.detector = 1;
 	rc = parse_args(argc, argv, &st->s, &st->a);
-	if (rc == CLI_OK) {
+	if (rc == CLI_OK && st->a.plot_csv) {
+		if (frames_plot_validation(st->a.plot_csv, st->a.plot, &err))
+			rc = cli_fail("frames", &err);
+	} else if (rc == CLI_OK) {
 		if (fdr_setup_load(&st->s, &err) || setup_frame(st, &err) ||
 		    setup_map(st, &err) || setup_model(st, &err) ||
 		    run_frames(st, &err)) {

@@ -29,11 +29,11 @@ void stray_frame_cfg_defaults(struct stray_frame_cfg *c, int cols, int rows)
 
 uint64_t stray_frame_seed(uint64_t seed, uint64_t i)
 {
-	struct frame_rng r;
+	struct stray_frame_rng r;
 
-	frame_rng_init(&r, seed * 0x2545F4914F6CDD1Dull + i);
-	frame_rng_next(&r);
-	return frame_rng_next(&r);
+	stray_frame_rng_init(&r, seed * 0x2545F4914F6CDD1Dull + i);
+	stray_frame_rng_next(&r);
+	return stray_frame_rng_next(&r);
 }
 
 /* Fraction of a unit Gaussian's mass in [a, b] (one axis of the PSF). */
@@ -79,11 +79,11 @@ static void add_star(const struct stray_frame_cfg *c,
 /* Hot pixels sit at fixed detector places: a hash of (row, col). */
 static int is_hot(const struct stray_frame_cfg *c, int row, int col)
 {
-	struct frame_rng r;
+	struct stray_frame_rng r;
 
-	frame_rng_init(&r, ((uint64_t)(row + c->row0) << 32) ^
+	stray_frame_rng_init(&r, ((uint64_t)(row + c->row0) << 32) ^
 			   (uint64_t)(col + c->col0) ^ 0x5EEDull);
-	return frame_rng_uniform(&r) < c->hot_frac;
+	return stray_frame_rng_uniform(&r) < c->hot_frac;
 }
 
 void stray_frame_expect(const struct stray_frame_cfg *c,
@@ -121,15 +121,15 @@ void stray_frame_expect(const struct stray_frame_cfg *c,
 void stray_frame_sample(const struct stray_frame_cfg *c,
 			const float *expect_e, uint64_t seed, uint16_t *dn)
 {
-	struct frame_rng r;
+	struct stray_frame_rng r;
 	double inv_gain = 1.0 / c->gain_e_per_dn, sat = c->sat_dn;
 	size_t i, n = (size_t)c->rows * c->cols;
 
-	frame_rng_init(&r, seed);
+	stray_frame_rng_init(&r, seed);
 	for (i = 0; i < n; i++) {
 		/* eq. 2.4-2.6: shot noise, Poisson in the photo-electrons */
-		double e = frame_rng_poisson(&r, expect_e[i]) +
-			   c->read_noise_e * frame_rng_normal(&r);
+		double e = stray_frame_rng_poisson(&r, expect_e[i]) +
+			   c->read_noise_e * stray_frame_rng_normal(&r);
 		double v = floor(e * inv_gain + c->bias_dn + 0.5);
 
 		dn[i] = (uint16_t)(v < 0.0 ? 0.0 : v > sat ? sat : v);

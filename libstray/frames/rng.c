@@ -5,14 +5,14 @@
 
 #include "rng.h"
 
-void frame_rng_init(struct frame_rng *r, uint64_t seed)
+void stray_frame_rng_init(struct stray_frame_rng *r, uint64_t seed)
 {
 	r->s = seed;
 	r->has_spare = 0;
 	r->lam = -1.0;
 }
 
-uint64_t frame_rng_next(struct frame_rng *r)
+uint64_t stray_frame_rng_next(struct stray_frame_rng *r)
 {
 	uint64_t z = (r->s += 0x9E3779B97F4A7C15ull);
 
@@ -21,13 +21,13 @@ uint64_t frame_rng_next(struct frame_rng *r)
 	return z ^ (z >> 31);
 }
 
-double frame_rng_uniform(struct frame_rng *r)
+double stray_frame_rng_uniform(struct stray_frame_rng *r)
 {
-	return ((double)(frame_rng_next(r) >> 11) + 0.5) *
+	return ((double)(stray_frame_rng_next(r) >> 11) + 0.5) *
 	       (1.0 / 9007199254740992.0);
 }
 
-double frame_rng_normal(struct frame_rng *r)
+double stray_frame_rng_normal(struct stray_frame_rng *r)
 {
 	double u, v, s, f;
 
@@ -36,8 +36,8 @@ double frame_rng_normal(struct frame_rng *r)
 		return r->spare;
 	}
 	do {
-		u = 2.0 * frame_rng_uniform(r) - 1.0;
-		v = 2.0 * frame_rng_uniform(r) - 1.0;
+		u = 2.0 * stray_frame_rng_uniform(r) - 1.0;
+		v = 2.0 * stray_frame_rng_uniform(r) - 1.0;
 		s = u * u + v * v;
 	} while (s >= 1.0 || s == 0.0);
 	f = sqrt(-2.0 * log(s) / s);
@@ -47,9 +47,9 @@ double frame_rng_normal(struct frame_rng *r)
 }
 
 /* Inversion by sequential search: means below 10. */
-static double poisson_small(struct frame_rng *r, double mean)
+static double poisson_small(struct stray_frame_rng *r, double mean)
 {
-	double u = frame_rng_uniform(r), p = exp(-mean), c = p;
+	double u = stray_frame_rng_uniform(r), p = exp(-mean), c = p;
 	int k = 0;
 
 	while (u > c && k < 200) {
@@ -60,7 +60,7 @@ static double poisson_small(struct frame_rng *r, double mean)
 	return k;
 }
 
-static void ptrs_setup(struct frame_rng *r, double lam)
+static void ptrs_setup(struct stray_frame_rng *r, double lam)
 {
 	r->lam = lam;
 	r->slam = sqrt(lam);
@@ -71,7 +71,7 @@ static void ptrs_setup(struct frame_rng *r, double lam)
 	r->vr = 0.9277 - 3.6224 / (r->b - 2.0);
 }
 
-double frame_rng_poisson(struct frame_rng *r, double mean)
+double stray_frame_rng_poisson(struct stray_frame_rng *r, double mean)
 {
 	int it;
 
@@ -82,8 +82,8 @@ double frame_rng_poisson(struct frame_rng *r, double mean)
 	if (mean != r->lam)
 		ptrs_setup(r, mean);
 	for (it = 0; it < 1000; it++) {
-		double u = frame_rng_uniform(r) - 0.5;
-		double v = frame_rng_uniform(r);
+		double u = stray_frame_rng_uniform(r) - 0.5;
+		double v = stray_frame_rng_uniform(r);
 		double us = 0.5 - fabs(u);
 		double k = floor((2.0 * r->a / us + r->b) * u + r->lam + 0.43);
 

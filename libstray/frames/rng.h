@@ -11,7 +11,7 @@
 
 #include <stdint.h>
 
-struct frame_rng {
+struct stray_frame_rng {
 	uint64_t s;
 	double spare;		/* second normal of the polar pair */
 	int has_spare;
@@ -19,10 +19,10 @@ struct frame_rng {
 	double lam, slam, loglam, a, b, inv_alpha, vr;
 };
 
-void frame_rng_init(struct frame_rng *r, uint64_t seed);
-uint64_t frame_rng_next(struct frame_rng *r);
-double frame_rng_uniform(struct frame_rng *r);	/* (0, 1) */
-double frame_rng_normal(struct frame_rng *r);
-double frame_rng_poisson(struct frame_rng *r, double mean);
+void stray_frame_rng_init(struct stray_frame_rng *r, uint64_t seed);
+uint64_t stray_frame_rng_next(struct stray_frame_rng *r);
+double stray_frame_rng_uniform(struct stray_frame_rng *r);	/* (0, 1) */
+double stray_frame_rng_normal(struct stray_frame_rng *r);
+double stray_frame_rng_poisson(struct stray_frame_rng *r, double mean);
 
 #endif /* STRAY_FRAMES_RNG_H */
