@@ -211,6 +211,7 @@ struct frames_state {
 	struct frames_detect_cfg dc;
 	struct frames_model fm;
 	struct frames_rates rates;
+	struct frames_alpha_req req;
 	struct stray_region_map map;
 	struct frames_evidence ev[2];
 	long n_false[2], n_found[2];
@@ -324,6 +325,9 @@ static int setup_model(struct frames_state *st, struct stray_error *err)
 
 	if (rc == STRAY_OK)
 		rc = frames_model_rates(&st->fm, &st->rates, err);
+	if (rc == STRAY_OK)
+		rc = frames_alpha_required(&st->fm, &st->s.sensor, st->k_px,
+					   st->s.rate, &st->req, err);
 	frames_detect_cfg_init(&st->dc, &st->fm, &st->s.sensor);
 	return rc;
 }
@@ -493,6 +497,11 @@ static int print_json(const struct frames_state *st,
 	cJSON_AddItemToObject(o, "threshold_e", cli_json_number(st->fm.i_sdt_e));
 	cJSON_AddItemToObject(o, "pixel_threshold_e", cli_json_number(st->fm.pixel_threshold_e));
 	cJSON_AddItemToObject(o, "window_px", cli_json_number(st->fm.win.n_px));
+	s = cJSON_AddObjectToObject(o, "alpha_required");
+	cJSON_AddItemToObject(s, "rate", cli_json_number(st->s.rate));
+	cJSON_AddItemToObject(s, "thesis_k1", cli_json_number(st->req.thesis_k1));
+	cJSON_AddItemToObject(s, "model", cli_json_number(st->req.model));
+	cJSON_AddItemToObject(s, "extended", cli_json_number(st->req.extended));
 	s = cJSON_AddObjectToObject(o, "stars");
 	cJSON_AddStringToObject(s, "source", "synthetic: all-sky average counts (no catalogue installed)");
 	cJSON_AddItemToObject(s, "per_image", cli_json_number(st->stars_sum / st->a.frames));
@@ -518,6 +527,8 @@ static void print_text(const struct frames_state *st,
 	       st->stars_sum / st->a.frames, st->a.mag_max);
 	printf("  I_sdt %.1f e- (eq. 2.16), pixel threshold %.1f e-\n",
 	       st->fm.i_sdt_e, st->fm.pixel_threshold_e);
+	printf("  alpha for %g false stars per full image: %.3g (thesis, k_px = 1), %.3g (eq. 2.18 here), %.3g (extended)\n",
+	       st->s.rate, st->req.thesis_k1, st->req.model, st->req.extended);
 	for (d = 0; d < 2; d++)
 		printf("  %-9s false stars %.4g +- %.2g per frame; model %.4g (thesis noise %.4g), extended %.4g\n"
 		       "            %s\n", r[d].name, r[d].measured, r[d].sigma,

@@ -98,7 +98,8 @@ int frames_diagnose(const struct frames_model *fm,
 	      (ratio > 1.5 || ratio < 1.0 / 1.5);
 	k += snprintf(text + k, size - k,
 		      "%s: measured %.3g false stars per frame, model %.3g (ratio %.3g)",
-		      off ? "model and frames disagree" : "model and frames agree",
+		      off ? "model and frames disagree" :
+		      "model and frames agree within the counts' noise",
 		      measured, model, ratio);
 	if (!off || ev->frames < 1)
 		return 0;

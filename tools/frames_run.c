@@ -148,6 +148,31 @@ int frames_model_rates(const struct frames_model *fm,
 	return cluster_rate(fm, &r->clusters, err);
 }
 
+int frames_alpha_required(const struct frames_model *fm,
+			  const struct stray_sensor *s, double k_px,
+			  double rate, struct frames_alpha_req *a,
+			  struct stray_error *err)
+{
+	struct stray_fdr_model m = fm->m, t = fm->m;
+	int R = (int)floor(sqrt(fm->win.n_px / 3.14159265358979) + 0.5), rc;
+
+	m.map = NULL;
+	m.n_tot = s->pixels_x * s->pixels_y;
+	t = m;
+	t.noise = STRAY_NOISE_GAUSS;		/* the toolkit today */
+	t.read_noise_e = 0.0;
+	t.dark_current_e_s = 0.0;
+	if ((rc = stray_fdr_alpha_required(&t, rate, &a->thesis_k1, err)) ||
+	    (rc = stray_fdr_alpha_required(&m, rate, &a->model, err)))
+		return rc;
+	m.n_tot = (s->pixels_x - 2 * R) * (s->pixels_y - 2 * R);
+	rc = stray_fdr_alpha_required_sliding(&m, &fm->win, fm->i_sdt_e, rate,
+					      &a->extended, err);
+	a->model /= k_px;
+	a->extended /= k_px;
+	return rc;
+}
+
 void frames_detect_cfg_init(struct frames_detect_cfg *c,
 			    const struct frames_model *fm,
 			    const struct stray_sensor *s)

@@ -46,6 +46,19 @@ int frames_model_init(struct frames_model *fm, const struct stray_sensor *s,
 int frames_model_rates(const struct frames_model *fm,
 		       struct frames_rates *r, struct stray_error *err);
 
+/*
+ * The attenuation alpha (the curve's units: k_px divided out) at which a
+ * full detector sees `rate` false stars per image: thesis model as the
+ * toolkit has it (Gaussian, no detector noise, k_px = 1), eq. 2.18 with
+ * this normalisation and detector noise, and the sliding-window
+ * extension (what the thesis detector really does).
+ */
+struct frames_alpha_req { double thesis_k1, model, extended; };
+int frames_alpha_required(const struct frames_model *fm,
+			  const struct stray_sensor *s, double k_px,
+			  double rate, struct frames_alpha_req *a,
+			  struct stray_error *err);
+
 /* Detector thresholds for the camera: I_sdt and the pixel threshold. */
 void frames_detect_cfg_init(struct frames_detect_cfg *c,
 			    const struct frames_model *fm,

@@ -4,6 +4,7 @@
  * every loop bounded.
  */
 #include "stray/fdr_field.h"
+#include "stray/root.h"
 #include "stray/tail.h"
 
 #define BLOB_STEPS 400		/* Simpson intervals of the g(u) integral */
@@ -200,4 +201,54 @@ int stray_fdr_log_rate_clusters(stray_real n_px, stray_real mu_e,
 				    s * lp + polyplet_perimeter(s) * lq);
 	*log_fdr = stray_log(n_px) + acc;
 	return STRAY_OK;
+}
+
+struct sliding_ctx {
+	const struct stray_fdr_model *m;
+	const struct stray_window_corr *c;
+	stray_real i_sdt, log_rate;
+};
+
+/* ln rate_sliding(e^u) - ln rate: increasing in u. */
+static int sliding_residual(stray_real u, void *ctx, stray_real *y)
+{
+	const struct sliding_ctx *s = ctx;
+	stray_real lf;
+	int rc = stray_fdr_log_rate_sliding(s->m, s->c, stray_exp(u), s->i_sdt,
+					    &lf, 0);
+
+	*y = (lf < -STRAY_REAL_MAX ? -STRAY_REAL_MAX : lf) - s->log_rate;
+	return rc;
+}
+
+int stray_fdr_alpha_required_sliding(const struct stray_fdr_model *m,
+				     const struct stray_window_corr *c,
+				     stray_real i_sdt, stray_real rate,
+				     stray_real *alpha_req,
+				     struct stray_error *err)
+{
+	struct sliding_ctx s;
+	struct stray_root_result res;
+	stray_real lo = stray_log(STRAY_R(1e-30)), hi = stray_log(STRAY_R(1e12));
+	stray_real ylo, yhi;
+	int rc;
+
+	if (!(isfinite(rate) && rate > 0))
+		return stray_error_set_value(err, STRAY_EINVAL, "rate",
+			STRAY_MSG("must be finite and > 0"), rate);
+	s.m = m;
+	s.c = c;
+	s.i_sdt = i_sdt;
+	s.log_rate = stray_log(rate);
+	if ((rc = sliding_residual(lo, &s, &ylo)) != STRAY_OK ||
+	    (rc = sliding_residual(hi, &s, &yhi)) != STRAY_OK)
+		return rc;
+	if (ylo > 0 || yhi < 0)
+		return stray_error_set_value(err, STRAY_ERANGE, "rate",
+			STRAY_MSG("not reached for alpha in 1e-30..1e12"), rate);
+	rc = stray_root_brent(sliding_residual, &s, lo, hi, STRAY_TOL(1e-12),
+			      &res, err);
+	if (rc == STRAY_OK)
+		*alpha_req = stray_exp(res.x);
+	return rc;
 }

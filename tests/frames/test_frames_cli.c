@@ -49,6 +49,15 @@ static void test_frames_json_keys(void **state)
 	/* k_px = A_cs / (n_px A_px) = 132.7 mm^2 / 24.4 mm^2 (issue 13) */
 	assert_true(fabs(key(o, "k_px") - 5.44) < 0.01);
 	assert_true(key(o, "model_fdr_extended") > key(o, "model_fdr"));
+	{	/* the real detector needs less light than eq. 2.18 says,
+		 * which needs less than the thesis's k_px = 1 */
+		const cJSON *a = cJSON_GetObjectItem(o, "alpha_required");
+
+		assert_non_null(a);
+		assert_true(key(a, "extended") < key(a, "model"));
+		assert_true(key(a, "model") < key(a, "thesis_k1"));
+		assert_true(fabs(key(a, "thesis_k1") / 1.92e-6 - 1) < 0.01);
+	}
 	cJSON_Delete(o);
 }
 

@@ -65,6 +65,18 @@ int stray_fdr_log_rate_sliding(const struct stray_fdr_model *m,
 			       stray_real alpha, stray_real i_sdt,
 			       stray_real *log_fdr, struct stray_error *err);
 
+/*
+ * The attenuation (in the model's own eq. 2.3 units, k_px folded into
+ * alpha by the caller) at which the sliding-window detector sees `rate`
+ * false stars per frame of m->n_tot pixels (fig. 2.7 for the real
+ * detector): a bracketed root search on ln rate(ln alpha).
+ */
+int stray_fdr_alpha_required_sliding(const struct stray_fdr_model *m,
+				     const struct stray_window_corr *c,
+				     stray_real i_sdt, stray_real rate,
+				     stray_real *alpha_req,
+				     struct stray_error *err);
+
 /* Fixed 8-connected lattice animals of s cells, s = 1..10 (0 outside). */
 stray_real stray_polyplets_fixed(unsigned s);
 
