@@ -17,6 +17,7 @@
 #define STRAY(r, ...) run_stray(r, (char *[]){ "stray", __VA_ARGS__, NULL })
 
 static struct cli_run r;
+static void expect_bad(const char *needle);
 
 static double key(const cJSON *o, const char *k)
 {
@@ -121,6 +122,80 @@ static void test_frames_writes_fits(void **state)
 	rmdir(dir);
 }
 
+/* A float FITS map (BITPIX -32, big-endian), nx x ny cells: a ramp along
+ * columns from lo to hi, or a NaN in the first cell. */
+static void write_map(const char *path, int nx, int ny, double lo, double hi,
+		      int with_nan)
+{
+	char card[81], hdr[2880];
+	unsigned char *data;
+	size_t n = (size_t)nx * ny, pad = (n * 4 + 2879) / 2880 * 2880, i;
+	const char *fmt[] = { "SIMPLE  =                    T",
+			      "BITPIX  =                  -32",
+			      "NAXIS   =                    2" };
+	FILE *f = fopen(path, "wb");
+	int k = 0;
+
+	assert_non_null(f);
+	memset(hdr, ' ', sizeof(hdr));
+	for (i = 0; i < 3; i++, k++)
+		memcpy(hdr + 80 * k, fmt[i], strlen(fmt[i]));
+	snprintf(card, sizeof(card), "NAXIS1  = %20d", nx);
+	memcpy(hdr + 80 * k++, card, strlen(card));
+	snprintf(card, sizeof(card), "NAXIS2  = %20d", ny);
+	memcpy(hdr + 80 * k++, card, strlen(card));
+	memcpy(hdr + 80 * k, "END", 3);
+	data = calloc(pad, 1);
+	assert_non_null(data);
+	for (i = 0; i < n; i++) {
+		float v = (float)(lo + (hi - lo) * ((double)(i % nx) + 0.5) / nx);
+		uint32_t u;
+
+		if (with_nan && i == 0)
+			v = NAN;
+		memcpy(&u, &v, 4);
+		data[4 * i] = (unsigned char)(u >> 24);
+		data[4 * i + 1] = (unsigned char)(u >> 16);
+		data[4 * i + 2] = (unsigned char)(u >> 8);
+		data[4 * i + 3] = (unsigned char)u;
+	}
+	assert_int_equal(fwrite(hdr, 1, sizeof(hdr), f), sizeof(hdr));
+	assert_int_equal(fwrite(data, 1, pad, f), pad);
+	fclose(f);
+	free(data);
+}
+
+/* A known map: the model sums over its levels; uneven light gives more
+ * false stars than the same mean spread evenly (the tail is convex). */
+static void test_frames_map(void **state)
+{
+	char path[] = "/tmp/stray_map_XXXXXX";
+	int fd = mkstemp(path);
+	cJSON *u, *m;
+
+	(void)state;
+	assert_true(fd >= 0);
+	close(fd);
+	write_map(path, 72, 54, 0.1, 1.9, 0);
+	assert_int_equal(STRAY(&r, "frames", "--alpha", "3e-7", "--window",
+			       "1024", "--json"), 0);
+	u = cJSON_Parse(r.out);
+	assert_int_equal(STRAY(&r, "frames", "--alpha", "3e-7", "--window",
+			       "1024", "--map", path, "--json"), 0);
+	m = cJSON_Parse(r.out);
+	assert_non_null(u);
+	assert_non_null(m);
+	assert_string_equal(cJSON_GetObjectItem(m, "stray_light")->valuestring,
+			    path);
+	assert_true(key(m, "model_fdr") > 1.2 * key(u, "model_fdr"));
+	cJSON_Delete(u);
+	cJSON_Delete(m);
+	write_map(path, 8, 6, 0.5, 1.5, 1);
+	STRAY(&r, "frames", "--alpha", "3e-7", "--window", "64", "--map", path);
+	unlink(path);
+	expect_bad(path);
+}
+
 static void expect_bad(const char *needle)
 {
 	if (r.status != 2 || r.err_lines != 1 || !strstr(r.err, needle))
@@ -159,6 +234,7 @@ int main(void)
 		cmocka_unit_test(test_frames_curve_theta),
 		cmocka_unit_test(test_frames_normalisations_agree),
 		cmocka_unit_test(test_frames_writes_fits),
+		cmocka_unit_test(test_frames_map),
 		cmocka_unit_test(test_frames_bad_input),
 	};
 
