@@ -92,17 +92,14 @@ static int cluster_rate(const struct frames_model *fm, double *rate,
 	int rc;
 
 	*rate = 0.0;
+	/* The ADC's 2 e- steps enter as their variance g^2/12 (in var): the
+	 * background a detector subtracts wanders across step edges (tile
+	 * noise, faint stars, any real unevenness), so the threshold's place
+	 * on the steps averages out.  With perfectly flat light and no stars
+	 * it does not, and the rate then swings by up to 3x between levels. */
 	if (!map) {
-		/* Uniform light: every pixel compares the same ADC steps of g
-		 * e- with the same level, so the threshold is where the first
-		 * step above level + t begins (rounding: half a step below);
-		 * no quantisation variance then. */
-		double g = STRAY_FRAMES_GAIN_E_PER_DN, level = fm->stray_e + fm->dark_e;
-		double t = g * floor((level + fm->pixel_threshold_e) / g) + 0.5 * g -
-			   level;
-
-		rc = stray_fdr_log_rate_clusters(n, level, var - fm->quant_var_e,
-			t, (unsigned)fm->min_px, &lf, err);
+		rc = stray_fdr_log_rate_clusters(n, fm->stray_e + fm->dark_e, var,
+			fm->pixel_threshold_e, (unsigned)fm->min_px, &lf, err);
 		*rate = exp(lf);
 		return rc;
 	}
