@@ -3,7 +3,8 @@
 # cfitsio frames, libcsv manifest, OpenSSL SHA-256, in libstray/sweep).
 
 STRAY_CORE_SRC := $(wildcard libstray/core/*.c)
-STRAY_HOST_SRC := $(wildcard libstray/host/*.c)
+STRAY_HOST_SRC := $(wildcard libstray/host/*.c) \
+	$(wildcard libstray/frames/*.c)
 STRAY_CORE_OBJ := $(STRAY_CORE_SRC:%.c=$(B)/obj/%.o)
 STRAY_HOST_OBJ := $(STRAY_HOST_SRC:%.c=$(B)/obj/%.o) \
 	$(B)/obj/libstray/host/builtin_data.o

@@ -20,3 +20,6 @@ install-tools: $(STRAY_BIN)
 	install -d $(DESTDIR)$(PREFIX)/bin
 	install -m 755 $(STRAY_BIN) $(DESTDIR)$(PREFIX)/bin/
 install: install-tools
+
+# `stray frames`: the OpenCV star detectors, its tests and bench.
+include tools/frames.mk

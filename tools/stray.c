@@ -48,6 +48,7 @@ static const struct cmd commands[] = {
 	{ "reduce", cmd_reduce, "lens attenuation curve, noise floor and ghosts from a lab sweep" },
 	{ "rig", cmd_rig, "control the lab sweep daemon strayrigd" },
 	{ "sweep", sweep_local, "Sun exclusion angle over a grid of baffle designs (resumable)" },
+	{ "frames", cmd_frames, "rendered frames, star detection and false stars vs the FDR model" },
 };
 
 #define N_COMMANDS (sizeof(commands) / sizeof(commands[0]))

@@ -1,0 +1,576 @@
+/*
+ * cmd_frames.c - `stray frames`: detector frames rendered for a source at
+ * theta (eq. 2.3 with k_px, stars by eq. 2.2 and 2.12, camera noise), run
+ * through two star detectors, false stars counted and set against the
+ * FDR model (eq. 2.18) and its extension (stray/fdr_field.h); issue 13
+ * items 3-5.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <errno.h>
+#include <sys/stat.h>
+
+#include "cli.h"
+#include "commands.h"
+#include "fdr_setup.h"
+#include "frames_io.h"
+#include "frames_plot.h"
+#include "frames_run.h"
+#include "image_cv.h"
+#include "stray/curve_io.h"
+#include "stray/errfmt.h"
+
+static const char usage[] =
+	"usage: stray frames (--curve C.csv --theta DEG | --alpha A) [--frames N]\n"
+	"                    [--window PX] [--seed K] [--detector thesis|threshold]\n"
+	"                    [--normalisation thesis|consistent] [--map M.fits]\n"
+	"                    [--out-dir D] [--save N] [--json] [options]\n"
+	"\n"
+	"Render detector frames for the Sun at theta off boresight, detect stars\n"
+	"and count the false ones against the FDR model (thesis eq. 2.18) and its\n"
+	"extension to the real detectors.  Stars are a synthetic field (no\n"
+	"catalogue is installed): all-sky average counts, magnitudes up to 10.\n"
+	"\n"
+	"  --curve C.csv       system attenuation curve; alpha = curve(theta)\n"
+	"  --theta DEG         source angle off boresight (0..180)\n"
+	"  --alpha A           the attenuation itself, instead of a curve\n"
+	"  --frames N          frames to render (1)\n"
+	"  --window PX         a PX x PX window at the detector centre (full frame)\n"
+	"  --seed K            random seed (1): the same seed, the same frames\n"
+	"  --detector D        thesis (window sum vs I_sdt, default) or threshold\n"
+	"                      (k sigma above a local background, >= 5 px); both\n"
+	"                      run, D picks the top-level keys\n"
+	"  --normalisation N   consistent (k_px = A_cs/(n_px A_px), default) or\n"
+	"                      thesis (k_px = 1)\n"
+	"  --map M.fits        focal-plane stray-light map (stray trace --focal-map):\n"
+	"                      its shape spreads the stray light, alpha sets the level\n"
+	"  --out-dir D         write the first --save (3) frames as FITS there\n"
+	"  --mag-max M         faintest star rendered (10)\n"
+	"  --png F.png         the first frame in false colour (log scale)\n"
+	"  --plot-validation V.csv --plot F.png\n"
+	"                      only draw measured vs predicted false stars from the\n"
+	"                      table scripts/validate-frames.sh writes\n"
+	"  --json              machine-readable output\n"
+	SENSOR_USAGE;
+
+struct frames_args {
+	const char *curve, *map, *out_dir, *png, *plot_csv, *plot;
+	double theta_deg, alpha, frames, window, seed, save, mag_max;
+	int has_theta, has_alpha, detector, thesis_norm;
+};
+
+/* k_px = A_cs / (n_px A_px): issue 13; the lead unifies it with the
+ * library's stray_sensor_k_px at merge. */
+static double frames_k_px(const struct stray_sensor *s)
+{
+	double r = 0.5e-3 * s->aperture_diameter_mm, p = 1e-6 * s->pixel_pitch_um;
+
+	return 3.14159265358979323846 * r * r /
+	       (s->pixels_x * s->pixels_y * p * p);
+}
+
+/* Solid angle of the rendered frame: f = half-diagonal / tan(fov_half),
+ * as the focal maps use (tracer/README.md). */
+static double frames_fov_deg2(const struct stray_sensor *s, int cols,
+			      int rows)
+{
+	double hd = 0.5 * s->pixel_pitch_um * sqrt(s->pixels_x * s->pixels_x +
+						   s->pixels_y * s->pixels_y);
+	double f_um = hd / tan(s->fov_half_deg * 3.14159265358979 / 180.0);
+	double px_deg = s->pixel_pitch_um / f_um * 180.0 / 3.14159265358979;
+
+	return cols * px_deg * rows * px_deg;
+}
+
+static int parse_choice(const char *opt, const char *v, const char *a,
+			const char *b, int *out)
+{
+	if (strcmp(v, a) && strcmp(v, b))
+		return cli_usage_error("frames", "option '--%s': '%s' is not %s or %s",
+				       opt, v, a, b);
+	*out = strcmp(v, a) == 0;
+	return CLI_OK;
+}
+
+static int parse_opt(struct fdr_setup *s, struct frames_args *a, int opt)
+{
+	switch (opt) {
+	case 'c': a->curve = optarg; return CLI_OK;
+	case 'm': a->map = optarg; return CLI_OK;
+	case 'o': a->out_dir = optarg; return CLI_OK;
+	case 'P': a->png = optarg; return CLI_OK;
+	case 'V': a->plot_csv = optarg; return CLI_OK;
+	case 'p': a->plot = optarg; return CLI_OK;
+	case 't': a->has_theta = 1;
+		return cli_parse_double("frames", "theta", optarg, &a->theta_deg);
+	case 'a': a->has_alpha = 1;
+		return cli_parse_double("frames", "alpha", optarg, &a->alpha);
+	case 'n': return cli_parse_count("frames", "frames", optarg, 1, 1e6,
+					 &a->frames);
+	case 'w': return cli_parse_count("frames", "window", optarg, 32, 4096,
+					 &a->window);
+	case 'k': return cli_parse_count("frames", "seed", optarg, 0, 4e9,
+					 &a->seed);
+	case 'v': return cli_parse_count("frames", "save", optarg, 0, 1000,
+					 &a->save);
+	case 'g': return cli_parse_double("frames", "mag-max", optarg,
+					  &a->mag_max);
+	case 'd': return parse_choice("detector", optarg, "thesis", "threshold",
+				      &a->detector);
+	case 'N': return parse_choice("normalisation", optarg, "thesis",
+				      "consistent", &a->thesis_norm);
+	default: {
+		int rc = fdr_setup_option(s, "frames", opt, optarg);
+		return rc == 1 ? CLI_OK : rc ? rc : CLI_USAGE;
+	}
+	}
+}
+
+static int check_args(const struct frames_args *a)
+{
+	if (a->plot_csv || a->plot)
+		return a->plot_csv && a->plot ? CLI_OK : cli_usage_error("frames",
+			"--plot-validation and --plot go together");
+	if (a->has_alpha == (a->curve != NULL))
+		return cli_usage_error("frames", "give --curve with --theta, or --alpha");
+	if (a->curve && !a->has_theta)
+		return cli_usage_error("frames", "--curve needs --theta");
+	if (a->has_theta && !(a->theta_deg >= 0.0 && a->theta_deg <= 180.0))
+		return cli_usage_error("frames", "option '--theta': %g is outside 0..180 deg",
+				       a->theta_deg);
+	if (a->has_alpha && !(a->alpha >= 0.0))
+		return cli_usage_error("frames", "option '--alpha': %g must be >= 0",
+				       a->alpha);
+	if (!(a->mag_max > -2.0 && a->mag_max <= 14.0))
+		return cli_usage_error("frames", "option '--mag-max': %g is outside -2..14",
+				       a->mag_max);
+	return CLI_OK;
+}
+
+static int parse_args(int argc, char **argv, struct fdr_setup *s,
+		      struct frames_args *a)
+{
+	static const struct option opts[] = {
+		SENSOR_LONG_OPTIONS,
+		{ "curve", required_argument, NULL, 'c' },
+		{ "theta", required_argument, NULL, 't' },
+		{ "alpha", required_argument, NULL, 'a' },
+		{ "frames", required_argument, NULL, 'n' },
+		{ "window", required_argument, NULL, 'w' },
+		{ "seed", required_argument, NULL, 'k' },
+		{ "save", required_argument, NULL, 'v' },
+		{ "mag-max", required_argument, NULL, 'g' },
+		{ "detector", required_argument, NULL, 'd' },
+		{ "normalisation", required_argument, NULL, 'N' },
+		{ "map", required_argument, NULL, 'm' },
+		{ "out-dir", required_argument, NULL, 'o' },
+		{ "png", required_argument, NULL, 'P' },
+		{ "plot-validation", required_argument, NULL, 'V' },
+		{ "plot", required_argument, NULL, 'p' },
+		{ "json", no_argument, &cli.json, 1 },
+		{ "help", no_argument, NULL, 'h' },
+		{ NULL, 0, NULL, 0 }
+	};
+	int opt, rc;
+
+	while ((opt = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+		if (opt == 0)
+			continue;
+		if (opt == 'h') {
+			fputs(usage, stdout);
+			return -1;
+		}
+		if (opt == '?')
+			return cli_usage_error("frames", "unknown option '%s'",
+					       argv[optind - 1]);
+		if ((rc = parse_opt(s, a, opt)) != CLI_OK)
+			return rc;
+	}
+	if (optind < argc)
+		return cli_usage_error("frames", "unexpected argument '%s'",
+				       argv[optind]);
+	return check_args(a);
+}
+
+#define MAX_DET 200000
+#define MAX_STARS 200000
+#define MAX_FALSE_POS 200000
+
+struct frames_state {
+	struct fdr_setup s;
+	struct frames_args a;
+	int cols, rows, col0, row0;
+	double k_px, alpha, wmean, stars_sum;
+	float *weight, *expect, *tiles;
+	uint16_t *dn;
+	struct stray_star *stars;
+	struct frames_detection *det;
+	struct frames_detect_out out[2];
+	struct frames_detect_cfg dc;
+	struct frames_model fm;
+	struct frames_rates rates;
+	struct frames_alpha_req req;
+	struct stray_region_map map;
+	struct frames_evidence ev[2];
+	long n_false[2], n_found[2];
+};
+
+static void state_free(struct frames_state *st)
+{
+	free(st->weight);
+	free(st->expect);
+	free(st->tiles);
+	free(st->dn);
+	free(st->stars);
+	free(st->det);
+	free(st->ev[0].tile_sum);
+	free(st->ev[0].fx);
+	free(st->ev[0].fy);
+	free(st->ev[1].fx);
+	free(st->ev[1].fy);
+}
+
+/* alpha from the curve or the option; the window; the buffers. */
+static int setup_frame(struct frames_state *st, struct stray_error *err)
+{
+	const struct stray_sensor *sn = &st->s.sensor;
+	size_t n;
+	int i, tx, ty;
+
+	if (st->a.curve) {
+		struct stray_curve c;
+		struct stray_curve_view v;
+		int rc = stray_curve_load(st->a.curve, &c, err);
+
+		if (rc != STRAY_OK)
+			return rc;
+		v = stray_curve_view_of(&c);
+		st->alpha = stray_curve_alpha_at(&v, st->a.theta_deg);
+		stray_curve_free(&c);
+	} else {
+		st->alpha = st->a.alpha;
+	}
+	st->k_px = st->a.thesis_norm ? 1.0 : frames_k_px(sn);
+	st->cols = st->a.window > 0 ? (int)st->a.window : (int)sn->pixels_x;
+	st->rows = st->a.window > 0 ? (int)st->a.window : (int)sn->pixels_y;
+	if (st->cols > sn->pixels_x || st->rows > sn->pixels_y)
+		return stray_error_set_value(err, STRAY_EINVAL, "window",
+			"is larger than the detector", st->a.window);
+	st->col0 = ((int)sn->pixels_x - st->cols) / 2;
+	st->row0 = ((int)sn->pixels_y - st->rows) / 2;
+	n = (size_t)st->cols * st->rows;
+	frames_detect_tiles(st->cols, st->rows, 128, &tx, &ty);
+	st->expect = malloc(n * sizeof(float));
+	st->dn = malloc(n * sizeof(uint16_t));
+	st->stars = malloc(MAX_STARS * sizeof(*st->stars));
+	st->det = malloc(2 * MAX_DET * sizeof(*st->det));
+	st->tiles = malloc((size_t)tx * ty * sizeof(float));
+	st->ev[0].tile_sum = calloc((size_t)tx * ty, sizeof(double));
+	for (i = 0; i < 2; i++) {
+		st->ev[i].tiles_x = tx;
+		st->ev[i].tiles_y = ty;
+		st->ev[i].max_f = MAX_FALSE_POS;
+		st->ev[i].fx = malloc(MAX_FALSE_POS * sizeof(float));
+		st->ev[i].fy = malloc(MAX_FALSE_POS * sizeof(float));
+		st->out[i].det = st->det + i * MAX_DET;
+		st->out[i].max = MAX_DET;
+	}
+	st->ev[1].tile_sum = st->ev[0].tile_sum;
+	if (!st->expect || !st->dn || !st->stars || !st->det || !st->tiles ||
+	    !st->ev[0].tile_sum || !st->ev[0].fx || !st->ev[0].fy ||
+	    !st->ev[1].fx || !st->ev[1].fy)
+		return stray_error_set(err, STRAY_ENOMEM, "frame", "no memory");
+	return STRAY_OK;
+}
+
+/* The map (if any): weights, their mean over the window, the regions. */
+static int setup_map(struct frames_state *st, struct stray_error *err)
+{
+	const struct stray_sensor *sn = &st->s.sensor;
+	size_t i, n = (size_t)st->cols * st->rows;
+	double sum = 0.0;
+	int rc;
+
+	st->wmean = 1.0;
+	if (!st->a.map)
+		return STRAY_OK;
+	st->weight = malloc(n * sizeof(float));
+	if (!st->weight)
+		return stray_error_set(err, STRAY_ENOMEM, "map", "no memory");
+	rc = frames_map_read(st->a.map, (int)sn->pixels_x, (int)sn->pixels_y,
+			     st->col0, st->row0, st->cols, st->rows, st->weight,
+			     err);
+	if (rc != STRAY_OK)
+		return rc;
+	for (i = 0; i < n; i++)
+		sum += st->weight[i];
+	st->wmean = sum / n;
+	if (!(st->wmean > 0.0))
+		return stray_error_at(err, STRAY_EINVAL, st->a.map, 0, "window",
+				      "no light falls on the rendered window");
+	for (i = 0; i < n; i++)
+		st->weight[i] = (float)(st->weight[i] / st->wmean);
+	frames_map_regions(st->weight, n, &st->map);
+	return STRAY_OK;
+}
+
+static int setup_model(struct frames_state *st, struct stray_error *err)
+{
+	int rc = frames_model_init(&st->fm, &st->s.sensor, st->s.flux.sun,
+				   st->s.flux.drs, st->k_px,
+				   st->alpha * st->wmean, st->cols, st->rows,
+				   st->a.map ? &st->map : NULL, err);
+
+	if (rc == STRAY_OK)
+		rc = frames_model_rates(&st->fm, &st->rates, err);
+	if (rc == STRAY_OK)
+		rc = frames_alpha_required(&st->fm, &st->s.sensor, st->k_px,
+					   st->s.rate, &st->req, err);
+	frames_detect_cfg_init(&st->dc, &st->fm, &st->s.sensor);
+	return rc;
+}
+
+static void frame_cfg(const struct frames_state *st, struct stray_frame_cfg *c)
+{
+	const struct stray_sensor *sn = &st->s.sensor;
+
+	stray_frame_cfg_defaults(c, st->cols, st->rows);
+	c->col0 = st->col0;
+	c->row0 = st->row0;
+	c->stray_e = st->fm.stray_e;	/* eq. 2.3 with k_px (and the map) */
+	c->weight = st->weight;
+	c->dark_e = sn->dark_current_e_s * sn->t_exp_s;
+	c->read_noise_e = sn->read_noise_e;
+	c->psf_sigma_px = st->dc.window_radius_px * STRAY_FRAMES_PSF_PER_RADIUS;
+}
+
+static int save_frame(const struct frames_state *st, int i, size_t n_stars,
+		      struct stray_error *err)
+{
+	struct frames_fits_meta m;
+	char path[4096];
+
+	snprintf(path, sizeof(path), "%s/frame_%03d.fits", st->a.out_dir, i);
+	m.theta_deg = st->a.has_theta ? st->a.theta_deg : 0.0;	/* --alpha */
+	m.t_exp_s = st->s.sensor.t_exp_s;
+	m.alpha = st->alpha;
+	m.k_px = st->k_px;
+	m.stray_e = st->fm.stray_e;
+	m.normalisation = st->a.thesis_norm ? "thesis" : "consistent";
+	m.seqnum = i;
+	m.col0 = st->col0;
+	m.row0 = st->row0;
+	m.sat_dn = STRAY_FRAMES_SAT_DN;
+	m.n_stars = n_stars;
+	return frames_fits_write(path, st->dn, st->cols, st->rows, &m, err);
+}
+
+/* The first frame in e- as a false-colour PNG (the expectation buffer is
+ * free once the frame is sampled). */
+static int save_png(struct frames_state *st, struct stray_error *err)
+{
+	size_t i, n = (size_t)st->cols * st->rows;
+	char msg[256];
+
+	for (i = 0; i < n; i++)
+		st->expect[i] = (float)((st->dn[i] - STRAY_FRAMES_BIAS_DN) *
+					STRAY_FRAMES_GAIN_E_PER_DN);
+	if (image_cv_false_colour(st->a.png, st->expect, (size_t)st->rows,
+				  (size_t)st->cols, 1, 0, msg, sizeof(msg)))
+		return stray_error_at(err, STRAY_EIO, st->a.png, 0, 0, msg);
+	return STRAY_OK;
+}
+
+/* Render, detect and count every frame. */
+static int run_frames(struct frames_state *st, struct stray_error *err)
+{
+	struct stray_frame_cfg c;
+	struct stray_star_field f;
+	double min_e = 0.0;	/* any true star, however faint, is not false */
+	size_t n_stars, t, nt = (size_t)st->ev[0].tiles_x * st->ev[0].tiles_y;
+	char msg[256];
+	int i, d, rc;
+
+	frame_cfg(st, &c);
+	f.fov_deg2 = frames_fov_deg2(&st->s.sensor, st->cols, st->rows);
+	f.mag_min = -1.5;
+	f.mag_max = st->a.mag_max;
+	/* eq. 2.2 and 2.12: F_0 t_exp A_cs, the e- of an m = 0 star */
+	f.f0_e = st->s.flux.zero_mag * st->fm.m.t_exp_s * st->fm.m.a_cs_m2;
+	if (st->a.out_dir && mkdir(st->a.out_dir, 0777) && errno != EEXIST)
+		return stray_error_at(err, STRAY_EIO, st->a.out_dir, 0, 0,
+				      strerror(errno));
+	for (i = 0; i < (int)st->a.frames; i++) {
+		uint64_t seed = stray_frame_seed((uint64_t)st->a.seed, (uint64_t)i);
+
+		stray_star_field_draw(&f, st->cols, st->rows, seed, st->stars,
+				      MAX_STARS, &n_stars);
+		st->stars_sum += (double)n_stars;
+		stray_frame_expect(&c, st->stars, n_stars, st->expect);
+		stray_frame_sample(&c, st->expect, seed + 1, st->dn);
+		if (frames_detect(st->dn, st->cols, st->rows, &st->dc,
+				  FRAMES_DET_THESIS | FRAMES_DET_THRESHOLD,
+				  st->out, st->tiles, msg, sizeof(msg)))
+			return stray_error_at(err, STRAY_EIO, "opencv", 0, 0, msg);
+		for (t = 0; t < nt; t++)
+			st->ev[0].tile_sum[t] += st->tiles[t];
+		for (d = 0; d < 2; d++) {
+			/* The window sum places a star only to within its
+			 * window (radius r); the threshold detector's
+			 * centroids to a few px. */
+			double match = d == 0 ? st->dc.window_radius_px : 4.0;
+			size_t nf = frames_count_false(&st->out[d], st->stars,
+				n_stars, min_e, match, st->ev[d].fx, st->ev[d].fy,
+				&st->ev[d].n_f, st->ev[d].max_f);
+
+			st->n_false[d] += (long)nf;
+			st->n_found[d] += (long)(st->out[d].n - nf);
+			st->ev[d].frames = i + 1;
+		}
+		if (st->a.out_dir && i < (int)st->a.save &&
+		    (rc = save_frame(st, i, n_stars, err)) != STRAY_OK)
+			return rc;
+		if (st->a.png && i == 0 && (rc = save_png(st, err)) != STRAY_OK)
+			return rc;
+	}
+	return STRAY_OK;
+}
+
+struct det_result {
+	const char *name;
+	double measured, sigma, extended, found;
+	char verdict[512];
+};
+
+static void det_result(const struct frames_state *st, int d,
+		       struct det_result *r)
+{
+	double n = st->a.frames;
+
+	r->name = d == 0 ? "thesis" : "threshold";
+	r->measured = st->n_false[d] / n;
+	r->sigma = sqrt((double)st->n_false[d]) / n;
+	r->found = st->n_found[d] / n;
+	r->extended = d == 0 ? st->rates.sliding : st->rates.clusters;
+	frames_diagnose(&st->fm, &st->ev[d], r->measured, r->extended, 128,
+			r->verdict, sizeof(r->verdict));
+}
+
+static double ratio(double model, double measured)
+{
+	return measured > 0.0 ? model / measured : NAN;
+}
+
+static void add_det(cJSON *o, const struct frames_state *st,
+		    const struct det_result *r)
+{
+	cJSON_AddStringToObject(o, "detector", r->name);
+	cJSON_AddItemToObject(o, "false_stars_per_image", cli_json_number(r->measured));
+	cJSON_AddItemToObject(o, "false_stars_sigma", cli_json_number(r->sigma));
+	cJSON_AddItemToObject(o, "model_fdr", cli_json_number(st->rates.model));
+	cJSON_AddItemToObject(o, "model_fdr_thesis", cli_json_number(st->rates.thesis));
+	cJSON_AddItemToObject(o, "model_fdr_extended", cli_json_number(r->extended));
+	cJSON_AddItemToObject(o, "ratio_before", cli_json_number(ratio(st->rates.model, r->measured)));
+	cJSON_AddItemToObject(o, "ratio_after", cli_json_number(ratio(r->extended, r->measured)));
+	cJSON_AddItemToObject(o, "stars_found_per_image", cli_json_number(r->found));
+	cJSON_AddStringToObject(o, "verdict", r->verdict);
+}
+
+static int print_json(const struct frames_state *st,
+		      const struct det_result r[2])
+{
+	cJSON *o = cJSON_CreateObject(), *ds = cJSON_CreateObject(), *s;
+	int top = st->a.detector ? 0 : 1, d;
+
+	cJSON_AddStringToObject(o, "sensor", st->s.sensor.name);
+	cJSON_AddItemToObject(o, "theta_deg", cli_json_number(st->a.has_theta ? st->a.theta_deg : NAN));
+	cJSON_AddItemToObject(o, "alpha", cli_json_number(st->alpha));
+	cJSON_AddItemToObject(o, "frames", cli_json_number(st->a.frames));
+	cJSON_AddItemToObject(o, "cols", cli_json_number(st->cols));
+	cJSON_AddItemToObject(o, "rows", cli_json_number(st->rows));
+	cJSON_AddStringToObject(o, "normalisation", st->a.thesis_norm ? "thesis" : "consistent");
+	cJSON_AddItemToObject(o, "k_px", cli_json_number(st->k_px));
+	cJSON_AddStringToObject(o, "stray_light", st->a.map ? st->a.map : "uniform");
+	cJSON_AddItemToObject(o, "stray_e_per_px", cli_json_number(st->fm.stray_e));
+	cJSON_AddItemToObject(o, "threshold_e", cli_json_number(st->fm.i_sdt_e));
+	cJSON_AddItemToObject(o, "pixel_threshold_e", cli_json_number(st->fm.pixel_threshold_e));
+	cJSON_AddItemToObject(o, "window_px", cli_json_number(st->fm.win.n_px));
+	s = cJSON_AddObjectToObject(o, "alpha_required");
+	cJSON_AddItemToObject(s, "rate", cli_json_number(st->s.rate));
+	cJSON_AddItemToObject(s, "thesis_k1", cli_json_number(st->req.thesis_k1));
+	cJSON_AddItemToObject(s, "model", cli_json_number(st->req.model));
+	cJSON_AddItemToObject(s, "extended", cli_json_number(st->req.extended));
+	s = cJSON_AddObjectToObject(o, "stars");
+	cJSON_AddStringToObject(s, "source", "synthetic: all-sky average counts (no catalogue installed)");
+	cJSON_AddItemToObject(s, "per_image", cli_json_number(st->stars_sum / st->a.frames));
+	cJSON_AddItemToObject(s, "mag_max", cli_json_number(st->a.mag_max));
+	add_det(o, st, &r[top]);
+	for (d = 0; d < 2; d++)
+		add_det(cJSON_AddObjectToObject(ds, r[d].name), st, &r[d]);
+	cJSON_AddItemToObject(o, "detectors", ds);
+	return cli_json_emit(o);
+}
+
+static void print_text(const struct frames_state *st,
+		       const struct det_result r[2])
+{
+	int d;
+
+	printf("Rendered frames (issue 13) for %s: %d x %d px, %g frames, alpha %.4g\n",
+	       st->s.sensor.name, st->cols, st->rows, st->a.frames, st->alpha);
+	printf("  normalisation %s, k_px %.3f: %.1f stray e-/px (eq. 2.3), %s\n",
+	       st->a.thesis_norm ? "thesis" : "consistent", st->k_px,
+	       st->fm.stray_e, st->a.map ? st->a.map : "uniform");
+	printf("  stars: synthetic field (no catalogue), %.0f per frame to m = %g\n",
+	       st->stars_sum / st->a.frames, st->a.mag_max);
+	printf("  I_sdt %.1f e- (eq. 2.16), pixel threshold %.1f e-\n",
+	       st->fm.i_sdt_e, st->fm.pixel_threshold_e);
+	printf("  alpha for %g false stars per full image: %.3g (thesis, k_px = 1), %.3g (eq. 2.18 here), %.3g (extended)\n",
+	       st->s.rate, st->req.thesis_k1, st->req.model, st->req.extended);
+	for (d = 0; d < 2; d++)
+		printf("  %-9s false stars %.4g +- %.2g per frame; model %.4g (thesis noise %.4g), extended %.4g\n"
+		       "            %s\n", r[d].name, r[d].measured, r[d].sigma,
+		       st->rates.model, st->rates.thesis, r[d].extended,
+		       r[d].verdict);
+}
+
+int cmd_frames(int argc, char **argv)
+{
+	struct frames_state *st = calloc(1, sizeof(*st));
+	struct det_result r[2];
+	struct stray_error err;
+	int rc;
+
+	if (!st)
+		return CLI_FAIL;
+	fdr_setup_init(&st->s);
+	stray_error_clear(&err);
+	st->a.frames = 1;
+	st->a.seed = 1;
+	st->a.save = 3;
+	st->a.mag_max = 10.0;
+	st->a.detector = 1;
+	rc = parse_args(argc, argv, &st->s, &st->a);
+	if (rc == CLI_OK && st->a.plot_csv) {
+		if (frames_plot_validation(st->a.plot_csv, st->a.plot, &err))
+			rc = cli_fail("frames", &err);
+	} else if (rc == CLI_OK) {
+		if (fdr_setup_load(&st->s, &err) || setup_frame(st, &err) ||
+		    setup_map(st, &err) || setup_model(st, &err) ||
+		    run_frames(st, &err)) {
+			rc = cli_fail("frames", &err);
+		} else {
+			det_result(st, 0, &r[0]);
+			det_result(st, 1, &r[1]);
+			if (cli.json)
+				rc = print_json(st, r);
+			else
+				print_text(st, r);
+		}
+	}
+	state_free(st);
+	free(st);
+	return rc < 0 ? CLI_OK : rc;
+}
