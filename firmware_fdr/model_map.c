@@ -13,7 +13,7 @@
 void fdrfw_model_from_table(const struct fdrfw_table *t,
 			    struct stray_fdr_model *m)
 {
-#define FDRFW_TO_MODEL(tf, mf, domain) m->mf = (stray_real)t->tf;
+#define FDRFW_TO_MODEL(tf, mf, lo, hi) m->mf = (stray_real)t->tf;
 	FDRFW_MODEL_FIELDS(FDRFW_TO_MODEL)
 	/* The thesis model: a source sets its own flux. */
 	m->f_src_ph_s_m2 = 0;
@@ -26,6 +26,6 @@ void fdrfw_model_from_table(const struct fdrfw_table *t,
 void fdrfw_table_from_model(const struct stray_fdr_model *m,
 			    struct fdrfw_table *t)
 {
-#define FDRFW_TO_TABLE(tf, mf, domain) t->tf = (float)m->mf;
+#define FDRFW_TO_TABLE(tf, mf, lo, hi) t->tf = (float)m->mf;
 	FDRFW_MODEL_FIELDS(FDRFW_TO_TABLE)
 }

@@ -24,21 +24,53 @@
 
 #define INV_PI 0.318309886183790672f
 
+/* eq. 2.18: ln FDR at attenuation alpha; -inf for no light. */
+static int log_fdr(struct fdrfw_ctx *ctx, stray_real f_src, float alpha,
+		   stray_real *ln)
+{
+	ctx->model.f_src_ph_s_m2 = f_src;
+	return stray_fdr_log_rate(&ctx->model, (stray_real)alpha, ctx->i_sdt_e,
+				  ln, NULL);
+}
+
+/* |a - b| <= tol (NaN fails). */
+static int near(stray_real a, stray_real b, stray_real tol)
+{
+	return ((a - b) <= tol) && ((b - a) <= tol);
+}
+
 int fdrfw_fdr_init(struct fdrfw_ctx *ctx)
 {
 	const struct fdrfw_table *t = ctx->table;
 	struct stray_fdr_model *m = &ctx->model;
+	struct fdrfw_source_result sun = { 0, 0 };
+	stray_real ln_req = STRAY_HUGE;
 
 	/* The thesis model (Gaussian, uniform light, no detector noise). */
 	fdrfw_model_from_table(t, m);
 	if (stray_fdr_model_check(m, NULL) != 0 ||
 	    stray_gauss_q_inv(m->pr_drs, &ctx->z_drs, NULL) != 0)
 		return FDRFW_ERANGE;
-	/* I_sdt at the nominal exposure as the ground solved it. */
+	/* I_sdt at the nominal exposure as the ground solved it: eq. 2.16
+	 * of the table's own model, to float rounding. */
 	ctx->i_sdt_e = (stray_real)t->i_sdt_e;
 	ctx->i_sdt_t_exp_s = t->t_exp_nominal_s;
 	ctx->ln_fdr_tolerated = stray_log((stray_real)t->fdr_tolerated);
-	return FDRFW_OK;
+	if (!near(stray_fdr_threshold_gauss(m, ctx->z_drs), ctx->i_sdt_e,
+		  STRAY_R(1e-3) * ctx->i_sdt_e)) {
+		return FDRFW_EFIELD_OF(i_sdt_e);
+	}
+	/* The Sun's alpha_req gives the tolerated rate (fig. 2.7). */
+	(void)log_fdr(ctx, (stray_real)t->f_sun_ph_s_m2, t->alpha_req_sun,
+		      &ln_req);
+	if (!near(ln_req, ctx->ln_fdr_tolerated, STRAY_R(0.01))) {
+		return FDRFW_EFIELD_OF(alpha_req_sun);
+	}
+	/* The Sun on the boresight is excluded, whatever the table says. */
+	(void)fdrfw_point_source(ctx, (stray_real)t->f_sun_ph_s_m2, 0.0f, 0,
+				 &sun);
+	return (sun.excluded != 0) ? (int)FDRFW_OK :
+	       FDRFW_EFIELD_OF(exclusion_sun_deg);
 }
 
 int fdrfw_set_exposure(struct fdrfw_ctx *ctx, float t_exp_s)
@@ -51,15 +83,6 @@ int fdrfw_set_exposure(struct fdrfw_ctx *ctx, float t_exp_s)
 	ctx->i_sdt_e = stray_fdr_threshold_gauss(&ctx->model, ctx->z_drs);
 	ctx->i_sdt_t_exp_s = t_exp_s;
 	return FDRFW_OK;
-}
-
-/* eq. 2.18: ln FDR at attenuation alpha; -inf for no light. */
-static int log_fdr(struct fdrfw_ctx *ctx, stray_real f_src, float alpha,
-		   stray_real *ln)
-{
-	ctx->model.f_src_ph_s_m2 = f_src;
-	return stray_fdr_log_rate(&ctx->model, (stray_real)alpha, ctx->i_sdt_e,
-				  ln, NULL);
 }
 
 static float envelope_angle(const struct fdrfw_table *t, float theta_deg,

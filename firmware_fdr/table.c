@@ -2,7 +2,6 @@
  * table.c - the flight table: CRC, blob encoding, checks, and the lookup
  * of the attenuation curve alpha_sys(theta) (thesis §5.1).
  */
-#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -12,8 +11,16 @@
 /* No padding: the blob is exactly the fields, 4 bytes each. */
 STRAY_STATIC_ASSERT(sizeof(float) == 4, float_is_ieee_single);
 STRAY_STATIC_ASSERT(sizeof(struct fdrfw_table) % 4u == 0, table_words);
-STRAY_STATIC_ASSERT(offsetof(struct fdrfw_table, crc32) ==
-		    sizeof(struct fdrfw_table) - 4u, crc_is_last);
+#define COUNT_M(tf, mf, lo, hi) + 1u
+#define COUNT_S(tf, lo, hi) + 1u
+/* The CRC last; the scalars from the third word, every one listed. */
+STRAY_STATIC_ASSERT((offsetof(struct fdrfw_table, crc32) ==
+		     (sizeof(struct fdrfw_table) - 4u)) &&
+		    (offsetof(struct fdrfw_table, t_exp_nominal_s) ==
+		     (4u * FDRFW_SCALAR_WORD)) &&
+		    ((0u FDRFW_MODEL_FIELDS(COUNT_M)
+		      FDRFW_TABLE_SCALARS(COUNT_S)) == FDRFW_SCALARS),
+		    crc_last_scalars_listed);
 
 uint32_t fdrfw_crc32(uint32_t crc, const uint8_t *buf, size_t len)
 {
@@ -94,25 +101,10 @@ int fdrfw_table_parse(const uint8_t *buf, size_t len, struct fdrfw_table *t)
 	return FDRFW_OK;
 }
 
-static int in_range(float v, float lo, float hi)
-{
-	return isfinite(v) && v >= lo && v <= hi;
-}
-
-static int positive(float v)
-{
-	return isfinite(v) && v > 0.0f;
-}
-
-static int at_least_one(float v)
-{
-	return in_range(v, 1.0f, FLT_MAX);
-}
-
-static int probability(float v)
-{
-	return in_range(v, 1e-6f, 0.999999f);
-}
+/* One [min, max] per scalar, in the lists' order (model_map.h, table.h),
+ * as many as the table has scalars. */
+#define BOUNDS_M(tf, mf, lo, hi) { lo, hi },
+#define BOUNDS_S(tf, lo, hi) { lo, hi },
 
 int fdrfw_table_is_thesis(const struct fdrfw_table *t)
 {
@@ -129,51 +121,117 @@ static int k_px_ok(const struct fdrfw_table *t)
 	       (fabsf(t->k_px - k) <= (1e-5f * k));
 }
 
-/* The FDR model fields, each in its domain (model_map.h), and the
- * sources. */
-static int model_fields_ok(const struct fdrfw_table *t)
+/* Every scalar in its closed domain (NaN and inf in none), the window
+ * within the sensor, k_px one of its two values. */
+static int scalars_check(const struct fdrfw_table *t)
 {
-#define FDRFW_FIELD_OK(tf, mf, domain) domain(t->tf) &&
-	return FDRFW_MODEL_FIELDS(FDRFW_FIELD_OK)
-	       (t->n_pps <= t->n_tot) && k_px_ok(t) && isfinite(t->i_sdt_e) &&
-	       positive(t->fdr_tolerated) && positive(t->f_sun_ph_s_m2) &&
-	       positive(t->f_moon_full_ph_s_m2) &&
-	       isfinite(t->moon_full_mag) &&
-	       in_range(t->earth_albedo, 0.0f, 1.0f) &&
-	       in_range(t->fov_half_deg, 0.01f, 89.0f) &&
-	       in_range(t->hysteresis_deg, 0.0f, 10.0f);
+	static const float bounds[][2] = {
+		FDRFW_MODEL_FIELDS(BOUNDS_M)
+		FDRFW_TABLE_SCALARS(BOUNDS_S)
+	};
+	int rc = (int)FDRFW_OK;
+	uint32_t i;
+
+	for (i = 0; (i < FDRFW_SCALARS) && (rc == (int)FDRFW_OK); i++) {
+		uint32_t w = FDRFW_SCALAR_WORD + i;
+		float v;
+
+		(void)memcpy((void *)&v,
+			     (const void *)&((const uint8_t *)t)[4u * w], 4u);
+		if (!((v >= bounds[i][0]) && (v <= bounds[i][1]))) {
+			rc = FDRFW_EFIELD_WORD(w);
+		}
+	}
+	if ((rc == (int)FDRFW_OK) && !(t->n_pps <= t->n_tot)) {
+		rc = FDRFW_EFIELD_OF(n_pps);
+	}
+	if ((rc == (int)FDRFW_OK) && !k_px_ok(t)) {
+		rc = FDRFW_EFIELD_OF(k_px);
+	}
+	return rc;
 }
 
-/* Angles increasing in [0, 180], alpha finite, the envelope consistent. */
-static int curve_ok(const struct fdrfw_table *t)
+/* Sample i: angle in [0, 180] and past the previous one, log10 alpha in
+ * [floor, 6], the envelope the max of alpha from i on. */
+static int sample_check(const struct fdrfw_table *t, uint32_t i)
 {
-	uint32_t i, n = t->n_curve;
+	uint32_t n = t->n_curve;
+	int rc = (int)FDRFW_OK;
 
-	if (n < 2u || n > FDRFW_CURVE_MAX)
-		return 0;
-	for (i = 0; i < n; i++) {
-		if (!in_range(t->theta_deg[i], 0.0f, 180.0f) ||
-		    !in_range(t->log10_alpha[i], FDRFW_LOG10_ALPHA_FLOOR, 6.0f))
-			return 0;
-		if (i > 0u && !(t->theta_deg[i] > t->theta_deg[i - 1u]))
-			return 0;
-		if (t->log10_alpha_tail[i] != (i + 1u < n ?
-		    fmaxf(t->log10_alpha[i], t->log10_alpha_tail[i + 1u]) :
-		    t->log10_alpha[i]))
-			return 0;
+	if (!((t->theta_deg[i] >= 0.0f) && (t->theta_deg[i] <= 180.0f)) ||
+	    ((i > 0u) && !(t->theta_deg[i] > t->theta_deg[i - 1u]))) {
+		rc = FDRFW_EFIELD_OF(theta_deg);
+	} else if (!((t->log10_alpha[i] >= FDRFW_LOG10_ALPHA_FLOOR) &&
+		     (t->log10_alpha[i] <= 6.0f))) {
+		rc = FDRFW_EFIELD_OF(log10_alpha);
+	} else if (t->log10_alpha_tail[i] != (((i + 1u) < n) ?
+		   fmaxf(t->log10_alpha[i], t->log10_alpha_tail[i + 1u]) :
+		   t->log10_alpha[i])) {
+		rc = FDRFW_EFIELD_OF(log10_alpha_tail);
+	} else {
+		/* in its domain */
 	}
-	return 1;
+	return rc;
+}
+
+/* 2..FDRFW_CURVE_MAX samples, each valid, some alpha > 0 (an all-zero
+ * curve attenuates everything: refused). */
+static int curve_check(const struct fdrfw_table *t)
+{
+	uint32_t n = t->n_curve;
+	int rc = FDRFW_EFIELD_OF(n_curve);
+
+	if ((n >= 2u) && (n <= (uint32_t)FDRFW_CURVE_MAX)) {
+		uint32_t i;
+
+		rc = (int)FDRFW_OK;
+		for (i = 0; (i < n) && (rc == (int)FDRFW_OK); i++) {
+			rc = sample_check(t, i);
+		}
+		if ((rc == (int)FDRFW_OK) &&
+		    !(t->log10_alpha_tail[0] > FDRFW_LOG10_ALPHA_FLOOR)) {
+			rc = FDRFW_EFIELD_OF(log10_alpha);
+		}
+	}
+	return rc;
+}
+
+/* fig. 5.1: the Sun's exclusion angle is where the envelope falls to
+ * alpha_req: the envelope reaches alpha_req on the boresight (so the Sun
+ * there is excluded) and no further than the angle claimed (a looser
+ * bound on the far side: a zero sample's log floor may fall faster than
+ * libstray's linear step to 0, never slower). */
+static int exclusion_check(const struct fdrfw_table *t)
+{
+	float req = t->alpha_req_sun;
+	int rc = (int)FDRFW_OK;
+
+	if (!(fdrfw_envelope_at(t, 0.0f) >= req) ||
+	    !(fdrfw_envelope_at(t, t->exclusion_sun_deg) <= (1.001f * req))) {
+		rc = FDRFW_EFIELD_OF(exclusion_sun_deg);
+	}
+	return rc;
 }
 
 int fdrfw_table_check(const struct fdrfw_table *t)
 {
-	if (t->magic != FDRFW_TABLE_MAGIC || t->version != FDRFW_TABLE_VERSION)
-		return FDRFW_EMAGIC;
-	if (table_crc(t) != t->crc32)
-		return FDRFW_ECRC;
-	if (!model_fields_ok(t) || !curve_ok(t))
-		return FDRFW_ERANGE;
-	return FDRFW_OK;
+	int rc;
+
+	if ((t->magic != FDRFW_TABLE_MAGIC) ||
+	    (t->version != FDRFW_TABLE_VERSION)) {
+		rc = (int)FDRFW_EMAGIC;
+	} else if (table_crc(t) != t->crc32) {
+		rc = (int)FDRFW_ECRC;
+	} else {
+		rc = scalars_check(t);
+		if (rc == (int)FDRFW_OK) {
+			rc = curve_check(t);
+		}
+		if (rc == (int)FDRFW_OK) {
+			rc = exclusion_check(t);
+		}
+	}
+	return rc;
 }
 
 /* First sample index with theta_deg > x, in [1, n-1] for x inside. */

@@ -8,8 +8,10 @@
  * 2.18 at the frame's own attenuation, exposure and flux.
  */
 #include <math.h>
+#include <stddef.h>
 #include <string.h>
 
+#include "fdrfw/fdrfw.h"
 #include "fdrfw/model_map.h"
 #include "fdrfw/table_build.h"
 #include "stray/config.h"
@@ -111,6 +113,81 @@ static int model_fill(const struct stray_curve_view *c,
 	return STRAY_OK;
 }
 
+/* The scalars' names and domains, in the lists' order. */
+static const struct {
+	const char *name, *domain;
+	float lo, hi;
+} scalars[] = {
+#define FDRFW_NAME_M(tf, mf, lo, hi) \
+	{ #tf, "must lie in [" #lo ", " #hi "]", lo, hi },
+#define FDRFW_NAME_S(tf, lo, hi) \
+	{ #tf, "must lie in [" #lo ", " #hi "]", lo, hi },
+	FDRFW_MODEL_FIELDS(FDRFW_NAME_M)
+	FDRFW_TABLE_SCALARS(FDRFW_NAME_S)
+};
+
+STRAY_STATIC_ASSERT(sizeof(scalars) / sizeof(scalars[0]) == FDRFW_SCALARS,
+		    every_scalar_named);
+
+/* The other fields a check refuses, by word. */
+static const struct {
+	size_t word;
+	const char *name, *domain;
+} others[] = {
+	{ offsetof(struct fdrfw_table, n_curve) / 4, "n_curve",
+	  "must lie in [2, 128]" },
+	{ offsetof(struct fdrfw_table, theta_deg) / 4, "theta_deg",
+	  "must increase within [0, 180]" },
+	{ offsetof(struct fdrfw_table, log10_alpha) / 4, "log10_alpha",
+	  "must lie in [-40, 6] with some alpha > 0" },
+	{ offsetof(struct fdrfw_table, log10_alpha_tail) / 4,
+	  "log10_alpha_tail", "must be the envelope of log10_alpha" },
+};
+
+const char *fdrfw_field_name(int word)
+{
+	size_t i;
+
+	if (word >= (int)FDRFW_SCALAR_WORD &&
+	    word < (int)(FDRFW_SCALAR_WORD + FDRFW_SCALARS))
+		return scalars[word - (int)FDRFW_SCALAR_WORD].name;
+	for (i = 0; i < sizeof(others) / sizeof(others[0]); i++)
+		if ((int)others[i].word == word)
+			return others[i].name;
+	return NULL;
+}
+
+/* The flight module's own check of the sealed table (fdrfw_init: ranges,
+ * curve, then I_sdt, alpha_req and the Sun on the boresight against the
+ * model): what the module would refuse is never written. */
+static int table_refused(const struct fdrfw_table *t, struct stray_error *err)
+{
+	struct fdrfw_ctx ctx;
+	int rc = fdrfw_init(&ctx, t);
+	int w = FDRFW_FIELD_OF(rc);
+	size_t i;
+	float v;
+
+	if (rc == FDRFW_OK)
+		return STRAY_OK;
+	if (w >= (int)FDRFW_SCALAR_WORD &&
+	    w < (int)(FDRFW_SCALAR_WORD + FDRFW_SCALARS)) {
+		i = (size_t)w - FDRFW_SCALAR_WORD;
+		memcpy(&v, (const unsigned char *)t + 4 * (size_t)w, 4);
+		return stray_error_set_value(err, STRAY_EINVAL,
+			scalars[i].name, (v >= scalars[i].lo &&
+			v <= scalars[i].hi) ? "is inconsistent with the "
+			"table's other fields (the flight module refuses it)" :
+			scalars[i].domain, v);
+	}
+	for (i = 0; i < sizeof(others) / sizeof(others[0]); i++)
+		if ((int)others[i].word == w)
+			return stray_error_set(err, STRAY_EINVAL,
+				others[i].name, others[i].domain);
+	return stray_error_set(err, STRAY_EINVAL, "table",
+		"the flight module refuses the model it makes");
+}
+
 int fdrfw_table_build(const struct stray_curve_view *curve,
 		      const struct stray_sensor *sensor,
 		      const struct fdrfw_build_params *p,
@@ -128,10 +205,7 @@ int fdrfw_table_build(const struct stray_curve_view *curve,
 	t->magic = FDRFW_TABLE_MAGIC;
 	t->version = FDRFW_TABLE_VERSION;
 	fdrfw_table_seal(t);
-	if (fdrfw_table_check(t) != FDRFW_OK)
-		return stray_error_set(err, STRAY_EINVAL, "table",
-			"a value is outside the flight module's domain");
-	return STRAY_OK;
+	return table_refused(t, err);
 }
 
 static void write_floats(FILE *out, const char *field, const float *v,
@@ -157,7 +231,7 @@ int fdrfw_table_write_c(FILE *out, const struct fdrfw_table *t,
 		(unsigned long)t->version, (unsigned long)t->n_curve);
 #define F(field) fprintf(out, "\t." #field " = %af, /* %.9g */\n", \
 			 (double)t->field, (double)t->field)
-#define FDRFW_WRITE_FIELD(tf, mf, domain) F(tf);
+#define FDRFW_WRITE_FIELD(tf, mf, lo, hi) F(tf);
 	FDRFW_MODEL_FIELDS(FDRFW_WRITE_FIELD)
 	F(i_sdt_e); F(fdr_tolerated);
 	F(f_sun_ph_s_m2); F(f_moon_full_ph_s_m2); F(moon_full_mag);

@@ -96,8 +96,9 @@ static void test_blob_wrong_size_rejected(void **state)
 	assert_int_equal(fdrfw_table_parse(blob, 0, &u), FDRFW_ESIZE);
 }
 
-/* A resealed table with a value out of its domain fails the range check:
- * a valid CRC does not make a bad table good. */
+/* A resealed table with a value out of its domain fails the range check
+ * with that field's code: a valid CRC does not make a bad table good
+ * (every field: test_table_valid.c). */
 static void test_out_of_range_rejected(void **state)
 {
 	struct fdrfw_table t;
@@ -106,22 +107,26 @@ static void test_out_of_range_rejected(void **state)
 	fixture_table(&t);
 	t.n_pps = NAN;
 	fdrfw_table_seal(&t);
-	assert_int_equal(fdrfw_table_check(&t), FDRFW_ERANGE);
+	assert_int_equal(fdrfw_table_check(&t),
+			 FDRFW_EFIELD_OF(n_pps));
 
 	fixture_table(&t);
 	t.theta_deg[5] = t.theta_deg[4];	/* not increasing */
 	fdrfw_table_seal(&t);
-	assert_int_equal(fdrfw_table_check(&t), FDRFW_ERANGE);
+	assert_int_equal(fdrfw_table_check(&t),
+			 FDRFW_EFIELD_OF(theta_deg));
 
 	fixture_table(&t);
 	t.log10_alpha_tail[3] -= 1.0f;		/* envelope inconsistent */
 	fdrfw_table_seal(&t);
-	assert_int_equal(fdrfw_table_check(&t), FDRFW_ERANGE);
+	assert_int_equal(fdrfw_table_check(&t),
+			 FDRFW_EFIELD_OF(log10_alpha_tail));
 
 	fixture_table(&t);
 	t.n_curve = FDRFW_CURVE_MAX + 1;
 	fdrfw_table_seal(&t);
-	assert_int_equal(fdrfw_table_check(&t), FDRFW_ERANGE);
+	assert_int_equal(fdrfw_table_check(&t),
+			 FDRFW_EFIELD_OF(n_curve));
 
 	/* eq. 2.3's k_px: the thesis's 1 or A_cs / (n_tot A_px), nothing
 	 * else (st16-like: 132.7 mm^2 / 24.39 mm^2 = 5.44). */
@@ -135,11 +140,13 @@ static void test_out_of_range_rejected(void **state)
 	assert_true(fdrfw_table_is_thesis(&t));
 	t.k_px = 2.0f;
 	fdrfw_table_seal(&t);
-	assert_int_equal(fdrfw_table_check(&t), FDRFW_ERANGE);
+	assert_int_equal(fdrfw_table_check(&t),
+			 FDRFW_EFIELD_OF(k_px));
 	fixture_table(&t);
 	t.k_px *= 1.001f;
 	fdrfw_table_seal(&t);
-	assert_int_equal(fdrfw_table_check(&t), FDRFW_ERANGE);
+	assert_int_equal(fdrfw_table_check(&t),
+			 FDRFW_EFIELD_OF(k_px));
 
 	fixture_table(&t);
 	t.version = FDRFW_TABLE_VERSION + 1;

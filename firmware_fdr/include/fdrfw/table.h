@@ -25,6 +25,31 @@
 /* alpha = 0 in a curve is stored as this log10 (a floor, not -inf). */
 #define FDRFW_LOG10_ALPHA_FLOOR (-40.0f)
 
+/*
+ * The table's scalars after the model constants, in order, as
+ * X(field, min, max): the same closed physical domains as model_map.h's
+ * (NaN and inf outside every one).  I_sdt: 1 .. 10^9 e- in a window (and
+ * equal to eq. 2.16 of the table's own model, checked at init); a tolerated
+ * rate of 1e-9 .. 10^4 false stars per image; the Sun's photon flux from
+ * beyond Jupiter to inside Mercury's orbit in any passband (about 4e21 at
+ * 1 AU over the whole spectrum), the full Moon's 10^10 .. 10^18 (about
+ * 2e15) and its magnitude -15 .. -10 (V: -12.7); a field 0.01 .. 89 deg;
+ * the Sun's alpha_req 1e-30 .. 1e6 (the curve's own range) and its
+ * exclusion angle > 0: a table whose Sun never blinds the tracker is no
+ * flight table (an all-zero curve gives 0 deg).
+ */
+#define FDRFW_TABLE_SCALARS(X) \
+	X(i_sdt_e, 1.0f, 1e9f) \
+	X(fdr_tolerated, 1e-9f, 1e4f) \
+	X(f_sun_ph_s_m2, 1e17f, 1e23f) \
+	X(f_moon_full_ph_s_m2, 1e10f, 1e18f) \
+	X(moon_full_mag, -15.0f, -10.0f) \
+	X(earth_albedo, 0.0f, 1.0f) \
+	X(fov_half_deg, 0.01f, 89.0f) \
+	X(hysteresis_deg, 0.0f, 10.0f) \
+	X(alpha_req_sun, 1e-30f, 1e6f) \
+	X(exclusion_sun_deg, 1e-3f, 180.0f)
+
 struct fdrfw_table {
 	uint32_t magic;
 	uint32_t version;
@@ -34,7 +59,7 @@ struct fdrfw_table {
 	 * I_sdt was computed for), a_px_m2, k_px (eq. 2.3's per-pixel
 	 * factor: 1, the thesis, or A_cs / (n_tot A_px), checked), a_cs_m2,
 	 * n_pps, n_tot, pr_drs, f_drs_ph_s_m2. */
-#define FDRFW_TABLE_FIELD(tf, mf, domain) float tf;
+#define FDRFW_TABLE_FIELD(tf, mf, lo, hi) float tf;
 	FDRFW_MODEL_FIELDS(FDRFW_TABLE_FIELD)
 	float i_sdt_e;			/* I_sdt at t_exp_nominal_s, eq. 2.16 */
 	float fdr_tolerated;		/* false stars per image allowed */
@@ -60,14 +85,33 @@ struct fdrfw_table {
 #define FDRFW_TABLE_WORDS (sizeof(struct fdrfw_table) / 4u)
 #define FDRFW_BLOB_SIZE (FDRFW_TABLE_WORDS * 4u)
 
+/* The scalars of both lists: the words from FDRFW_SCALAR_WORD (after
+ * n_curve) to the curve. */
+#define FDRFW_SCALAR_WORD 3u
+#define FDRFW_SCALARS \
+	(((uint32_t)offsetof(struct fdrfw_table, theta_deg) / 4u) - \
+	 FDRFW_SCALAR_WORD)
+
 enum fdrfw_status {
 	FDRFW_OK = 0,
 	FDRFW_EMAGIC,	/* not a table, or wrong version */
 	FDRFW_ESIZE,	/* blob of the wrong length */
 	FDRFW_ECRC,	/* CRC mismatch: corrupted */
-	FDRFW_ERANGE,	/* a field outside its domain */
+	FDRFW_ERANGE,	/* the model the fields make is not valid */
 	FDRFW_EINPUT	/* a frame's inputs are invalid */
 };
+
+/*
+ * FDRFW_EFIELD + the word index of a field in the table: that field is
+ * outside its domain or inconsistent with the others (a valid CRC is not a
+ * valid table); table_build.h names it.  FDRFW_EFIELD_WORD for the field
+ * at word w, FDRFW_EFIELD_OF for the field named (a struct member: not
+ * parenthesised).
+ */
+#define FDRFW_EFIELD 16
+#define FDRFW_EFIELD_WORD(w) (FDRFW_EFIELD + (int)(w))
+#define FDRFW_EFIELD_OF(field) \
+	(FDRFW_EFIELD + ((int)offsetof(struct fdrfw_table, field) / 4))
 
 /* CRC-32 (IEEE 802.3, reflected, poly 0xEDB88320), continuing from crc. */
 uint32_t fdrfw_crc32(uint32_t crc, const uint8_t *buf, size_t len);
@@ -83,8 +127,11 @@ void fdrfw_table_seal(struct fdrfw_table *t);
 int fdrfw_table_parse(const uint8_t *buf, size_t len, struct fdrfw_table *t);
 
 /*
- * Magic, version, CRC, then every field in its domain; a table that fails
- * is never used.  Returns an enum fdrfw_status.
+ * Magic, version, CRC, then every field in its domain (FDRFW_EFIELD_OF
+ * the first that is not), n_pps <= n_tot, k_px, and the curve; a table that
+ * fails is never used.  fdrfw_init adds the checks that need the model
+ * (I_sdt, alpha_req, the Sun on the boresight).  Returns an enum
+ * fdrfw_status.
  */
 int fdrfw_table_check(const struct fdrfw_table *t);
 

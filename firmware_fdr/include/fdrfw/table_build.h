@@ -37,6 +37,13 @@ int fdrfw_table_build(const struct stray_curve_view *curve,
 		      const struct fdrfw_build_params *p,
 		      struct fdrfw_table *t, struct stray_error *err);
 
+/* The word of the table a status of fdrfw_table_check or fdrfw_init
+ * refuses (FDRFW_EFIELD_OF), -1 for any other status; its name, or NULL. */
+#define FDRFW_FIELD_OF(rc) (((rc) >= FDRFW_EFIELD && \
+	(rc) < FDRFW_EFIELD_WORD(FDRFW_TABLE_WORDS)) ? \
+	(rc) - FDRFW_EFIELD : -1)
+const char *fdrfw_field_name(int word);
+
 /* The table as C source: `const struct fdrfw_table NAME = {...};`. */
 int fdrfw_table_write_c(FILE *out, const struct fdrfw_table *t,
 			const char *name);
