@@ -174,6 +174,11 @@ static int table_refused(const struct fdrfw_table *t, struct stray_error *err)
 	    w < (int)(FDRFW_SCALAR_WORD + FDRFW_SCALARS)) {
 		i = (size_t)w - FDRFW_SCALAR_WORD;
 		memcpy(&v, (const unsigned char *)t + 4 * (size_t)w, 4);
+		if (w == FDRFW_FIELD_OF(FDRFW_EFIELD_OF(exclusion_sun_deg)))
+			return stray_error_set_value(err, STRAY_EINVAL,
+				scalars[i].name, "the curve does not reach the "
+				"Sun's alpha_req where it claims (0: nowhere), "
+				"so the Sun would not be flagged", v);
 		return stray_error_set_value(err, STRAY_EINVAL,
 			scalars[i].name, (v >= scalars[i].lo &&
 			v <= scalars[i].hi) ? "is inconsistent with the "
