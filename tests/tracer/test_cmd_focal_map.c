@@ -8,8 +8,7 @@
 #include <fitsio.h>
 
 #include "focal_map_io.h"
-#include "tracer_test.h"
-#include "../tools/run_cli.h"
+#include "tracer_cli.h"
 
 static void read_map(const char *path, long *nx, long *ny, double *mean,
 		     double *key_mean, double *k_px, double *alpha,
@@ -165,16 +164,6 @@ static void test_cmd_focal_map_curve_unchanged(void **state)
 	unlink(a);
 	unlink(b);
 	unlink(fits);
-}
-
-static void expect_bad(char *const argv[], const char *needle)
-{
-	struct cli_run r;
-
-	assert_int_equal(run_stray(&r, argv), 2);
-	assert_int_equal(r.err_lines, 1);
-	if (!strstr(r.err, needle))
-		fail_msg("stderr '%s' lacks '%s'", r.err, needle);
 }
 
 static void test_cmd_focal_map_bad_input(void **state)
