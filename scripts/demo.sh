@@ -136,7 +136,10 @@ done
 VALIDATE_WINDOW=${DEMO_FRAMES:-} VALIDATE_MAP="$out/focal_map.fits" \
 	scripts/validate-frames.sh "$build" "$out/frames" > "$out/validation.md"
 cp "$out/frames/validation.png" "$out/validation.png"
-cp "$out/frames/sample-uniform-3e-7.png" "$out/frame_sample.png"
+# A 512 px corner of a frame at the tolerated rate's attenuation: stars,
+# stray light and noise at a scale the eye can read.
+"$stray" frames --alpha 3e-7 --window 512 --seed 11 \
+	--png "$out/frame_sample.png" > /dev/null
 python3 scripts/demo_pixels.py "$out" | tee "$out/pixels.txt"
 
 say "firmware: flight table of the variant and the module's footprint"

@@ -27,45 +27,50 @@ def show(x):
     return "none" if x is None else "%.2f" % x
 
 
+COLS = [("thesis", "uniform", "Sun k_px=1"),
+        ("thesis", "mapped", "Sun k_px=1 mapped"),
+        ("consistent", "uniform", "Sun consistent"),
+        ("consistent", "mapped", "Sun consistent mapped")]
 rows, k_px = [], None
 for key, label in SYSTEMS:
     row = {"system": label}
-    for n in ("thesis", "consistent"):
-        for light in ("uniform", "mapped"):
-            d = load("pixels_%s_%s_%s.json" % (key, n, light))
-            row["sun_%s_%s" % (n, light)] = deg(d.get("sun_deg"))
-            if n == "consistent":
-                k_px = d["k_px"]
-    for n in ("thesis", "consistent"):
-        d = load("pixels_%s_%s_uniform.json" % (key, n))
-        row["moon_%s" % n] = deg(d.get("moon_deg"))
+    for n, light, col in COLS:
+        d = load("pixels_%s_%s_%s.json" % (key, n, light))
+        row[col] = deg(d.get("sun_deg"))
+        if n == "consistent":
+            k_px = d["k_px"]
+    for n, col in (("thesis", "Moon k_px=1"), ("consistent", "Moon consistent")):
+        row[col] = deg(load("pixels_%s_%s_uniform.json" % (key, n)).get("moon_deg"))
     rows.append(row)
 
 fm = load("focal_map.json").get("focal_map", {})
-points = []
+points, size = [], "-"
 for path in glob.glob(os.path.join(out, "frames", "*-*.json")):
     label = os.path.basename(path).split("-")[0]
     d = load(os.path.relpath(path, out))
     t = d["detectors"]
     points.append({
         "light": {"thesis": "uniform, k_px = 1"}.get(label, label),
-        "alpha": d["alpha"], "e_per_px": round(d["stray_e_per_px"], 1),
-        "frames": d["frames"], "px": "%dx%d" % (d["cols"], d["rows"]),
-        "model": t["thesis"]["model_fdr"],
-        "win_ext": t["thesis"]["model_fdr_extended"],
-        "win_meas": t["thesis"]["false_stars_per_image"],
-        "win_sigma": t["thesis"]["false_stars_sigma"],
-        "thr_ext": t["threshold"]["model_fdr_extended"],
-        "thr_meas": t["threshold"]["false_stars_per_image"],
-        "thr_sigma": t["threshold"]["false_stars_sigma"]})
+        "alpha": d["alpha"], "e-/px": round(d["stray_e_per_px"]),
+        "frames": d["frames"], "model eq. 2.18": t["thesis"]["model_fdr"],
+        "window: extended": t["thesis"]["model_fdr_extended"],
+        "window: measured": "%.3g ± %.2g" % (
+            t["thesis"]["false_stars_per_image"],
+            t["thesis"]["false_stars_sigma"]),
+        "threshold: extended": t["threshold"]["model_fdr_extended"],
+        "threshold: measured": "%.3g ± %.2g" % (
+            t["threshold"]["false_stars_per_image"],
+            t["threshold"]["false_stars_sigma"])})
+    size = "%d x %d" % (d["cols"], d["rows"])
 order = {"uniform": 0, "mapped": 1}
 points.sort(key=lambda p: (order.get(p["light"], 2), p["alpha"]))
 
 doc = {
     "k_px": k_px,
-    "what": "Sun exclusion angles (deg) of every demo curve with eq. 2.3's "
-            "k_px = 1 (thesis) and k_px = A_cs/(n_tot A_px) (consistent), "
-            "stray light uniform or as the lens region map (lens_map.csv)",
+    "exclusion_what": "deg; k_px = 1 (thesis) or A_cs/(n_tot A_px) "
+                      "(consistent); stray light uniform or mapped by "
+                      "lens_map.csv",
+    "frame_px": size,
     "focal_map.theta_deg": fm.get("theta_deg"),
     "focal_map.mean_per_px": fm.get("mean"),
     "focal_map.in_field_fraction": fm.get("in_field_fraction"),
@@ -83,11 +88,9 @@ print("%-22s %10s %10s %10s %10s %8s %8s" % (
 print("%-22s %10s %10s %10s %10s %8s %8s" % (
     "", "uniform", "mapped", "uniform", "mapped", "thesis", "consist."))
 for r in rows:
-    print("%-22s %10s %10s %10s %10s %8s %8s" % (
-        r["system"], show(r["sun_thesis_uniform"]),
-        show(r["sun_thesis_mapped"]), show(r["sun_consistent_uniform"]),
-        show(r["sun_consistent_mapped"]), show(r["moon_thesis"]),
-        show(r["moon_consistent"])))
+    print("%-22s %10s %10s %10s %10s %8s %8s" % ((r["system"],) + tuple(
+        show(r[c]) for c in [c for _, _, c in COLS] +
+        ["Moon k_px=1", "Moon consistent"])))
 print()
 print("Focal map of the variant at %s deg: mean %.3g per pixel (= k_px alpha), "
       "%.1f %% imaged in the field, out-of-field light spread by the %s"
@@ -101,11 +104,10 @@ print("%-18s %8s %7s %6s %9s | %9s %16s | %9s %16s" % (
     "light", "alpha", "e-/px", "frames", "model", "win. ext", "window measured",
     "thr. ext", "thresh. measured"))
 for p in points:
-    print("%-18s %8.3g %7.0f %6d %9.3g | %9.3g %8.3g ± %5.2g | %9.3g %8.3g ± %5.2g"
-          % (p["light"], p["alpha"], p["e_per_px"], p["frames"], p["model"],
-             p["win_ext"], p["win_meas"], p["win_sigma"], p["thr_ext"],
-             p["thr_meas"], p["thr_sigma"]))
-if points:
-    print("(%s px per frame; 'window' is the thesis's window-sum detector, "
-          "'thresh.' the k-sigma threshold detector open trackers use)"
-          % points[0]["px"])
+    print("%-18s %8.3g %7.0f %6d %9.3g | %9.3g %16s | %9.3g %16s"
+          % (p["light"], p["alpha"], p["e-/px"], p["frames"],
+             p["model eq. 2.18"], p["window: extended"],
+             p["window: measured"], p["threshold: extended"],
+             p["threshold: measured"]))
+print("(%s px per frame; 'window' is the thesis's window-sum detector, "
+      "'thresh.' the k-sigma threshold detector open trackers use)" % size)
