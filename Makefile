@@ -61,7 +61,7 @@ test: deps
 # report opened in headless Chromium, every figure loaded, no section empty.
 demo-check: all
 	@echo "== make demo (small), then its report in headless Chromium"
-	@DEMO_RAYS=300000 DEMO_STEP_DEG=5 scripts/demo.sh $(B) $(B)/demo-check \
+	@DEMO_RAYS=300000 DEMO_STEP_DEG=5 DEMO_FRAMES=256 scripts/demo.sh $(B) $(B)/demo-check \
 		> $(B)/demo-check.log 2>&1 || { tail -n 30 $(B)/demo-check.log; exit 1; }
 	@scripts/check-report.sh $(B)/demo-check --complete
 

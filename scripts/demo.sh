@@ -4,10 +4,13 @@
 #   simulated lab sweep of the lens (strayrigd, simulators) -> reduction ->
 #   trace of ref4 with that lens -> a virtual photometer sweep of the baffle
 #   alone, with effects the model does not know -> diagnosis -> corrected
-#   system, FDR and exclusion angles -> a design variant -> flight table ->
-#   the flight module along a day in orbit -> report
+#   system, FDR and exclusion angles -> a design variant -> what the thesis
+#   model gets wrong about pixels (k_px, mapped stray light, rendered
+#   frames) -> flight table -> the flight module along a day in orbit ->
+#   report
 # Usage: scripts/demo.sh BUILD_DIR [OUT_DIR]
-# DEMO_RAYS (paths per curve) and DEMO_STEP_DEG (photometer step) scale it.
+# DEMO_RAYS (paths per curve) and DEMO_STEP_DEG (photometer step) scale it;
+# DEMO_FRAMES=PX renders PX x PX windows instead of full frames.
 set -euo pipefail
 build=${1:-build}
 out=${2:-$build/demo}
@@ -17,7 +20,7 @@ rays=${DEMO_RAYS:-1500000}
 step_deg=${DEMO_STEP_DEG:-1}
 rm -rf "$out"
 mkdir -p "$out"
-step=0; steps=12
+step=0; steps=13
 say() { step=$((step + 1)); printf '\n[%d/%d] %s\n' "$step" "$steps" "$*"; }
 start=$(date +%s)
 
@@ -109,6 +112,35 @@ say "design variant: the path analysis blames the vane bevels; flip them"
 	tee -a "$out/exclusion.txt"
 "$stray" exclusion --curve "$out/system_variant.csv" --earth-albedo 0.3 \
 	--plot "$out/exclusion_variant.png" 2>&1 | tee -a "$out/exclusion.txt"
+
+say "pixels: what the thesis model gets wrong about pixels (docs/normalisation.md, docs/frames.md)"
+# Every demo curve's exclusion angles under the thesis's k_px = 1 and the
+# consistent k_px, with stray light uniform and as the lab's region map.
+for c in system system_corrected system_variant; do
+	for n in thesis consistent; do
+		"$stray" exclusion --curve "$out/$c.csv" --normalisation "$n" \
+			--json > "$out/pixels_${c}_${n}_uniform.json" 2>/dev/null
+		"$stray" exclusion --curve "$out/$c.csv" --normalisation "$n" \
+			--map "$out/lens_map.csv" \
+			--json > "$out/pixels_${c}_${n}_mapped.json" 2>/dev/null
+	done
+done
+# Where the variant's stray light lands at 40 deg: out of the field, so
+# spread by the lens's own measured region map.
+"$stray" trace --scene ref4 $corrections --set bevel_face=upper \
+	--lens "$out/lens.csv" --lens-map "$out/lens_map.csv" --angles 40 \
+	--rays "$rays" --focal-map "$out/focal_map.fits" \
+	--focal-map-png "$out/focal_map.png" --map-angle 40 \
+	--json > "$out/focal_map.json"
+# The FDR model against rendered frames and two star detectors.
+VALIDATE_WINDOW=${DEMO_FRAMES:-} VALIDATE_MAP="$out/focal_map.fits" \
+	scripts/validate-frames.sh "$build" "$out/frames" > "$out/validation.md"
+cp "$out/frames/validation.png" "$out/validation.png"
+# A 512 px corner of a frame at the tolerated rate's attenuation: stars,
+# stray light and noise at a scale the eye can read.
+"$stray" frames --alpha 3e-7 --window 512 --seed 11 \
+	--png "$out/frame_sample.png" > /dev/null
+python3 scripts/demo_pixels.py "$out" | tee "$out/pixels.txt"
 
 say "firmware: flight table of the variant and the module's footprint"
 "$stray" firmware-table --curve "$out/system_variant.csv" \

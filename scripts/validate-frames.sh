@@ -6,9 +6,14 @@
 # Frames per point give >= 100 false stars (<= 10 % Poisson error) for the
 # thesis detector wherever its rate is >= 1.
 # Usage: scripts/validate-frames.sh [BUILD_DIR [OUT_DIR]]   (about 2 min)
+# VALIDATE_WINDOW=PX renders a PX x PX window instead (fast, for checks);
+# VALIDATE_MAP=M.fits is the mapped light (a `stray trace --focal-map`)
+# instead of the ramp below.
 set -eu
 build=${1:-build}; out=${2:-$build/validate-frames}
 stray=$build/bin/stray
+window=()
+[ -n "${VALIDATE_WINDOW:-}" ] && window=(--window "$VALIDATE_WINDOW")
 mkdir -p "$out"
 
 # A smooth focal-plane map (float FITS, mean 1): a ramp 0.4 -> 1.6 along
@@ -33,7 +38,8 @@ kpx=$("$stray" frames --alpha 0 --window 64 --json | python3 -c 'import json,sys
 run() {	# label alpha frames [extra options]
 	local label=$1 a=$2 n=$3; shift 3
 	nice "$stray" frames --alpha "$a" --frames "$n" --seed 11 --json \
-		--png "$out/sample-$label-$a.png" "$@" > "$out/$label-$a.json"
+		--png "$out/sample-$label-$a.png" ${window[@]+"${window[@]}"} "$@" \
+		> "$out/$label-$a.json"
 	python3 - "$label" "$out/$label-$a.json" "$out/validation.csv" <<'PY'
 import json, sys
 d = json.load(open(sys.argv[2])); t = d["detectors"]
@@ -63,9 +69,10 @@ for p in "1.7e-7 60" "2e-7 40" "2.5e-7 14" "3e-7 6" "4e-7 4" "5.5e-7 3"; do
 done
 # Sample frames (FITS, lab-frame keywords) near the tolerated rate.
 nice "$stray" frames --alpha 3e-7 --frames 2 --seed 11 --out-dir "$out/frames" \
-	--save 2 > /dev/null
+	--save 2 ${window[@]+"${window[@]}"} > /dev/null
+map=${VALIDATE_MAP:-$out/ramp_map.fits}
 for p in "1.7e-7 40" "2.5e-7 12" "4e-7 4"; do
-	set -- $p; run mapped "$1" "$2" --map "$out/ramp_map.fits"
+	set -- $p; run mapped "$1" "$2" --map "$map"
 done
 # The thesis normalisation (k_px = 1) at the same pixel level: alpha x k_px.
 a=$(python3 -c "print('%.6g' % (2.5e-7 * $kpx))")

@@ -15,12 +15,14 @@
 #include "cli.h"
 #include "commands.h"
 #include "fdr_setup.h"
+#include "focal_map_io.h"
 #include "frames_io.h"
 #include "frames_plot.h"
 #include "frames_run.h"
 #include "image_cv.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"
+#include "stray/sensor_geom.h"
 
 static const char usage[] =
 	"usage: stray frames (--curve C.csv --theta DEG | --alpha A) [--frames N]\n"
@@ -42,8 +44,7 @@ static const char usage[] =
 	"  --detector D        thesis (window sum vs I_sdt, default) or threshold\n"
 	"                      (k sigma above a local background, >= 5 px); both\n"
 	"                      run, D picks the top-level keys\n"
-	"  --normalisation N   consistent (k_px = A_cs/(n_px A_px), default) or\n"
-	"                      thesis (k_px = 1)\n"
+	NORMALISATION_USAGE
 	"  --map M.fits        focal-plane stray-light map (stray trace --focal-map):\n"
 	"                      its shape spreads the stray light, alpha sets the level\n"
 	"  --out-dir D         write the first --save (3) frames as FITS there\n"
@@ -58,28 +59,15 @@ static const char usage[] =
 struct frames_args {
 	const char *curve, *map, *out_dir, *png, *plot_csv, *plot;
 	double theta_deg, alpha, frames, window, seed, save, mag_max;
-	int has_theta, has_alpha, detector, thesis_norm;
+	int has_theta, has_alpha, detector;
 };
 
-/* k_px = A_cs / (n_px A_px): issue 13; the lead unifies it with the
- * library's stray_sensor_k_px at merge. */
-static double frames_k_px(const struct stray_sensor *s)
-{
-	double r = 0.5e-3 * s->aperture_diameter_mm, p = 1e-6 * s->pixel_pitch_um;
-
-	return 3.14159265358979323846 * r * r /
-	       (s->pixels_x * s->pixels_y * p * p);
-}
-
-/* Solid angle of the rendered frame: f = half-diagonal / tan(fov_half),
- * as the focal maps use (tracer/README.md). */
+/* Solid angle of the rendered frame, through the ideal lens the focal
+ * maps use (stray_sensor_pixel_deg). */
 static double frames_fov_deg2(const struct stray_sensor *s, int cols,
 			      int rows)
 {
-	double hd = 0.5 * s->pixel_pitch_um * sqrt(s->pixels_x * s->pixels_x +
-						   s->pixels_y * s->pixels_y);
-	double f_um = hd / tan(s->fov_half_deg * 3.14159265358979 / 180.0);
-	double px_deg = s->pixel_pitch_um / f_um * 180.0 / 3.14159265358979;
+	double px_deg = stray_sensor_pixel_deg(s);
 
 	return cols * px_deg * rows * px_deg;
 }
@@ -119,8 +107,6 @@ static int parse_opt(struct fdr_setup *s, struct frames_args *a, int opt)
 					  &a->mag_max);
 	case 'd': return parse_choice("detector", optarg, "thesis", "threshold",
 				      &a->detector);
-	case 'N': return parse_choice("normalisation", optarg, "thesis",
-				      "consistent", &a->thesis_norm);
 	default: {
 		int rc = fdr_setup_option(s, "frames", opt, optarg);
 		return rc == 1 ? CLI_OK : rc ? rc : CLI_USAGE;
@@ -163,7 +149,7 @@ static int parse_args(int argc, char **argv, struct fdr_setup *s,
 		{ "save", required_argument, NULL, 'v' },
 		{ "mag-max", required_argument, NULL, 'g' },
 		{ "detector", required_argument, NULL, 'd' },
-		{ "normalisation", required_argument, NULL, 'N' },
+		NORMALISATION_LONG_OPTION,
 		{ "map", required_argument, NULL, 'm' },
 		{ "out-dir", required_argument, NULL, 'o' },
 		{ "png", required_argument, NULL, 'P' },
@@ -252,7 +238,7 @@ static int setup_frame(struct frames_state *st, struct stray_error *err)
 	} else {
 		st->alpha = st->a.alpha;
 	}
-	st->k_px = st->a.thesis_norm ? 1.0 : frames_k_px(sn);
+	st->k_px = fdr_setup_k_px(&st->s);
 	st->cols = st->a.window > 0 ? (int)st->a.window : (int)sn->pixels_x;
 	st->rows = st->a.window > 0 ? (int)st->a.window : (int)sn->pixels_y;
 	if (st->cols > sn->pixels_x || st->rows > sn->pixels_y)
@@ -285,10 +271,12 @@ static int setup_frame(struct frames_state *st, struct stray_error *err)
 	return STRAY_OK;
 }
 
-/* The map (if any): weights, their mean over the window, the regions. */
+/* The map (if any): weights over the window (divided by the map's mean,
+ * then by their own mean over the window), the regions. */
 static int setup_map(struct frames_state *st, struct stray_error *err)
 {
 	const struct stray_sensor *sn = &st->s.sensor;
+	struct focal_map_file fm;
 	size_t i, n = (size_t)st->cols * st->rows;
 	double sum = 0.0;
 	int rc;
@@ -299,11 +287,13 @@ static int setup_map(struct frames_state *st, struct stray_error *err)
 	st->weight = malloc(n * sizeof(float));
 	if (!st->weight)
 		return stray_error_set(err, STRAY_ENOMEM, "map", "no memory");
-	rc = frames_map_read(st->a.map, (int)sn->pixels_x, (int)sn->pixels_y,
-			     st->col0, st->row0, st->cols, st->rows, st->weight,
-			     err);
+	rc = focal_map_load(st->a.map, &fm, err);
 	if (rc != STRAY_OK)
 		return rc;
+	focal_map_resample(&fm, (int)sn->pixels_x, (int)sn->pixels_y,
+			   st->col0, st->row0, st->cols, st->rows,
+			   fm.cell_mean, st->weight);
+	focal_map_file_free(&fm);
 	for (i = 0; i < n; i++)
 		sum += st->weight[i];
 	st->wmean = sum / n;
@@ -358,7 +348,7 @@ static int save_frame(const struct frames_state *st, int i, size_t n_stars,
 	m.alpha = st->alpha;
 	m.k_px = st->k_px;
 	m.stray_e = st->fm.stray_e;
-	m.normalisation = st->a.thesis_norm ? "thesis" : "consistent";
+	m.normalisation = stray_normalisation_name(st->s.normalisation);
 	m.seqnum = i;
 	m.col0 = st->col0;
 	m.row0 = st->row0;
@@ -490,8 +480,7 @@ static int print_json(const struct frames_state *st,
 	cJSON_AddItemToObject(o, "frames", cli_json_number(st->a.frames));
 	cJSON_AddItemToObject(o, "cols", cli_json_number(st->cols));
 	cJSON_AddItemToObject(o, "rows", cli_json_number(st->rows));
-	cJSON_AddStringToObject(o, "normalisation", st->a.thesis_norm ? "thesis" : "consistent");
-	cJSON_AddItemToObject(o, "k_px", cli_json_number(st->k_px));
+	fdr_setup_json(&st->s, o);
 	cJSON_AddStringToObject(o, "stray_light", st->a.map ? st->a.map : "uniform");
 	cJSON_AddItemToObject(o, "stray_e_per_px", cli_json_number(st->fm.stray_e));
 	cJSON_AddItemToObject(o, "threshold_e", cli_json_number(st->fm.i_sdt_e));
@@ -521,7 +510,7 @@ static void print_text(const struct frames_state *st,
 	printf("Rendered frames (issue 13) for %s: %d x %d px, %g frames, alpha %.4g\n",
 	       st->s.sensor.name, st->cols, st->rows, st->a.frames, st->alpha);
 	printf("  normalisation %s, k_px %.3f: %.1f stray e-/px (eq. 2.3), %s\n",
-	       st->a.thesis_norm ? "thesis" : "consistent", st->k_px,
+	       stray_normalisation_name(st->s.normalisation), st->k_px,
 	       st->fm.stray_e, st->a.map ? st->a.map : "uniform");
 	printf("  stars: synthetic field (no catalogue), %.0f per frame to m = %g\n",
 	       st->stars_sum / st->a.frames, st->a.mag_max);

@@ -47,6 +47,10 @@ static const struct section sections[] = {
 	{ "diagnosis", "Diagnosis: what the model got wrong (thesis ch. 4)",
 	  "Measured baffle curve against the nominal and the corrected model, the named causes with their intervals, the gain, and the Sun exclusion angle before and after.",
 	  "diagnose.json", "diagnose.txt", { "diagnose.png", NULL } },
+	{ "pixels", "What the thesis model gets wrong about pixels",
+	  "Eq. 2.3 wants alpha as a per-pixel irradiance ratio; a traced or measured curve is a power ratio P(theta)/P(0) whose on-axis beam fills A_cs (eq. 3.11-3.12), so a pixel sees alpha F t A_px k_px with k_px = A_cs / (n_tot A_px). The thesis leaves k_px out (k_px = 1) and under-predicts the background; the table gives every demo curve's Sun exclusion angle both ways, with the stray light uniform and spread by the lab's region map. The figures: where the variant's stray light lands at 40 deg (focal map, log scale), a rendered frame near the tolerated rate, and false stars counted on rendered frames by the thesis's window-sum detector and an open-tracker threshold detector against eq. 2.18 and its extension (docs/frames.md).",
+	  "pixels.json", "pixels.txt",
+	  { "validation.png", "frame_sample.png", "focal_map.png", NULL } },
 	{ "firmware", "Flight module footprint",
 	  "The on-board exclusion and false-star module on its Cortex-M4F target: code, data and stack, and its flight table.",
 	  "firmware.json", "firmware.txt", { NULL } },
@@ -63,8 +67,8 @@ static const char usage[] =
 	"Write DIR/report.html (with DIR's PNG figures) and DIR/report.md from\n"
 	"the artifacts the other commands left in DIR (their --json output,\n"
 	"text output and --plot figures): photometry.json, fdr_sun.json,\n"
-	"reduce.json, exclusion.json, trace.json, diagnose.json, firmware.json,\n"
-	"orbit.json, the matching .txt files and figures.  scripts/demo.sh\n"
+	"reduce.json, exclusion.json, trace.json, diagnose.json, pixels.json,\n"
+	"firmware.json, orbit.json, the matching .txt files and figures.  scripts/demo.sh\n"
 	"shows which command leaves which file.\n";
 
 static int exists(const char *dir, const char *name)

@@ -13,6 +13,7 @@
 #include "focal_map_io.h"
 #include "image_cv.h"
 #include "stray/errfmt.h"
+#include "stray/sensor_geom.h"
 #include "stray/sensor_io.h"
 #include "stray/table.h"
 #include "tracer/source.h"
@@ -66,7 +67,7 @@ int focal_map_prepare(struct focal_map_args *f, size_t theta_index,
 		      struct tracer_trace_opts *o, struct stray_error *err)
 {
 	struct stray_sensor *s = &f->sen;
-	double pitch_mm, half_diag;
+	double pitch_mm;
 	int rc = stray_sensor_load(f->sensor, s, err);
 
 	if (rc)
@@ -79,9 +80,7 @@ int focal_map_prepare(struct focal_map_args *f, size_t theta_index,
 	pitch_mm = s->pixel_pitch_um * 1e-3;
 	f->fp.half_w_mm = 0.5 * s->pixels_x * pitch_mm;
 	f->fp.half_h_mm = 0.5 * s->pixels_y * pitch_mm;
-	/* the field half-angle is the circle holding the detector */
-	half_diag = hypot(f->fp.half_w_mm, f->fp.half_h_mm);
-	f->fp.f_mm = half_diag / tan(s->fov_half_deg * M_PI / 180.0);
+	f->fp.f_mm = stray_sensor_focal_length_mm(s);
 	f->fp.nx = (int)(s->pixels_x / f->cell_px);
 	f->fp.ny = (int)(s->pixels_y / f->cell_px);
 	f->fp.theta_index = theta_index;
@@ -317,106 +316,4 @@ void focal_map_json(const struct focal_map_args *f, cJSON *o)
 	cJSON_AddNumberToObject(m, "cell_px", f->cell_px);
 	cJSON_AddItemToObject(m, "focal_mm", cli_json_number(f->fp.f_mm));
 	cJSON_AddStringToObject(m, "sensor", f->sen.name);
-}
-
-/* One numeric keyword of a map; status KEY_NO_EXIST names it. */
-static int read_key(fitsfile *fp, const char *path, const char *key,
-		    double *v, struct stray_error *err)
-{
-	int st = 0;
-
-	if (fits_read_key(fp, TDOUBLE, key, v, NULL, &st) == 0 &&
-	    isfinite(*v))
-		return STRAY_OK;
-	fits_clear_errmsg();
-	return stray_error_at(err, STRAY_EPARSE, path, 0, key,
-			      "focal map keyword missing or not a number");
-}
-
-static int load_keys(fitsfile *fp, const char *path,
-		     struct focal_map_file *m, struct stray_error *err)
-{
-	double cell, nx, ny;
-	int st = 0, rc;
-
-	rc = read_key(fp, path, "THETA", &m->theta_deg, err);
-	if (!rc)
-		rc = read_key(fp, path, "ALPHA", &m->alpha, err);
-	if (!rc)
-		rc = read_key(fp, path, "KPX", &m->k_px, err);
-	if (!rc)
-		rc = read_key(fp, path, "MEAN", &m->mean, err);
-	if (!rc)
-		rc = read_key(fp, path, "CELLPX", &cell, err);
-	if (!rc)
-		rc = read_key(fp, path, "NPIXX", &nx, err);
-	if (!rc)
-		rc = read_key(fp, path, "NPIXY", &ny, err);
-	if (rc)
-		return rc;
-	m->cell_px = (long)cell;
-	m->npix_x = (long)nx;
-	m->npix_y = (long)ny;
-	if (m->cell_px < 1 || m->npix_x != m->nx * m->cell_px ||
-	    m->npix_y != m->ny * m->cell_px)
-		return stray_error_at(err, STRAY_EPARSE, path, 0, "CELLPX",
-				      "NAXIS * CELLPX must be NPIXX, NPIXY");
-	if (fits_read_key(fp, TSTRING, "SPREAD", m->spread, NULL, &st))
-		snprintf(m->spread, sizeof(m->spread), "unknown");
-	fits_clear_errmsg();
-	return STRAY_OK;
-}
-
-int focal_map_load(const char *path, struct focal_map_file *m,
-		   struct stray_error *err)
-{
-	fitsfile *fp = NULL;
-	long naxes[2] = { 0, 0 };
-	int st = 0, nax = 0, rc;
-
-	memset(m, 0, sizeof(*m));
-	if (fits_open_file(&fp, path, READONLY, &st) ||
-	    fits_get_img_dim(fp, &nax, &st) || nax != 2 ||
-	    fits_get_img_size(fp, 2, naxes, &st) || naxes[0] < 1 ||
-	    naxes[1] < 1) {
-		if (fp)
-			fits_close_file(fp, &st);
-		fits_clear_errmsg();
-		return stray_error_at(err, STRAY_EPARSE, path, 0, "NAXIS",
-				      "not a 2-D focal map image");
-	}
-	m->nx = naxes[0];
-	m->ny = naxes[1];
-	rc = load_keys(fp, path, m, err);
-	if (!rc) {
-		m->cell = malloc((size_t)(m->nx * m->ny) * sizeof(float));
-		if (!m->cell)
-			rc = stray_error_set(err, STRAY_ENOMEM, "focal map",
-					     "out of memory");
-	}
-	if (!rc && fits_read_img(fp, TFLOAT, 1, m->nx * m->ny, NULL, m->cell,
-				 NULL, &st))
-		rc = stray_error_at(err, STRAY_EPARSE, path, 0, "image",
-				    "cannot read the focal map's cells");
-	st = 0;
-	fits_close_file(fp, &st);
-	fits_clear_errmsg();
-	if (rc)
-		focal_map_file_free(m);
-	return rc;
-}
-
-double focal_map_pixel(const struct focal_map_file *m, long px, long py)
-{
-	long col = px / m->cell_px, row = py / m->cell_px;
-
-	if (px < 0 || py < 0 || col >= m->nx || row >= m->ny)
-		return 0.0;
-	return m->cell[row * m->nx + col];
-}
-
-void focal_map_file_free(struct focal_map_file *m)
-{
-	free(m->cell);
-	m->cell = NULL;
 }

@@ -65,22 +65,36 @@ int focal_map_write(struct focal_map_args *f, const struct tracer_result *r,
 /* Add "focal_map" to a --json summary (when a map was written). */
 void focal_map_json(const struct focal_map_args *f, cJSON *o);
 
-/* A focal map read back (for `stray frames --map M.fits`). */
+/*
+ * A focal map read back (focal_map_read.c), the one reader of the format:
+ * `stray frames --map M.fits` and the tests.  Any 2-D float image of
+ * relative weights will do; the keywords `stray trace` writes are read
+ * when present (NaN or 0 when not).
+ */
 struct focal_map_file {
 	long nx, ny;			/* cells: columns (x), rows (y) */
-	long cell_px;			/* detector pixels per cell side */
-	long npix_x, npix_y;		/* detector pixels */
-	double theta_deg, alpha, k_px, mean;
-	char spread[16];		/* "uniform" or "lensmap" */
+	long cell_px;			/* detector pixels per cell side; 0 */
+	long npix_x, npix_y;		/* detector pixels; 0 if not given */
+	double theta_deg, alpha, k_px, mean;	/* keywords, or NaN */
+	double cell_mean;		/* mean of the cells as read */
+	char spread[16];		/* "uniform", "lensmap" or "unknown" */
 	float *cell;			/* [row][col], row 0 at -y */
 };
 
-/* Read a --focal-map FITS; errors name the file and keyword. */
+/* Read a map; a missing file, a non-2-D image, a non-finite or negative
+ * cell or a map with no light is an error naming the file and keyword. */
 int focal_map_load(const char *path, struct focal_map_file *m,
 		   struct stray_error *err);
 
-/* E_px / E_src at detector pixel (px, py), 0-based; its cell's value. */
-double focal_map_pixel(const struct focal_map_file *m, long px, long py);
+/*
+ * The map resampled to the window [col0, col0 + cols) x [row0, row0 +
+ * rows) of a det_x x det_y detector, divided by div: bilinear between
+ * cell centres (the map samples a smooth distribution, not steps),
+ * extrapolated linearly past the outer centres, clamped at 0.
+ */
+void focal_map_resample(const struct focal_map_file *m, int det_x,
+			int det_y, int col0, int row0, int cols, int rows,
+			double div, float *out);
 
 void focal_map_file_free(struct focal_map_file *m);
 

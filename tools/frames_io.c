@@ -1,5 +1,6 @@
 /*
- * frames_io.c - FITS frames out and focal-plane maps in (frames_io.h).
+ * frames_io.c - FITS frames out, and a focal map's weights as regions
+ * (frames_io.h).
  */
 #include <fitsio.h>
 #include <math.h>
@@ -68,106 +69,6 @@ int frames_fits_write(const char *path, const uint16_t *dn, int cols,
 			st = st2;
 	}
 	return st ? fits_fail(err, STRAY_EIO, path, st) : STRAY_OK;
-}
-
-static int read_image(const char *path, float **img, long *nx, long *ny,
-		      struct stray_error *err)
-{
-	fitsfile *f;
-	long ax[2] = { 0, 0 };
-	int st = 0, naxis = 0, any = 0;
-
-	fits_open_file(&f, path, READONLY, &st);
-	if (st)
-		return fits_fail(err, STRAY_ENOTFOUND, path, st);
-	fits_get_img_dim(f, &naxis, &st);
-	fits_get_img_size(f, 2, ax, &st);
-	if (!st && (naxis != 2 || ax[0] < 1 || ax[1] < 1)) {
-		fits_close_file(f, &st);
-		return stray_error_at(err, STRAY_EPARSE, path, 0, "NAXIS",
-				      "the map must be a 2-D image");
-	}
-	*img = st ? NULL : malloc((size_t)ax[0] * ax[1] * sizeof(float));
-	if (!st && !*img) {
-		fits_close_file(f, &st);
-		return stray_error_at(err, STRAY_ENOMEM, path, 0, 0, "no memory");
-	}
-	if (!st)
-		fits_read_img(f, TFLOAT, 1, (LONGLONG)ax[0] * ax[1], NULL, *img,
-			      &any, &st);
-	{
-		int st2 = 0;
-
-		fits_close_file(f, &st2);
-	}
-	if (st) {
-		free(*img);
-		return fits_fail(err, STRAY_EPARSE, path, st);
-	}
-	*nx = ax[0];
-	*ny = ax[1];
-	return STRAY_OK;
-}
-
-/* A detector pixel's position in map cells, measured between cell
- * centres (a map samples a smooth distribution: bilinear, not steps),
- * extrapolated linearly past the outer centres (half a cell). */
-static double cell_coord(int px, int det, long n)
-{
-	return (px + 0.5) * (double)n / det - 0.5;
-}
-
-/* The cell left of (below) f, so that f lies in [i, i + 1] inside. */
-static long cell_base(double f, long n)
-{
-	long i = (long)floor(f);
-
-	return n < 2 ? 0 : i < 0 ? 0 : i > n - 2 ? n - 2 : i;
-}
-
-int frames_map_read(const char *path, int det_x, int det_y, int col0,
-		    int row0, int cols, int rows, float *weight,
-		    struct stray_error *err)
-{
-	float *img = NULL;
-	long nx = 0, ny = 0, i;
-	double sum = 0.0, mean;
-	int rc = read_image(path, &img, &nx, &ny, err), x, y;
-
-	if (rc != STRAY_OK)
-		return rc;
-	for (i = 0; i < nx * ny; i++) {
-		if (!(isfinite(img[i]) && img[i] >= 0.0f)) {
-			free(img);
-			return stray_error_at(err, STRAY_EINVAL, path, 0, "pixel",
-					      "map values must be finite and >= 0");
-		}
-		sum += img[i];
-	}
-	mean = sum / ((double)nx * ny);
-	if (!(mean > 0.0)) {
-		free(img);
-		return stray_error_at(err, STRAY_EINVAL, path, 0, "MEAN",
-				      "the map carries no light");
-	}
-	for (y = 0; y < rows; y++) {
-		double fy = cell_coord(row0 + y, det_y, ny);
-		long y0 = cell_base(fy, ny), y1 = ny > 1 ? y0 + 1 : y0;
-
-		fy -= (double)y0;
-		for (x = 0; x < cols; x++) {
-			double fx = cell_coord(col0 + x, det_x, nx), top, bot, v;
-			long x0 = cell_base(fx, nx), x1 = nx > 1 ? x0 + 1 : x0;
-
-			fx -= (double)x0;
-			top = img[y0 * nx + x0] + fx * (img[y0 * nx + x1] - img[y0 * nx + x0]);
-			bot = img[y1 * nx + x0] + fx * (img[y1 * nx + x1] - img[y1 * nx + x0]);
-			v = (top + fy * (bot - top)) / mean;
-			weight[(size_t)y * cols + x] = (float)(v > 0.0 ? v : 0.0);
-		}
-	}
-	free(img);
-	return STRAY_OK;
 }
 
 void frames_map_regions(const float *weight, size_t n,

@@ -1,9 +1,8 @@
 /*
  * frames_io.h - the files of `stray frames`: a rendered frame as a lab
- * frame (FITS, keywords of docs/formats.md, cfitsio) and a focal-plane
- * stray-light map read back (the float FITS image `stray trace
- * --focal-map` writes, tracer/README.md; any float image of relative
- * weights will do) resampled to the rendered window.
+ * frame (FITS, keywords of docs/formats.md, cfitsio), and a focal-plane
+ * map's weights (read by focal_map_load, focal_map_io.h) as the regions
+ * of the FDR model.
  */
 #ifndef STRAY_TOOLS_FRAMES_IO_H
 #define STRAY_TOOLS_FRAMES_IO_H
@@ -25,17 +24,6 @@ struct frames_fits_meta {
 int frames_fits_write(const char *path, const uint16_t *dn, int cols,
 		      int rows, const struct frames_fits_meta *m,
 		      struct stray_error *err);
-
-/*
- * Read a map and resample it to the window [col0, col0 + cols) x
- * [row0, row0 + rows) of a det_x x det_y detector (bilinear between cell
- * centres: the map samples a smooth distribution), divided by the mean of
- * the whole map: weight has mean about 1 over the detector.  A non-finite or negative
- * cell, or a map with no light, is STRAY_EINVAL naming the file.
- */
-int frames_map_read(const char *path, int det_x, int det_y, int col0,
-		    int row0, int cols, int rows, float *weight,
-		    struct stray_error *err);
 
 /* The weights as a region map of up to 64 levels (for the model). */
 void frames_map_regions(const float *weight, size_t n,

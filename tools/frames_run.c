@@ -60,6 +60,10 @@ int frames_model_init(struct frames_model *fm, const struct stray_sensor *s,
 	fm->m.dark_current_e_s = s->dark_current_e_s;
 	fm->m.noise = STRAY_NOISE_POISSON;
 	fm->m.map = map;
+	/* k_px is folded into alpha_eff (the model's eq. 2.3 units, as
+	 * stray/fdr_field.h takes it): the model's own factor is 1, or
+	 * k_px would count twice */
+	fm->m.k_px = 1.0;
 	fm->alpha_eff = k_px * alpha;
 	fm->stray_e = stray_fdr_pixel_photons(&fm->m, fm->alpha_eff);
 	g = fm->m;

@@ -82,8 +82,9 @@ fuzz-tracer-smoke: $(TRACER_FUZZ)
 fuzz-smoke: fuzz-tracer-smoke
 
 # The focal-map CLI test runs build/bin/stray and reads its FITS back,
-# also through the reader `stray frames` uses (tools/focal_map_io.c).
-FOCAL_IO_OBJ := $(patsubst %,$(B)/obj/tools/%.o,focal_map_io cli image_cv)
+# also through the reader `stray frames` uses (tools/focal_map_read.c).
+FOCAL_IO_OBJ := $(patsubst %,$(B)/obj/tools/%.o,\
+	focal_map_io focal_map_read cli image_cv)
 $(B)/obj/tests/tracer/test_cmd_focal_map.o: \
 	EXTRA_CFLAGS += -I/usr/include/cjson -Itools
 $(B)/tests/tracer/test_cmd_focal_map: \

@@ -236,6 +236,22 @@ int stray_fdr_log_pr_fd(const struct stray_fdr_model *m, stray_real alpha,
 	return STRAY_OK;
 }
 
+/* The map's mean relative attenuation, sum fraction * rel_alpha, by which
+ * each region's rel_alpha is divided (so the map keeps the mean alpha). */
+int stray_region_map_norm(const struct stray_region_map *map,
+			  stray_real *norm, struct stray_error *err)
+{
+	unsigned r;
+
+	*norm = 0;
+	for (r = 0; r < map->n; r++)
+		*norm += map->fraction[r] * map->rel_alpha[r];
+	if (!(*norm > 0))
+		return stray_error_set(err, STRAY_EINVAL, "map_rel_alpha",
+			STRAY_MSG("map carries no light"));
+	return STRAY_OK;
+}
+
 int stray_fdr_log_rate(const struct stray_fdr_model *m, stray_real alpha,
 		       stray_real i_sdt, stray_real *log_fdr,
 		       struct stray_error *err)
@@ -252,11 +268,8 @@ int stray_fdr_log_rate(const struct stray_fdr_model *m, stray_real alpha,
 		*log_fdr = log_windows + lp;
 		return rc;
 	}
-	for (r = 0; r < map->n; r++)
-		norm += map->fraction[r] * map->rel_alpha[r];
-	if (!(norm > 0))
-		return stray_error_set(err, STRAY_EINVAL, "map_rel_alpha",
-			STRAY_MSG("map carries no light"));
+	if ((rc = stray_region_map_norm(map, &norm, err)) != STRAY_OK)
+		return rc;
 	for (r = 0; r < map->n; r++) {
 		if (map->fraction[r] == 0)
 			continue;

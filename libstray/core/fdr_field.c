@@ -130,11 +130,8 @@ int stray_fdr_log_rate_sliding(const struct stray_fdr_model *m,
 		*log_fdr = stray_log(m->n_tot) + lt;
 		return rc;
 	}
-	for (r = 0; r < map->n; r++)
-		norm += map->fraction[r] * map->rel_alpha[r];
-	if (!(norm > 0))
-		return stray_error_set(err, STRAY_EINVAL, "map_rel_alpha",
-			STRAY_MSG("map carries no light"));
+	if ((rc = stray_region_map_norm(map, &norm, err)) != STRAY_OK)
+		return rc;
 	for (r = 0; r < map->n; r++) {
 		if (map->fraction[r] == 0)
 			continue;

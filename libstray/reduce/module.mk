@@ -7,8 +7,7 @@
 #     (stray_reduce_sweep), reading the folder through the sweep store
 #     (libstray/sweep: cfitsio, libcsv, OpenSSL); all archived into
 #     libstray.a, linked with $(STRAY_LDLIBS);
-#   - the OpenCV image writer of `stray reduce`, tools/image_cv.cpp; this
-#     file adds its link flags;
+#   - its plots go through the OpenCV image writer (tools/module.mk);
 #   - tests/reduce: unit tests, the synthetic-sweep generator
 #     (tests/reduce/synth_*.c, the truth stays there) and the end-to-end
 #     hidden-effect tests; the bench bench/bench_reduce.
@@ -16,19 +15,6 @@
 REDUCE_SRC := $(wildcard libstray/reduce/*.c)
 REDUCE_OBJ := $(REDUCE_SRC:%.c=$(B)/obj/%.o)
 $(STRAY_LIB): $(REDUCE_OBJ)
-
-OPENCV_CFLAGS := -I/usr/include/opencv4
-OPENCV_LDLIBS := -lopencv_imgcodecs -lopencv_imgproc -lopencv_core
-
-# The C++ image writer (OpenCV 4 has no C API) and the link flags.
-IMAGE_CV_OBJ := $(B)/obj/tools/image_cv.o
-$(IMAGE_CV_OBJ): tools/image_cv.cpp
-	@mkdir -p $(dir $@)
-	$(CXX) -std=c++17 -Wall -Wextra -Werror $(OPT) $(SANFLAGS) -MMD -MP \
-		-Itools $(OPENCV_CFLAGS) -c $< -o $@
-TOOLS_OBJ += $(IMAGE_CV_OBJ)
-$(STRAY_BIN): $(IMAGE_CV_OBJ)
-TOOLS_LDLIBS += $(OPENCV_LDLIBS) -lstdc++
 
 # Tests: one binary per file.  Unit tests of the math link libstray;
 # the sweep tests link the generator and run build/bin/stray.

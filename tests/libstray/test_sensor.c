@@ -14,6 +14,7 @@
 
 #include "../test_util.h"
 #include "stray/sensor.h"
+#include "stray/sensor_geom.h"
 
 /* xorshift64*: uniform numbers in [0, 1), reproducible. */
 static double uniform(uint64_t *s)
@@ -114,12 +115,36 @@ static void test_k_px_scaling(void **state)
 	assert_rel(stray_sensor_k_px(&s, STRAY_NORM_CONSISTENT), 0.5 * k0, 1e-12);
 }
 
+/* The ideal lens of the focal maps and frames: a ray at the field
+ * half-angle lands on the detector's corner (r = f tan theta), and one
+ * pitch on the axis subtends pitch / f (small angle: atan to 1e-5). */
+static void test_focal_length_puts_field_edge_at_corner(void **state)
+{
+	struct stray_sensor s = *stray_sensor_st16_like();
+	double f, corner_mm;
+
+	(void)state;
+	s.pixels_x = 100.0;
+	s.pixels_y = 75.0;	/* a 3-4-5 detector: half-diagonal 62.5 px */
+	s.pixel_pitch_um = 4.0;
+	s.fov_half_deg = 45.0;	/* tan = 1: f is the half-diagonal */
+	f = stray_sensor_focal_length_mm(&s);
+	assert_near(f, 62.5 * 4e-3, 1e-12);
+	s.fov_half_deg = 10.0;
+	f = stray_sensor_focal_length_mm(&s);
+	corner_mm = 62.5 * 4e-3;
+	assert_near(atan(corner_mm / f) * 180.0 / 3.14159265358979323846, 10.0, 1e-9);
+	assert_near(stray_sensor_pixel_deg(&s),
+		    atan(4e-3 / f) * 180.0 / 3.14159265358979323846, 1e-5 * 4e-3 / f * 57.3);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_k_px_counted_small_sensor),
 		cmocka_unit_test(test_k_px_st16_like),
 		cmocka_unit_test(test_k_px_scaling),
+		cmocka_unit_test(test_focal_length_puts_field_edge_at_corner),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -6,8 +6,7 @@
  */
 #include <cJSON.h>
 
-#include "tracer_test.h"
-#include "../tools/run_cli.h"
+#include "tracer_cli.h"
 #include "stray/curve_io.h"
 
 static void test_cmd_trace_help(void **state)
@@ -138,16 +137,6 @@ static void test_cmd_trace_extras(void **state)
 	unlink(png);
 	unlink(dump);
 	unlink(map);
-}
-
-static void expect_bad(char *const argv[], const char *needle)
-{
-	struct cli_run r;
-
-	assert_int_equal(run_stray(&r, argv), 2);
-	assert_int_equal(r.err_lines, 1);
-	if (!strstr(r.err, needle))
-		fail_msg("stderr '%s' lacks '%s'", r.err, needle);
 }
 
 static void test_cmd_trace_bad_input(void **state)

@@ -33,21 +33,6 @@ static struct tracer_focal st16_focal(int nx, int ny, size_t theta_index)
 	return fp;
 }
 
-/* Area of the overlap of disks of radii a and b, centres s apart. */
-static double disk_overlap(double a, double b, double s)
-{
-	double d1, d2;
-
-	if (s >= a + b)
-		return 0.0;
-	if (s <= fabs(a - b))
-		return M_PI * fmin(a, b) * fmin(a, b);
-	d1 = (s * s + a * a - b * b) / (2.0 * s);
-	d2 = s - d1;
-	return a * a * acos(d1 / a) - d1 * sqrt(a * a - d1 * d1) +
-	       b * b * acos(d2 / b) - d2 * sqrt(b * b - d2 * d2);
-}
-
 /* Configuration factor, disk a to coaxial parallel disk b at distance h
  * (Siegel and Howell, Thermal Radiation Heat Transfer, app. C). */
 static double coaxial_disks_f(double a, double b, double h)

@@ -80,6 +80,21 @@ static inline void test_detector(struct tracer_scene *s, double r,
 	s->det.accept_half_angle_deg = 0.0;
 }
 
+/* Area of the overlap of disks of radii a and b, centres s apart. */
+static inline double disk_overlap(double a, double b, double s)
+{
+	double d1, d2;
+
+	if (s >= a + b)
+		return 0.0;
+	if (s <= fabs(a - b))
+		return M_PI * fmin(a, b) * fmin(a, b);
+	d1 = (s * s + a * a - b * b) / (2.0 * s);
+	d2 = s - d1;
+	return a * a * acos(d1 / a) - d1 * sqrt(a * a - d1 * d1) +
+	       b * b * acos(d2 / b) - d2 * sqrt(b * b - d2 * d2);
+}
+
 /* Trace one scene at the given angles; the caller frees res. */
 static inline void test_trace(const struct tracer_scene *s,
 			      const double *theta, size_t n, uint64_t paths,

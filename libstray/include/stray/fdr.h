@@ -87,6 +87,11 @@ int stray_fdr_log_pr_fd(const struct stray_fdr_model *m, stray_real alpha,
 			stray_real i_sdt, stray_real *log_pr_fd,
 			struct stray_error *err);
 
+/* sum fraction * rel_alpha of a map (the divisor of its rel_alpha);
+ * STRAY_EINVAL when the map carries no light. */
+int stray_region_map_norm(const struct stray_region_map *map,
+			  stray_real *norm, struct stray_error *err);
+
 /* eq. 2.18: ln FDR, false detections per image, summed over the map. */
 int stray_fdr_log_rate(const struct stray_fdr_model *m, stray_real alpha,
 		       stray_real i_sdt, stray_real *log_fdr,
