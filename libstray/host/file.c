@@ -5,6 +5,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "stray/errfmt.h"
@@ -14,6 +16,7 @@ int stray_file_read(const char *path, char **buf, size_t *len,
 		    struct stray_error *err)
 {
 	FILE *f = fopen(path, "rb");
+	struct stat st;
 	size_t cap = 65536, n = 0;
 	char *b;
 
@@ -21,12 +24,30 @@ int stray_file_read(const char *path, char **buf, size_t *len,
 	*len = 0;
 	if (!f)		/* a missing input is the caller's mistake: bad input */
 		return stray_error_at(err, errno == ENOENT ? STRAY_ENOTFOUND
-							   : STRAY_EIO,
-				      path, 0, 0, strerror(errno));
+				      : errno == EISDIR ? STRAY_EINVAL : STRAY_EIO,
+				      path, 0, 0, errno == EISDIR
+				      ? "is a directory, not a file"
+				      : strerror(errno));
+	/* a pipe (/dev/stdin, <(cmd)) is read up to the limit; a directory
+	 * or a device never */
+	if (fstat(fileno(f), &st) == 0 && !S_ISREG(st.st_mode) &&
+	    !S_ISFIFO(st.st_mode)) {
+		fclose(f);
+		return stray_error_at(err, STRAY_EINVAL, path, 0, 0,
+				      S_ISDIR(st.st_mode)
+				      ? "is a directory, not a file"
+				      : "is not a regular file");
+	}
+	if (fstat(fileno(f), &st) == 0 && st.st_size > STRAY_FILE_READ_MAX) {
+		fclose(f);
+		return stray_error_at(err, STRAY_EINVAL, path, 0, 0,
+				      "larger than the 256 MiB input limit "
+				      "(docs/limits.md)");
+	}
 	b = malloc(cap);
 	while (b) {
 		n += fread(b + n, 1, cap - n - 1, f);
-		if (n < cap - 1)
+		if (n < cap - 1 || n > (size_t)STRAY_FILE_READ_MAX)
 			break;
 		cap *= 2;
 		{
@@ -41,6 +62,13 @@ int stray_file_read(const char *path, char **buf, size_t *len,
 		fclose(f);
 		return stray_error_at(err, STRAY_ENOMEM, path, 0, 0, 0);
 	}
+	if (n > (size_t)STRAY_FILE_READ_MAX) {	/* grew while being read */
+		free(b);
+		fclose(f);
+		return stray_error_at(err, STRAY_EINVAL, path, 0, 0,
+				      "larger than the 256 MiB input limit "
+				      "(docs/limits.md)");
+	}
 	if (ferror(f)) {
 		free(b);
 		fclose(f);
@@ -53,6 +81,83 @@ int stray_file_read(const char *path, char **buf, size_t *len,
 	return STRAY_OK;
 }
 
+/*
+ * Pending temporaries: a fixed registry of the paths being written, so a
+ * SIGINT/SIGTERM (or an exit that skipped stray_file_abort) removes them.
+ * The handler only calls unlink, signal and raise (async-signal-safe).
+ */
+#define PENDING_MAX 16
+
+static char pending[PENDING_MAX][sizeof(((struct stray_file_out *)0)->tmp)];
+static volatile sig_atomic_t pending_used[PENDING_MAX];
+static int handlers_set;
+
+static void pending_unlink_all(void)
+{
+	int i;
+
+	for (i = 0; i < PENDING_MAX; i++)
+		if (pending_used[i]) {
+			unlink(pending[i]);
+			pending_used[i] = 0;
+		}
+}
+
+static void on_signal(int sig)
+{
+	pending_unlink_all();
+	signal(sig, SIG_DFL);
+	raise(sig);
+}
+
+static void install_handlers(void)
+{
+	static const int sigs[] = { SIGINT, SIGTERM, SIGHUP };
+	size_t i;
+
+	if (handlers_set)
+		return;
+	handlers_set = 1;
+	atexit(pending_unlink_all);
+	for (i = 0; i < sizeof(sigs) / sizeof(sigs[0]); i++) {
+		struct sigaction old, sa;
+
+		/* leave a program's own handlers (and ignored signals) alone */
+		if (sigaction(sigs[i], NULL, &old) != 0 ||
+		    old.sa_handler != SIG_DFL)
+			continue;
+		memset(&sa, 0, sizeof(sa));
+		sa.sa_handler = on_signal;
+		sigemptyset(&sa.sa_mask);
+		sigaction(sigs[i], &sa, NULL);
+	}
+}
+
+static int pending_add(const char *tmp)
+{
+	int i;
+
+	install_handlers();
+	for (i = 0; i < PENDING_MAX; i++)
+		if (!pending_used[i]) {
+			memcpy(pending[i], tmp, strlen(tmp) + 1);
+			pending_used[i] = 1;
+			return 0;
+		}
+	return -1;
+}
+
+static void pending_drop(const char *tmp)
+{
+	int i;
+
+	for (i = 0; i < PENDING_MAX; i++)
+		if (pending_used[i] && strcmp(pending[i], tmp) == 0) {
+			pending_used[i] = 0;
+			return;
+		}
+}
+
 int stray_file_open_atomic(struct stray_file_out *out, const char *path,
 			   struct stray_error *err)
 {
@@ -61,12 +166,22 @@ int stray_file_open_atomic(struct stray_file_out *out, const char *path,
 
 	out->path = path;
 	out->f = NULL;
-	if (n < 0 || (size_t)n >= sizeof(out->tmp))
+	if (n < 0 || (size_t)n >= sizeof(out->tmp)) {
+		out->tmp[0] = '\0';
 		return stray_error_at(err, STRAY_EINVAL, path, 0, "path",
 				      "too long");
+	}
+	if (pending_add(out->tmp) != 0)
+		return stray_error_at(err, STRAY_EIO, path, 0, 0,
+				      "too many files open for writing");
 	out->f = fopen(out->tmp, "wb");
-	if (!out->f)
-		return stray_error_at(err, STRAY_EIO, path, 0, 0, strerror(errno));
+	if (!out->f) {
+		int saved = errno;
+
+		pending_drop(out->tmp);
+		return stray_error_at(err, STRAY_EIO, path, 0, 0,
+				      strerror(saved));
+	}
 	return STRAY_OK;
 }
 
@@ -81,11 +196,14 @@ int stray_file_commit(struct stray_file_out *out, struct stray_error *err)
 		saved = errno;
 	}
 	out->f = NULL;
-	if (!bad && rename(out->tmp, out->path) == 0)
+	if (!bad && rename(out->tmp, out->path) == 0) {
+		pending_drop(out->tmp);
 		return STRAY_OK;
+	}
 	if (!bad)
 		saved = errno;
 	remove(out->tmp);
+	pending_drop(out->tmp);
 	return stray_error_at(err, STRAY_EIO, out->path, 0, 0,
 			      saved ? strerror(saved) : "write error");
 }
@@ -95,5 +213,8 @@ void stray_file_abort(struct stray_file_out *out)
 	if (out->f)
 		fclose(out->f);
 	out->f = NULL;
-	remove(out->tmp);
+	if (out->tmp[0]) {
+		remove(out->tmp);
+		pending_drop(out->tmp);
+	}
 }

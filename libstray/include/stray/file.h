@@ -13,7 +13,14 @@
 
 #include "stray/error.h"
 
-/* Read a whole file into a new NUL-terminated buffer (caller frees). */
+/* Input limit (docs/limits.md): no input file is read past this size. */
+#define STRAY_FILE_READ_MAX (256L * 1024 * 1024)
+
+/*
+ * Read a whole regular file into a new NUL-terminated buffer (caller
+ * frees).  A directory, a device or a file over STRAY_FILE_READ_MAX is
+ * refused as bad input (STRAY_EINVAL) before anything is read.
+ */
 int stray_file_read(const char *path, char **buf, size_t *len,
 		    struct stray_error *err);
 
