@@ -16,6 +16,7 @@
 #include "plot.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"
+#include "stray/file.h"
 #include "tracer/angles.h"
 #include "tracer/dump_io.h"
 #include "tracer/integrator.h"
@@ -469,11 +470,14 @@ int cmd_trace(int argc, char **argv, const struct tracer_runner *runner)
 		return rc < 0 ? CLI_OK : rc;
 	stray_error_clear(&err);
 	tracer_scene_init(&s);
+	stray_file_defer();	/* every output renamed at the end, or none */
 	rc = load_scene(&a, &s, &err);
 	if (!rc && (a.out || cli.json || a.paths_out || a.top || a.plot ||
 		    a.plot_orders || a.dump || a.map ||
 		    focal_map_wanted(&a.fm)))
 		rc = run_trace(&a, &s, &err);
 	tracer_scene_free(&s);
+	if (stray_file_finish(rc == STRAY_OK, &err) != STRAY_OK && !rc)
+		rc = STRAY_EIO;
 	return rc ? cli_fail("trace", &err) : CLI_OK;
 }

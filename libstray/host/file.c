@@ -23,7 +23,7 @@ int stray_file_read(const char *path, char **buf, size_t *len,
 	*buf = NULL;
 	*len = 0;
 	if (!f)		/* a missing input is the caller's mistake: bad input */
-		return stray_error_at(err, errno == ENOENT ? STRAY_ENOTFOUND
+		return stray_error_at(err, errno == ENOENT || errno == ENOTDIR ? STRAY_ENOTFOUND
 				      : errno == EISDIR ? STRAY_EINVAL : STRAY_EIO,
 				      path, 0, 0, errno == EISDIR
 				      ? "is a directory, not a file"
@@ -92,10 +92,19 @@ static char pending[PENDING_MAX][sizeof(((struct stray_file_out *)0)->tmp)];
 static volatile sig_atomic_t pending_used[PENDING_MAX];
 static int handlers_set;
 
+/* Deferred mode: closed temporaries wait here for stray_file_finish. */
+static const char *ready_path[PENDING_MAX];
+static int ready[PENDING_MAX];
+static int deferring;
+
+static pid_t pending_owner;	/* a forked child never removes them */
+
 static void pending_unlink_all(void)
 {
 	int i;
 
+	if (getpid() != pending_owner)
+		return;
 	for (i = 0; i < PENDING_MAX; i++)
 		if (pending_used[i]) {
 			unlink(pending[i]);
@@ -138,6 +147,7 @@ static int pending_add(const char *tmp)
 	int i;
 
 	install_handlers();
+	pending_owner = getpid();
 	for (i = 0; i < PENDING_MAX; i++)
 		if (!pending_used[i]) {
 			memcpy(pending[i], tmp, strlen(tmp) + 1);
@@ -147,15 +157,48 @@ static int pending_add(const char *tmp)
 	return -1;
 }
 
-static void pending_drop(const char *tmp)
+static int pending_find(const char *tmp)
 {
 	int i;
 
 	for (i = 0; i < PENDING_MAX; i++)
-		if (pending_used[i] && strcmp(pending[i], tmp) == 0) {
-			pending_used[i] = 0;
-			return;
-		}
+		if (pending_used[i] && strcmp(pending[i], tmp) == 0)
+			return i;
+	return -1;
+}
+
+static void pending_drop(const char *tmp)
+{
+	int i = pending_find(tmp);
+
+	if (i >= 0) {
+		ready[i] = 0;
+		pending_used[i] = 0;
+	}
+}
+
+void stray_file_defer(void)
+{
+	deferring = 1;
+}
+
+int stray_file_finish(int ok, struct stray_error *err)
+{
+	int i, rc = STRAY_OK;
+
+	deferring = 0;
+	for (i = 0; i < PENDING_MAX; i++) {
+		if (!pending_used[i] || !ready[i])
+			continue;
+		if (ok && rc == STRAY_OK && rename(pending[i], ready_path[i]) != 0)
+			rc = stray_error_at(err, STRAY_EIO, ready_path[i], 0, 0,
+					    strerror(errno));
+		else if (!ok || rc != STRAY_OK)
+			unlink(pending[i]);
+		ready[i] = 0;
+		pending_used[i] = 0;
+	}
+	return rc;
 }
 
 int stray_file_open_atomic(struct stray_file_out *out, const char *path,
@@ -196,6 +239,15 @@ int stray_file_commit(struct stray_file_out *out, struct stray_error *err)
 		saved = errno;
 	}
 	out->f = NULL;
+	if (!bad && deferring) {	/* renamed by stray_file_finish */
+		int i = pending_find(out->tmp);
+
+		if (i >= 0) {
+			ready[i] = 1;
+			ready_path[i] = out->path;
+			return STRAY_OK;
+		}
+	}
 	if (!bad && rename(out->tmp, out->path) == 0) {
 		pending_drop(out->tmp);
 		return STRAY_OK;

@@ -41,4 +41,14 @@ int stray_file_commit(struct stray_file_out *out, struct stray_error *err);
 /* Abandon: close and remove the temporary. */
 void stray_file_abort(struct stray_file_out *out);
 
+/*
+ * One run, all or nothing: after stray_file_defer, stray_file_commit
+ * closes and syncs but leaves the temporary in place (the target path
+ * must outlive the run); stray_file_finish(1) then renames every one into
+ * place, stray_file_finish(0) removes them all.  Temporaries are always
+ * removed on exit, SIGINT, SIGTERM and SIGHUP unless committed.
+ */
+void stray_file_defer(void);
+int stray_file_finish(int ok, struct stray_error *err);
+
 #endif /* STRAY_FILE_H */
