@@ -351,9 +351,12 @@ static int by_file(const void *a, const void *b)
 
 /* A frame listed twice would be counted twice (and once break a visit
  * into "no FULL frame at this angle"): name it. */
-static int no_duplicate_rows(const struct stray_sweep_manifest *m,
+static int no_duplicate_rows(const char *dir,
+			     const struct stray_sweep_manifest *m,
 			     struct stray_error *err)
 {
+	char name[4096];
+
 	const struct stray_sweep_entry **e = malloc((m->n ? m->n : 1) *
 						    sizeof(*e));
 	size_t i;
@@ -366,8 +369,9 @@ static int no_duplicate_rows(const struct stray_sweep_manifest *m,
 	qsort(e, m->n, sizeof(*e), by_file);
 	for (i = 1; i < m->n && rc == STRAY_OK; i++)
 		if (strcmp(e[i]->file, e[i - 1]->file) == 0) {
-			rc = stray_error_at(err, STRAY_EPARSE, "manifest.csv",
-				0, "file", "is listed twice (duplicate row)");
+			snprintf(name, sizeof(name), "%s/manifest.csv", dir);
+			rc = stray_error_at(err, STRAY_EPARSE, name, 0, "file",
+					    "is listed twice (duplicate row)");
 			stray_error_text(err, e[i]->file);
 		}
 	free(e);
@@ -591,7 +595,7 @@ int stray_reduce_sweep(const char *dir, const struct stray_reduce_sweep_opts *o,
 	w->monitor = -1;
 	rc = stray_sweep_manifest_load(dir, &w->man, err);
 	if (rc == STRAY_OK)
-		rc = no_duplicate_rows(&w->man, err);
+		rc = no_duplicate_rows(dir, &w->man, err);
 	if (rc == STRAY_OK) {
 		res->n_frames = w->man.n;
 		rc = reduce_all(w, res, err);
