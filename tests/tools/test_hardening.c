@@ -9,6 +9,7 @@
  */
 #include <cJSON.h>
 #include <dirent.h>
+#include <math.h>
 #include <setjmp.h>
 #include <signal.h>
 #include <stdarg.h>
@@ -129,6 +130,38 @@ static void test_unbounded_inputs(void **state)
 	expect_bad("/dev/zero: is not a regular file");
 	STRAY("exclusion", "--curve", dir);
 	expect_bad("is a directory, not a file");
+}
+
+/* A curve of n rows, theta from 1 deg, sigma 5 %. */
+static char *long_curve(const char *name, size_t n)
+{
+	char *text = malloc(64 + n * 40), *p;
+	size_t i, len;
+
+	assert_non_null(text);
+	len = (size_t)sprintf(text, "theta_deg,alpha,sigma\n");
+	for (i = 0; i < n; i++) {
+		double t = 1.0 + 80.0 * (double)i / (double)n;
+
+		len += (size_t)sprintf(text + len, "%.8f,%.6g,%.6g\n", t,
+				       pow(10.0, -t / 10.0),
+				       0.05 * pow(10.0, -t / 10.0));
+	}
+	p = put(name, text, len);
+	free(text);
+	return p;
+}
+
+/* 10^6 rows, or 2001 angles into diagnose: refused at once (diagnose ran
+ * 12 s into "out of memory" on 10^5). */
+static void test_row_and_angle_limits(void **state)
+{
+	(void)state;
+	STRAY("diagnose", long_curve("rows.csv", 1000000), "--scene", "ref4");
+	expect_bad("rows.csv:100002: row: more than 100000 rows");
+	STRAY("diagnose", long_curve("angles.csv", 2001), "--scene", "ref4",
+	      "--rays", "2000");
+	expect_bad("theta_deg 2001: at most 2000 measured angles");
 }
 
 static void test_curve_physics(void **state)
@@ -337,6 +370,7 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_cr_lines_no_crash),
 		cmocka_unit_test(test_unbounded_inputs),
+		cmocka_unit_test(test_row_and_angle_limits),
 		cmocka_unit_test(test_curve_physics),
 		cmocka_unit_test(test_qe_above_one),
 		cmocka_unit_test(test_exclusion_never_nan),
