@@ -93,7 +93,7 @@ static volatile sig_atomic_t pending_used[PENDING_MAX];
 static int handlers_set;
 
 /* Deferred mode: closed temporaries wait here for stray_file_finish. */
-static const char *ready_path[PENDING_MAX];
+static char ready_path[PENDING_MAX][sizeof(pending[0])];	/* copies */
 static int ready[PENDING_MAX];
 static int deferring;
 
@@ -242,9 +242,11 @@ int stray_file_commit(struct stray_file_out *out, struct stray_error *err)
 	if (!bad && deferring) {	/* renamed by stray_file_finish */
 		int i = pending_find(out->tmp);
 
-		if (i >= 0) {
+		size_t n = strlen(out->path);
+
+		if (i >= 0 && n < sizeof(ready_path[i])) {
+			memcpy(ready_path[i], out->path, n + 1);
 			ready[i] = 1;
-			ready_path[i] = out->path;
 			return STRAY_OK;
 		}
 	}

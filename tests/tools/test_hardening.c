@@ -259,6 +259,14 @@ static void test_trace_all_or_nothing(void **state)
 	assert_true(exists(in_dir("t.csv")) && exists(in_dir("d.csv")) &&
 		    exists(in_dir("m.obj")) && exists(in_dir("p.png")));
 	assert_int_equal(temporaries(), 0);
+	/* orbit: its CSV is not left by a plot that cannot be written */
+	STRAY("firmware-table", "--curve", put_text("c.csv", good),
+	      "--out-bin", in_dir("t.bin"));
+	STRAY("orbit", "--table", in_dir("t.bin"), "--hours", "1", "--out",
+	      in_dir("orbit1.csv"), "--plot", "/nonexistent/orbit");
+	assert_int_not_equal(r.status, 0);
+	assert_false(exists(in_dir("orbit1.csv")));
+	assert_int_equal(temporaries(), 0);
 }
 
 static void test_option_checks(void **state)

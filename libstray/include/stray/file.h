@@ -44,7 +44,7 @@ void stray_file_abort(struct stray_file_out *out);
 /*
  * One run, all or nothing: after stray_file_defer, stray_file_commit
  * closes and syncs but leaves the temporary in place (the target path
- * must outlive the run); stray_file_finish(1) then renames every one into
+ * is copied); stray_file_finish(1) then renames every one into
  * place, stray_file_finish(0) removes them all.  Temporaries are always
  * removed on exit, SIGINT, SIGTERM and SIGHUP unless committed.
  */
