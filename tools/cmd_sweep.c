@@ -23,6 +23,7 @@
 #include "fdr_setup.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"
+#include "stray/file.h"
 #include "trace_run.h"
 #include "tracer/angles.h"
 #include "tracer/runner.h"
@@ -365,10 +366,13 @@ static int sweep(struct sweep_args *a, struct fdr_setup *fs,
 			stray_normalisation_name(fs->normalisation),
 			fdr_setup_k_px(fs) };
 
+		stray_file_defer();	/* the table and its plot, or neither */
 		if (a->out)
 			rc = design_write_csv(&s, a->out, err);
 		if (!rc && a->plot)
 			rc = design_plot(&s, a->plot, err);
+		if (stray_file_finish(!rc, err) != STRAY_OK && !rc)
+			rc = STRAY_EIO;
 		if (!rc && cli.json)
 			rc = design_print_json(&s) ? STRAY_EIO : STRAY_OK;
 		else if (!rc)

@@ -267,6 +267,14 @@ static void test_trace_all_or_nothing(void **state)
 	assert_int_not_equal(r.status, 0);
 	assert_false(exists(in_dir("orbit1.csv")));
 	assert_int_equal(temporaries(), 0);
+	/* sweep: its table is not left by a plot that cannot be written */
+	STRAY("sweep", "--scene", "ref4", "--state", in_dir("sw"), "--grid",
+	      "reflectance=0.02,0.04", "--rays", "1000", "--angles", "0,10,20",
+	      "--alpha-at", "10", "--out", in_dir("sw.csv"), "--plot",
+	      "/nonexistent/sw.png");
+	assert_int_not_equal(r.status, 0);
+	assert_false(exists(in_dir("sw.csv")));
+	assert_int_equal(temporaries(), 0);
 }
 
 static void test_option_checks(void **state)
