@@ -216,7 +216,7 @@ int plot_render(const struct plot_spec *p, struct stray_error *err)
 	axis_limits(p, 1, &y0, &y1);
 	snprintf(geom, sizeof(geom), "%dx%d", PLOT_W_PX, PLOT_H_PX);
 	plsdev("pngcairo");
-	plsfnam(out.tmp);
+	plsfnam(out.tmp[0] ? out.tmp : p->path);	/* else a device */
 	plsetopt("geometry", geom);
 	plscmap0(pal_r, pal_g, pal_b, (PLINT)(sizeof(pal_r) / sizeof(pal_r[0])));
 	plinit();
@@ -232,7 +232,7 @@ int plot_render(const struct plot_spec *p, struct stray_error *err)
 	{
 		struct stat st;
 
-		if (stat(out.tmp, &st) != 0 || st.st_size == 0)
+		if (out.tmp[0] && (stat(out.tmp, &st) != 0 || st.st_size == 0))
 			rc = stray_error_at(err, STRAY_EIO, p->path, 0, "plot",
 					    "PLplot wrote no file");
 	}

@@ -204,11 +204,26 @@ int stray_file_finish(int ok, struct stray_error *err)
 int stray_file_open_atomic(struct stray_file_out *out, const char *path,
 			   struct stray_error *err)
 {
-	int n = snprintf(out->tmp, sizeof(out->tmp), "%s.tmp.%ld", path,
-			 (long)getpid());
+	struct stat st;
+	int n;
 
 	out->path = path;
 	out->f = NULL;
+	out->tmp[0] = '\0';
+	if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
+		/* /dev/stdout, a pipe: written in place, never renamed over
+		 * (as root that would replace the device node) */
+		if (S_ISDIR(st.st_mode))
+			return stray_error_at(err, STRAY_EINVAL, path, 0, 0,
+					      "is a directory, not a file");
+		out->f = fopen(path, "wb");
+		if (!out->f)
+			return stray_error_at(err, STRAY_EIO, path, 0, 0,
+					      strerror(errno));
+		return STRAY_OK;
+	}
+	n = snprintf(out->tmp, sizeof(out->tmp), "%s.tmp.%ld", path,
+		     (long)getpid());
 	if (n < 0 || (size_t)n >= sizeof(out->tmp)) {
 		out->tmp[0] = '\0';
 		return stray_error_at(err, STRAY_EINVAL, path, 0, "path",
@@ -230,9 +245,23 @@ int stray_file_open_atomic(struct stray_file_out *out, const char *path,
 
 int stray_file_commit(struct stray_file_out *out, struct stray_error *err)
 {
-	int bad = ferror(out->f) || fflush(out->f) != 0 ||
-		  fsync(fileno(out->f)) != 0;
-	int saved = errno;
+	int bad, saved;
+
+	if (!out->tmp[0]) {	/* a device or pipe, written in place */
+		bad = ferror(out->f) || fflush(out->f) != 0;
+		saved = errno;
+		if (fclose(out->f) != 0 && !bad) {
+			bad = 1;
+			saved = errno;
+		}
+		out->f = NULL;
+		return bad ? stray_error_at(err, STRAY_EIO, out->path, 0, 0,
+				saved ? strerror(saved) : "write error")
+			   : STRAY_OK;
+	}
+	bad = ferror(out->f) || fflush(out->f) != 0 ||
+	      fsync(fileno(out->f)) != 0;
+	saved = errno;
 
 	if (fclose(out->f) != 0 && !bad) {
 		bad = 1;

@@ -248,6 +248,26 @@ static void test_atomic_write_leaves_nothing(void **state)
 	rmdir(dir);
 }
 
+/* A device is written in place, never renamed over (as root the old
+ * rename replaced /dev/null by a regular file). */
+static void test_atomic_write_to_device(void **state)
+{
+	struct stray_file_out out;
+	struct stray_error err;
+	struct stat st;
+
+	(void)state;
+	stray_error_clear(&err);
+	assert_int_equal(stray_file_open_atomic(&out, "/dev/null", &err),
+			 STRAY_OK);
+	fputs("x\n", out.f);
+	assert_int_equal(stray_file_commit(&out, &err), STRAY_OK);
+	assert_int_equal(stat("/dev/null", &st), 0);
+	assert_true(S_ISCHR(st.st_mode));
+	assert_int_equal(stray_file_open_atomic(&out, "/tmp", &err),
+			 STRAY_EINVAL);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -260,6 +280,7 @@ int main(void)
 		cmocka_unit_test(test_qe_above_one_refused),
 		cmocka_unit_test(test_message_escapes_bytes),
 		cmocka_unit_test(test_atomic_write_leaves_nothing),
+		cmocka_unit_test(test_atomic_write_to_device),
 	};
 
 	if (getenv("STRAY_TEST_FILTER"))	/* one test (a crash ends all) */
