@@ -86,7 +86,7 @@ static int run_all_or_nothing(const struct cmd *c, int argc, char **argv)
 {
 	static const char *const deferred[] = { "photometry", "fdr",
 		"exclusion", "photometer", "firmware-table", "orbit",
-		"diagnose" };
+		"diagnose", "report" };
 	struct stray_error err;
 	size_t i;
 	int rc, defer = 0;
