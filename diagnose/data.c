@@ -14,6 +14,8 @@ const char *const diag_region_name[DIAG_REGIONS] = {
 	"source in field", "transition", "scatter only"
 };
 
+#define DIAG_ANGLES_MAX 2000	/* input limit, docs/limits.md */
+
 int diag_data_load(const char *path, struct diag_data *d,
 		   struct stray_error *err)
 {
@@ -29,9 +31,12 @@ int diag_data_load(const char *path, struct diag_data *d,
 			"the measured curve needs a sigma column (one standard error)");
 		stray_error_locate(err, path, 0);
 	}
-	if (!rc && c.n < 3) {
-		rc = stray_error_set(err, STRAY_EINVAL, "theta_deg",
-				     "at least 3 measured angles are needed");
+	if (!rc && (c.n < 3 || c.n > DIAG_ANGLES_MAX)) {
+		/* every angle is traced once per fitted cause: bounded */
+		rc = stray_error_set_value(err, STRAY_EINVAL, "theta_deg",
+			c.n < 3 ? "at least 3 measured angles are needed"
+				: "at most 2000 measured angles (docs/limits.md)",
+			(double)c.n);
 		stray_error_locate(err, path, 0);
 	}
 	for (i = 0; !rc && i < c.n; i++) {

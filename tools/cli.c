@@ -20,6 +20,11 @@ int cli_fail(const char *cmd, const struct stray_error *err)
 {
 	char line[1024];
 
+	if (err->code == STRAY_OK) {	/* a failure that recorded no reason */
+		fprintf(stderr, "%s %s: failed without a recorded reason "
+			"(please report this)\n", cli.prog, cmd);
+		return CLI_FAIL;
+	}
 	fprintf(stderr, "%s %s: %s\n", cli.prog, cmd,
 		stray_error_format(err, line, sizeof(line)));
 	return stray_status_is_bad_input(err->code) ? CLI_USAGE : CLI_FAIL;

@@ -127,10 +127,17 @@ static void print_text(const struct fdr_setup *s, const struct excl_args *a,
 			       b[i].ex.theta_deg);
 			continue;
 		}
-		if (b[i].ex.has_interval && b[i].excluded)
-			printf("  [%.2f, %s%.2f] at %g sigma", b[i].ex.theta_lo_deg,
-			       b[i].ex.hi_reached ? "" : ">",
-			       b[i].ex.theta_hi_deg, a->k_sigma);
+		if (b[i].ex.has_interval && b[i].excluded &&
+		    isfinite(b[i].ex.theta_lo_deg)) {	/* never "nan deg" */
+			if (isfinite(b[i].ex.theta_hi_deg))
+				printf("  [%.2f, %s%.2f] at %g sigma",
+				       b[i].ex.theta_lo_deg,
+				       b[i].ex.hi_reached ? "" : ">",
+				       b[i].ex.theta_hi_deg, a->k_sigma);
+			else
+				printf("  [%.2f, beyond the curve] at %g sigma",
+				       b[i].ex.theta_lo_deg, a->k_sigma);
+		}
 		if (i == 2)
 			printf("  (from the limb)");
 		putchar('\n');
@@ -211,7 +218,8 @@ int cmd_exclusion(int argc, char **argv)
 	for (i = 0, rc = STRAY_OK; i < nb && rc == STRAY_OK; i++)
 		rc = solve_body(&s, &a, &v, &b[i], &err);
 	if (rc == STRAY_OK) {	/* §5.1: the Moon saturates in the field */
-		if (!(b[1].angle_deg > s.sensor.fov_half_deg))
+		if (b[1].excluded &&	/* never turn "not excluded" into an angle */
+		    !(b[1].angle_deg > s.sensor.fov_half_deg))
 			b[1].angle_deg = s.sensor.fov_half_deg;
 		if (a.plot)
 			rc = plot_exclusion(&s, &a, &c, b, nb, &err);

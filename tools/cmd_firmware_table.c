@@ -40,6 +40,23 @@ struct ft_args {
 	double rate, hysteresis_deg, albedo;
 };
 
+/* The table's symbol goes into C source: [A-Za-z_][A-Za-z0-9_]*. */
+static int c_identifier(const char *name)
+{
+	size_t i;
+
+	if (!name)
+		return 1;	/* the default */
+	for (i = 0; name[i]; i++) {
+		char ch = name[i];
+
+		if (!(ch == '_' || (ch >= 'a' && ch <= 'z') ||
+		      (ch >= 'A' && ch <= 'Z') || (i > 0 && ch >= '0' && ch <= '9')))
+			return 0;
+	}
+	return i > 0 && i < 64;
+}
+
 static int parse_args(int argc, char **argv, struct fdr_setup *s,
 		      struct ft_args *a)
 {
@@ -94,6 +111,10 @@ static int parse_args(int argc, char **argv, struct fdr_setup *s,
 				       argv[optind]);
 	if (!a->curve)
 		return cli_usage_error(cmd, "--curve is required");
+	if (!c_identifier(a->name))
+		return cli_usage_error(cmd, "option '--name': '%s' is not a C "
+				       "identifier ([A-Za-z_][A-Za-z0-9_]*, "
+				       "at most 63 characters)", a->name);
 	if (!a->out_c && !a->out_bin && !cli.json)
 		return cli_usage_error(cmd, "nothing to do: give --out-c, "
 				       "--out-bin or --json");
@@ -102,36 +123,38 @@ static int parse_args(int argc, char **argv, struct fdr_setup *s,
 	return CLI_OK;
 }
 
+/* Both outputs are written to temporaries first and renamed only when
+ * both are whole, so a failed run leaves neither. */
 static int write_outputs(const struct ft_args *a, const struct fdrfw_table *t,
 			 struct stray_error *err)
 {
 	static uint8_t blob[FDRFW_BLOB_SIZE];
-	struct stray_file_out out;
-	int rc;
+	struct stray_file_out oc, ob;
+	int rc = STRAY_OK;
 
-	if (a->out_c) {
-		if ((rc = stray_file_open_atomic(&out, a->out_c, err)) != 0)
-			return rc;
-		if (fdrfw_table_write_c(out.f, t, a->name) != 0) {
-			stray_file_abort(&out);
-			return stray_error_set(err, STRAY_EIO, "out-c",
-					       "could not write the C source");
-		}
-		if ((rc = stray_file_commit(&out, err)) != 0)
-			return rc;
-	}
-	if (a->out_bin) {
+	oc.f = ob.f = NULL;
+	oc.tmp[0] = ob.tmp[0] = '\0';
+	if (a->out_c &&
+	    (rc = stray_file_open_atomic(&oc, a->out_c, err)) == STRAY_OK &&
+	    fdrfw_table_write_c(oc.f, t, a->name) != 0)
+		rc = stray_error_set(err, STRAY_EIO, "out-c",
+				     "could not write the C source");
+	if (rc == STRAY_OK && a->out_bin) {
 		fdrfw_table_serialize(t, blob);
-		if ((rc = stray_file_open_atomic(&out, a->out_bin, err)) != 0)
-			return rc;
-		if (fwrite(blob, 1, sizeof(blob), out.f) != sizeof(blob)) {
-			stray_file_abort(&out);
-			return stray_error_set(err, STRAY_EIO, "out-bin",
-					       "could not write the blob");
-		}
-		return stray_file_commit(&out, err);
+		if ((rc = stray_file_open_atomic(&ob, a->out_bin, err)) ==
+		    STRAY_OK && fwrite(blob, 1, sizeof(blob), ob.f) != sizeof(blob))
+			rc = stray_error_set(err, STRAY_EIO, "out-bin",
+					     "could not write the blob");
 	}
-	return STRAY_OK;
+	if (rc == STRAY_OK && a->out_c)
+		rc = stray_file_commit(&oc, err);
+	if (rc == STRAY_OK && a->out_bin)
+		rc = stray_file_commit(&ob, err);
+	if (rc != STRAY_OK) {
+		stray_file_abort(&oc);
+		stray_file_abort(&ob);
+	}
+	return rc;
 }
 
 static int print_summary(const struct ft_args *a, const struct fdrfw_table *t)

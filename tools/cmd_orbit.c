@@ -276,6 +276,22 @@ static int summary(const struct orbit_args *a, const struct fdrfw_table *t,
 	return CLI_OK;
 }
 
+/* YYYY-MM-DD, a real calendar day in 1935..2065 (no 2026-02-30). */
+static int parse_epoch(const char *text, struct orbit_args *a)
+{
+	static const int mdays[12] = { 31, 28, 31, 30, 31, 30,
+				       31, 31, 30, 31, 30, 31 };
+	int n = 0, leap;
+
+	if (sscanf(text, "%4d-%2d-%2d%n", &a->year, &a->month, &a->day,
+		   &n) != 3 || text[n] != '\0' || a->year < 1935 ||
+	    a->year > 2065 || a->month < 1 || a->month > 12)
+		return 0;
+	leap = a->year % 4 == 0 && (a->year % 100 != 0 || a->year % 400 == 0);
+	return a->day >= 1 &&
+	       a->day <= mdays[a->month - 1] + (a->month == 2 && leap);
+}
+
 static int parse_args(int argc, char **argv, struct orbit_args *a)
 {
 	static const struct option opts[] = {
@@ -308,9 +324,7 @@ static int parse_args(int argc, char **argv, struct orbit_args *a)
 			a->normalisation = optarg;
 			break;
 		case 'e':
-			if (sscanf(optarg, "%d-%d-%d", &a->year, &a->month, &a->day) != 3 ||
-			    a->year < 1935 || a->year > 2065 || a->month < 1 ||
-			    a->month > 12 || a->day < 1 || a->day > 31)
+			if (!parse_epoch(optarg, a))
 				return cli_usage_error("orbit", "option '--epoch': '%s' is not a date YYYY-MM-DD in 1935..2065", optarg);
 			break;
 		case 'H': rc = cli_parse_double("orbit", "hours", optarg, &a->hours); break;

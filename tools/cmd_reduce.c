@@ -12,12 +12,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli.h"
 #include "commands.h"
 #include "reduce_report.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"
+#include "stray/file.h"
 #include "stray/reduce_sweep.h"
 
 static const char usage[] =
@@ -231,9 +233,23 @@ int cmd_reduce(int argc, char **argv)
 	if ((a.plot_dir || a.map) && !o.keep_image)
 		o.keep_image = 1;	/* J at 0 deg unless told otherwise */
 	stray_error_clear(&err);
+	{
+		struct stat st;
+
+		if (stat(a.dir, &st) == 0 && !S_ISDIR(st.st_mode)) {
+			stray_error_at(&err, STRAY_EINVAL, a.dir, 0, "SWEEP",
+				"is a file, not a sweep folder (a folder with "
+				"manifest.csv)");
+			return cli_fail("reduce", &err);
+		}
+	}
+	stray_file_defer();	/* every output renamed at the end, or none */
 	rc = stray_reduce_sweep(a.dir, &o, &r, &err);
 	if (rc == STRAY_OK)
 		rc = write_outputs(&a, &r, &err);
+	if (stray_file_finish(rc == STRAY_OK, &err) != STRAY_OK &&
+	    rc == STRAY_OK)
+		rc = STRAY_EIO;
 	if (rc != STRAY_OK) {
 		stray_reduce_sweep_result_free(&r);
 		return cli_fail("reduce", &err);

@@ -265,8 +265,15 @@ static int render_section(struct sink *s, const char *dir,
 			root = cJSON_Parse(text);
 			if (root) {
 				json_body(s, root);
-				shown = 1;
+			} else {	/* it ran; its output is broken */
+				fprintf(s->f, s->html
+					? "<p class=\"empty\">%s is malformed (not JSON): the stage ran but its result cannot be shown.</p>\n"
+					: "*%s is malformed (not JSON): the stage ran but its result cannot be shown.*\n",
+					sec->json);
+				fprintf(stderr, "stray report: %s: malformed JSON\n",
+					path);
 			}
+			shown = 1;
 			cJSON_Delete(root);
 			free(text);
 		}
@@ -323,6 +330,25 @@ static const char html_head[] =
 	"document.body.setAttribute('data-broken',b);});</script>\n"
 	"</head><body>\n<h1>%s</h1>\n";
 
+/* A new string with & < > " ' escaped for HTML text and attributes. */
+static char *html_escape_dup(const char *text)
+{
+	char *out = malloc(6 * strlen(text) + 1), *o = out;
+
+	for (; out && *text; text++)
+		switch (*text) {
+		case '&': o += sprintf(o, "&amp;"); break;
+		case '<': o += sprintf(o, "&lt;"); break;
+		case '>': o += sprintf(o, "&gt;"); break;
+		case '"': o += sprintf(o, "&quot;"); break;
+		case '\'': o += sprintf(o, "&#39;"); break;
+		default: *o++ = *text;
+		}
+	if (out)
+		*o = '\0';
+	return out;
+}
+
 static int write_report(const char *dir, const char *title, int html,
 			int *shown, struct stray_error *err)
 {
@@ -339,9 +365,16 @@ static int write_report(const char *dir, const char *title, int html,
 		return rc;
 	s.f = out.f;
 	s.html = html;
-	if (html)
-		fprintf(s.f, html_head, title, title);
-	else
+	if (html) {		/* the title is the user's text: escaped */
+		char *t = html_escape_dup(title);
+
+		if (!t) {
+			stray_file_abort(&out);
+			return stray_error_set(err, STRAY_ENOMEM, "title", 0);
+		}
+		fprintf(s.f, html_head, t, t);
+		free(t);
+	} else
 		fprintf(s.f, "# %s\n", title);
 	for (i = 0, *shown = 0; i < N_SECTIONS; i++)
 		*shown += render_section(&s, dir, &sections[i]);
@@ -373,6 +406,15 @@ int cmd_report(int argc, char **argv)
 	if (optind != argc - 1)
 		return cli_usage_error("report", "one folder expected");
 	stray_error_clear(&err);
+	{
+		struct stat st;
+
+		if (stat(argv[optind], &st) != 0 || !S_ISDIR(st.st_mode)) {
+			stray_error_at(&err, STRAY_ENOTFOUND, argv[optind], 0,
+				       "DIR", "is not a folder");
+			return cli_fail("report", &err);
+		}
+	}
 	if (write_report(argv[optind], title, 1, &shown, &err) != STRAY_OK ||
 	    write_report(argv[optind], title, 0, &shown, &err) != STRAY_OK)
 		return cli_fail("report", &err);

@@ -23,6 +23,7 @@
 #include "fdr_setup.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"
+#include "stray/file.h"
 #include "trace_run.h"
 #include "tracer/angles.h"
 #include "tracer/runner.h"
@@ -137,6 +138,19 @@ static int parse_args(int argc, char **argv, struct sweep_args *a,
 }
 
 /* The traced angles, with 0 first (alpha is normalised to P(0)). */
+/* A scene parameter from a --grid axis is refused by the scene loader as
+ * a --set; name the option the user gave. */
+static void blame_grid(const struct sweep_args *a, struct stray_error *err)
+{
+	int k;
+
+	if (!err || !err->field || strcmp(err->field, "--set") != 0)
+		return;
+	for (k = 0; k < a->grid.n_axes; k++)
+		if (strcmp(err->text, a->grid.axis[k].key) == 0)
+			err->field = "--grid";
+}
+
 static int make_angles(struct sweep_args *a, double **theta, size_t *n,
 		       struct stray_error *err)
 {
@@ -145,9 +159,12 @@ static int make_angles(struct sweep_args *a, double **theta, size_t *n,
 	int rc = tracer_angles_parse(a->angles ? a->angles : "0:30:5,30:90:1",
 				     theta, n, err);
 
-	if (!rc)
+	if (!rc) {
 		rc = tracer_angles_parse(a->at_list ? a->at_list : "20,30,40",
 					 &at, &n_at, err);
+		if (rc && err)		/* the parser speaks of --angles */
+			err->field = "--alpha-at";
+	}
 	if (!rc && n_at > SWEEP_AT_MAX)
 		rc = stray_error_set_value(err, STRAY_EINVAL, "--alpha-at",
 					   "at most 16 angles", (double)n_at);
@@ -223,6 +240,19 @@ static int trace_design(const struct sweep_args *a, const char *const *sets,
 	tracer_scene_free(&s);
 	if (rc)
 		return rc;
+	{	/* alpha = P(theta) / P(0): refuse 0/0 (a blocked beam) */
+		double p0, s0;
+
+		tracer_result_power(&r, 0, -1, &p0, &s0);
+		if (!(p0 > 0.0)) {
+			tracer_result_free(&r);
+			stray_error_at(err, STRAY_EINVAL, a->scene, 0, "beam",
+				"no on-axis power reaches the detector in this "
+				"design (is the beam blocked?): alpha would be 0/0");
+			stray_error_text(err, key);
+			return STRAY_EINVAL;
+		}
+	}
 	rc = stray_curve_alloc(c, n, 1, err);
 	for (j = 0; !rc && j < n; j++) {
 		c->theta_deg[j] = o.theta_deg[j + 1];
@@ -328,6 +358,7 @@ static int sweep(struct sweep_args *a, struct fdr_setup *fs,
 	a->o.n_theta = n;
 	for (i = 0; !rc && i < a->grid.n_designs; i++)
 		rc = run_design(a, i, &lens, alpha_req, &d[i], err);
+	blame_grid(a, err);
 	if (!rc) {
 		struct sweep_summary s = { d, a->grid.n_designs, a->at,
 			a->n_at, alpha_req, fs->sensor_spec ?
@@ -335,10 +366,13 @@ static int sweep(struct sweep_args *a, struct fdr_setup *fs,
 			stray_normalisation_name(fs->normalisation),
 			fdr_setup_k_px(fs) };
 
+		stray_file_defer();	/* the table and its plot, or neither */
 		if (a->out)
 			rc = design_write_csv(&s, a->out, err);
 		if (!rc && a->plot)
 			rc = design_plot(&s, a->plot, err);
+		if (stray_file_finish(!rc, err) != STRAY_OK && !rc)
+			rc = STRAY_EIO;
 		if (!rc && cli.json)
 			rc = design_print_json(&s) ? STRAY_EIO : STRAY_OK;
 		else if (!rc)

@@ -16,6 +16,7 @@
 #include "plot.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"
+#include "stray/file.h"
 #include "tracer/angles.h"
 #include "tracer/dump_io.h"
 #include "tracer/integrator.h"
@@ -378,6 +379,22 @@ static int load_scene(const struct trace_args *a, struct tracer_scene *s,
 	return rc;
 }
 
+/* alpha = P_det(theta) / P_det(0) (§3.4): with nothing on the detector
+ * on axis (a plate blocking the beam, a lens curve of zeros) every alpha
+ * would be 0/0, printed as 0 +- 0.  Refuse the scene instead. */
+static int check_on_axis(const struct trace_args *a,
+			 const struct tracer_result *r, struct stray_error *err)
+{
+	double p0, s0;
+
+	tracer_result_power(r, 0, -1, &p0, &s0);
+	if (p0 > 0.0)
+		return STRAY_OK;
+	return stray_error_at(err, STRAY_EINVAL, a->scene, 0, "beam",
+		"no on-axis power reaches the detector (is the beam blocked?): "
+		"alpha = P(theta) / P(0) would be 0/0");
+}
+
 static int run_trace(struct trace_args *a, struct tracer_scene *s,
 		     struct stray_error *err)
 {
@@ -428,7 +445,8 @@ static int run_trace(struct trace_args *a, struct tracer_scene *s,
 	}
 	if (rc)
 		goto out_free;
-	if (a->out)
+	rc = check_on_axis(a, &r, err);
+	if (!rc && a->out)
 		rc = write_curve(a, &r, first, err);
 	if (!rc && (a->plot || a->plot_orders))
 		rc = plot_curve(a, &r, first, err);
@@ -469,11 +487,14 @@ int cmd_trace(int argc, char **argv, const struct tracer_runner *runner)
 		return rc < 0 ? CLI_OK : rc;
 	stray_error_clear(&err);
 	tracer_scene_init(&s);
+	stray_file_defer();	/* every output renamed at the end, or none */
 	rc = load_scene(&a, &s, &err);
 	if (!rc && (a.out || cli.json || a.paths_out || a.top || a.plot ||
 		    a.plot_orders || a.dump || a.map ||
 		    focal_map_wanted(&a.fm)))
 		rc = run_trace(&a, &s, &err);
 	tracer_scene_free(&s);
+	if (stray_file_finish(rc == STRAY_OK, &err) != STRAY_OK && !rc)
+		rc = STRAY_EIO;
 	return rc ? cli_fail("trace", &err) : CLI_OK;
 }

@@ -20,6 +20,7 @@ int design_grid_add(struct design_grid *g, const char *text,
 	const char *eq = strchr(text, '='), *p;
 	struct grid_axis *a;
 	size_t klen;
+	int i;
 
 	if (g->n_axes >= GRID_AXES_MAX)
 		return bad(err, text, "at most 8 axes");
@@ -31,6 +32,9 @@ int design_grid_add(struct design_grid *g, const char *text,
 	a = &g->axis[g->n_axes];
 	memset(a, 0, sizeof(*a));
 	memcpy(a->key, text, klen);
+	for (i = 0; i < g->n_axes; i++)		/* would repeat every design */
+		if (strcmp(g->axis[i].key, a->key) == 0)
+			return bad(err, text, "key given twice (one --grid per key)");
 	for (p = eq + 1; ; ) {
 		const char *c = strchr(p, ',');
 		size_t len = c ? (size_t)(c - p) : strlen(p);
@@ -39,7 +43,11 @@ int design_grid_add(struct design_grid *g, const char *text,
 			return bad(err, text, "empty or too long value");
 		if (a->n >= GRID_VALUES_MAX)
 			return bad(err, text, "at most 32 values per axis");
-		memcpy(a->value[a->n++], p, len);
+		memcpy(a->value[a->n], p, len);
+		for (i = 0; i < a->n; i++)
+			if (strcmp(a->value[i], a->value[a->n]) == 0)
+				return bad(err, text, "value given twice");
+		a->n++;
 		if (!c)
 			break;
 		p = c + 1;

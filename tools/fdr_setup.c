@@ -74,7 +74,7 @@ static int load_map(const char *path, struct stray_region_map *map,
 		    struct stray_error *err)
 {
 	struct stray_table t;
-	int cf, ca, rc = stray_table_read(path, &t, err);
+	int cf, ca, rc = stray_table_read(path, &t, err), lit = 0;
 	size_t i;
 
 	if (rc != STRAY_OK)
@@ -91,7 +91,12 @@ static int load_map(const char *path, struct stray_region_map *map,
 	for (i = 0; rc == STRAY_OK && i < t.n_rows; i++) {
 		map->fraction[i] = t.cell[i * t.n_cols + (size_t)cf];
 		map->rel_alpha[i] = t.cell[i * t.n_cols + (size_t)ca];
+		lit |= map->rel_alpha[i] > 0.0 && map->fraction[i] > 0.0;
 	}
+	if (rc == STRAY_OK && !lit)	/* the mean of rel_alpha is 1 */
+		rc = stray_error_at(err, STRAY_EPARSE, path, 0, "rel_alpha",
+			"every region is dark (all rel_alpha 0): a map "
+			"normalised to mean 1 has some light");
 	map->n = (unsigned)t.n_rows;
 	stray_table_free(&t);
 	return rc;

@@ -5,10 +5,12 @@
 #include <plplot.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "plot.h"
 #include "stray/errfmt.h"
+#include "stray/file.h"
 
 #define PLOT_W_PX 1100
 #define PLOT_H_PX 720
@@ -176,15 +178,17 @@ static void draw_frame(const struct plot_spec *p, double x0, double x1,
 	pllab(p->xlabel, p->ylabel, p->title);
 }
 
-/* Can the PNG be created?  PLplot itself would only print and carry on. */
-static int check_writable(const char *path, struct stray_error *err)
+/*
+ * The PNG goes through the one atomic path (stray/file.h): the temporary
+ * is created here (PLplot itself would only print and carry on when it
+ * cannot), PLplot writes into it by name, and the commit renames it.
+ */
+static int open_png(const char *path, struct stray_file_out *out,
+		    struct stray_error *err)
 {
-	FILE *f = fopen(path, "wb");
-
-	if (!f)
+	if (stray_file_open_atomic(out, path, err) != STRAY_OK)
 		return stray_error_at(err, STRAY_EIO, path, 0, "plot",
 				      "cannot create file");
-	fclose(f);
 	return STRAY_OK;
 }
 
@@ -194,7 +198,8 @@ int plot_render(const struct plot_spec *p, struct stray_error *err)
 	double x0, x1, y0, y1;
 	PLFLT *bx, *by, *bz;
 	char geom[32];
-	int rc = check_writable(p->path, err);
+	struct stray_file_out out;
+	int rc = open_png(p->path, &out, err);
 
 	if (rc != STRAY_OK)
 		return rc;
@@ -211,7 +216,7 @@ int plot_render(const struct plot_spec *p, struct stray_error *err)
 	axis_limits(p, 1, &y0, &y1);
 	snprintf(geom, sizeof(geom), "%dx%d", PLOT_W_PX, PLOT_H_PX);
 	plsdev("pngcairo");
-	plsfnam(p->path);
+	plsfnam(out.tmp[0] ? out.tmp : p->path);	/* else a device */
 	plsetopt("geometry", geom);
 	plscmap0(pal_r, pal_g, pal_b, (PLINT)(sizeof(pal_r) / sizeof(pal_r[0])));
 	plinit();
@@ -224,10 +229,18 @@ int plot_render(const struct plot_spec *p, struct stray_error *err)
 	}
 	draw_legend(p);
 	plend();
-	if (access(p->path, R_OK) != 0)
-		rc = stray_error_at(err, STRAY_EIO, p->path, 0, "plot",
-				    "PLplot wrote no file");
+	{
+		struct stat st;
+
+		if (out.tmp[0] && (stat(out.tmp, &st) != 0 || st.st_size == 0))
+			rc = stray_error_at(err, STRAY_EIO, p->path, 0, "plot",
+					    "PLplot wrote no file");
+	}
+	if (rc == STRAY_OK)
+		rc = stray_file_commit(&out, err);
 out_free:
+	if (rc != STRAY_OK)
+		stray_file_abort(&out);
 	free(bx);
 	free(by);
 	free(bz);

@@ -9,6 +9,7 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "stray/file.h"
 #include "tracer/runner.h"
 
 #define STRAY_VERSION "0.1.0"
@@ -75,6 +76,33 @@ static const struct cmd *find_command(const char *name)
 	return NULL;
 }
 
+/*
+ * Commands whose outputs are all written at the end: their files are
+ * renamed into place only when the command succeeds (stray/file.h), so a
+ * failed run leaves none of them.  trace and reduce do this themselves;
+ * sweep and frames read their own outputs back and are not deferred.
+ */
+static int run_all_or_nothing(const struct cmd *c, int argc, char **argv)
+{
+	static const char *const deferred[] = { "photometry", "fdr",
+		"exclusion", "photometer", "firmware-table", "orbit",
+		"diagnose", "report" };
+	struct stray_error err;
+	size_t i;
+	int rc, defer = 0;
+
+	for (i = 0; i < sizeof(deferred) / sizeof(deferred[0]); i++)
+		defer |= strcmp(c->name, deferred[i]) == 0;
+	if (defer)
+		stray_file_defer();
+	rc = c->run(argc, argv);
+	stray_error_clear(&err);
+	if (defer && stray_file_finish(rc == CLI_OK, &err) != STRAY_OK &&
+	    rc == CLI_OK)
+		rc = cli_fail(c->name, &err);
+	return rc;
+}
+
 /* Flush stdout and report a failed write (a full disk must not be silent). */
 static int finish(int rc)
 {
@@ -128,5 +156,5 @@ int main(int argc, char **argv)
 	argc -= optind;
 	argv += optind;
 	optind = 0;		/* glibc: full re-initialisation for the command */
-	return finish(c->run(argc, argv));
+	return finish(run_all_or_nothing(c, argc, argv));
 }

@@ -6,6 +6,7 @@
  */
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include <assimp/cimport.h>
 #include <assimp/material.h>
@@ -13,8 +14,11 @@
 #include <assimp/scene.h>
 
 #include "stray/errfmt.h"
+#include "stray/file.h"
 #include "tracer/mesh_import.h"
 #include "tracer/mesh_locate.h"
+
+#define TRACER_MESH_TRI_MAX 5000000u	/* input limit, docs/limits.md */
 
 /* The surface group of one assimp mesh: forced, OBJ group, material. */
 static const char *group_of(const struct aiScene *sc,
@@ -40,6 +44,10 @@ static int add_mesh(struct tracer_mesh *m, const struct aiMesh *am,
 	unsigned i;
 	int rc = STRAY_OK;
 
+	if (m->n_tri + am->mNumFaces > TRACER_MESH_TRI_MAX)	/* docs/limits.md */
+		return stray_error_set_value(err, STRAY_EINVAL, "mesh",
+			"more than 5000000 triangles in the scene",
+			(double)(m->n_tri + am->mNumFaces));
 	for (i = 0; i < am->mNumVertices && !rc; i++)
 		rc = tracer_mesh_add_vertex(m, scale * am->mVertices[i].x,
 					    scale * am->mVertices[i].y,
@@ -66,6 +74,16 @@ int tracer_mesh_import(struct tracer_mesh *m, const char *path,
 	unsigned i;
 	int rc = STRAY_OK;
 
+	{	/* the one input limit for files: no 20 GB mesh into assimp */
+		struct stat st;
+
+		if (stat(path, &st) == 0 && (!S_ISREG(st.st_mode) ||
+					     st.st_size > STRAY_FILE_READ_MAX))
+			return stray_error_at(err, STRAY_EINVAL, path, 0, "mesh",
+				S_ISREG(st.st_mode) ? "larger than the 256 MiB "
+				"input limit (docs/limits.md)"
+				: "is not a regular file");
+	}
 	sc = aiImportFile(path, aiProcess_Triangulate |
 				aiProcess_JoinIdenticalVertices |
 				aiProcess_FindInvalidData);

@@ -6,6 +6,7 @@
  * 1989): binary STL is an 80-byte header, a uint32 facet count and 50
  * bytes per facet.
  */
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -25,15 +26,18 @@ static int count_numbers(const char *s)
 
 	for (;;) {
 		char *end;
+		double v;
 
 		while (*s == ' ' || *s == '\t' || *s == '\r')
 			s++;
 		if (*s == '\0' || *s == '#')
 			return n;
-		strtod(s, &end);
+		v = strtod(s, &end);
 		if (end == s || (*end && *end != ' ' && *end != '\t' &&
 				 *end != '\r'))
 			return -1;
+		if (!isfinite(v))
+			return -2;	/* assimp drops the mesh silently */
 		s = end;
 		n++;
 	}
@@ -63,8 +67,9 @@ static int face_ok(const char *s, long n_v)
 	}
 }
 
-/* The first suspicious line of an OBJ or ASCII STL text, or 0. */
-static long bad_text_line(char *text)
+/* The first suspicious line of an OBJ or ASCII STL text, or 0; *why is
+ * set when the line has a non-finite coordinate. */
+static long bad_text_line(char *text, const char **why)
 {
 	long line = 0, n_v = 0;
 	char *s = text;
@@ -78,7 +83,11 @@ static long bad_text_line(char *text)
 		while (*t == ' ' || *t == '\t')
 			t++;
 		if (!strncmp(t, "v ", 2)) {
-			if (count_numbers(t + 2) < 3)
+			int k = count_numbers(t + 2);
+
+			if (k == -2)
+				*why = "a vertex coordinate is not a finite number";
+			if (k < 3)
 				return line;
 			n_v++;
 		} else if (!strncmp(t, "vn ", 3) || !strncmp(t, "vt ", 3)) {
@@ -133,7 +142,13 @@ void tracer_mesh_locate(const char *path, struct stray_error *err)
 		err->text[0] = '\0';
 		stray_error_text(err, msg);
 	} else if (!memchr(text, '\0', len)) {
-		stray_error_locate(err, NULL, bad_text_line(text));
+		const char *why = NULL;
+
+		stray_error_locate(err, NULL, bad_text_line(text, &why));
+		if (why) {	/* say so, not assimp's "No meshes remaining" */
+			err->reason = why;
+			err->text[0] = '\0';
+		}
 	}
 	free(text);
 }

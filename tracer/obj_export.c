@@ -4,6 +4,7 @@
 #include <stdio.h>
 
 #include "stray/errfmt.h"
+#include "stray/file.h"
 #include "tracer/obj_export.h"
 
 static void write_group(FILE *f, const struct tracer_mesh *m, size_t g)
@@ -24,13 +25,14 @@ static void write_group(FILE *f, const struct tracer_mesh *m, size_t g)
 int tracer_obj_export(const struct tracer_mesh *m, const char *path,
 		      struct stray_error *err)
 {
-	FILE *f = fopen(path, "w");
+	struct stray_file_out out;
+	FILE *f;
 	size_t i;
-	int bad;
 
-	if (!f)
-		return stray_error_at(err, STRAY_EIO, path, 0, "--export-obj",
-				      "cannot open for writing");
+	if (stray_file_open_atomic(&out, path, err) != STRAY_OK)
+		return stray_error_set(err, STRAY_EIO, "--export-obj",
+				       "cannot open for writing");
+	f = out.f;
 	fprintf(f, "# straylight tracer mesh; units mm; %zu triangles\n",
 		m->n_tri);
 	for (i = 0; i < m->n_vert; i++)
@@ -38,9 +40,5 @@ int tracer_obj_export(const struct tracer_mesh *m, const char *path,
 			m->vert[3 * i + 1], m->vert[3 * i + 2]);
 	for (i = 0; i < m->n_group; i++)
 		write_group(f, m, i);
-	bad = ferror(f);
-	if (fclose(f) != 0 || bad)
-		return stray_error_at(err, STRAY_EIO, path, 0, "--export-obj",
-				      "write failed");
-	return STRAY_OK;
+	return stray_file_commit(&out, err);
 }

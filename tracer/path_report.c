@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "stray/errfmt.h"
+#include "stray/file.h"
 #include "tracer/path_report.h"
 
 char *tracer_path_name(const struct tracer_scene *s, uint64_t seq,
@@ -80,19 +81,19 @@ int tracer_paths_write_csv(const struct tracer_result *r,
 	struct tracer_path_item *it;
 	size_t n, i;
 	char name[512];
+	struct stray_file_out out;
 	FILE *f;
-	int bad;
 
 	it = sorted_items(r, s, &n);
 	if (!it)
 		return stray_error_set(err, STRAY_ENOMEM, "paths",
 				       "out of memory");
-	f = fopen(path, "w");
-	if (!f) {
+	if (stray_file_open_atomic(&out, path, err) != STRAY_OK) {
 		free(it);
-		return stray_error_at(err, STRAY_EIO, path, 0, "--paths-out",
-				      "cannot open for writing");
+		return stray_error_set(err, STRAY_EIO, "--paths-out",
+				       "cannot open for writing");
 	}
+	f = out.f;
 	fprintf(f, "# alpha_part: share of alpha(theta) carried by the path "
 		"(source side first)\n# alpha_per_rho: alpha_part / product of "
 		"the path's reflectances (re-weight with new ones)\n"
@@ -104,11 +105,7 @@ int tracer_paths_write_csv(const struct tracer_result *r,
 			it[i].n_scatter, it[i].alpha, it[i].sigma,
 			it[i].geom);
 	free(it);
-	bad = ferror(f);
-	if (fclose(f) != 0 || bad)
-		return stray_error_at(err, STRAY_EIO, path, 0, "--paths-out",
-				      "write failed");
-	return STRAY_OK;
+	return stray_file_commit(&out, err);
 }
 
 void tracer_paths_print_top(const struct tracer_result *r,

@@ -28,6 +28,7 @@
 #include <cJSON.h>
 
 #include "stray/errfmt.h"
+#include "stray/file.h"
 #include "tracer/mesh_import.h"
 #include "tracer/scene_file.h"
 
@@ -42,24 +43,24 @@ static int fail(const struct ctx *c, int code, const char *field,
 	return stray_error_at(c->err, code, c->path, 0, field, reason);
 }
 
+/* Through the hosted reader: its size limit, a directory refused, and
+ * a missing file is bad input (exit 2), not a failure. */
 static char *read_text(const struct ctx *c, int *rc)
 {
-	FILE *f = fopen(c->path, "rb");
-	char *buf = NULL;
-	long n;
+	struct stray_error io;
+	char *buf;
+	size_t len;
 
-	*rc = STRAY_OK;
-	if (!f || fseek(f, 0, SEEK_END) || (n = ftell(f)) < 0 ||
-	    fseek(f, 0, SEEK_SET) || !(buf = malloc((size_t)n + 1)) ||
-	    fread(buf, 1, (size_t)n, f) != (size_t)n) {
-		*rc = fail(c, STRAY_EIO, "--scene", "cannot read scene file");
-		free(buf);
-		buf = NULL;
-	} else {
-		buf[n] = '\0';
+	stray_error_clear(&io);
+	*rc = stray_file_read(c->path, &buf, &len, &io);
+	if (*rc == STRAY_ENOTFOUND)
+		return (*rc = fail(c, STRAY_ENOTFOUND, "--scene",
+			"is neither a built-in scene (ref4) nor a file")), NULL;
+	if (*rc != STRAY_OK) {
+		if (c->err && c->err->code == STRAY_OK)
+			*c->err = io;
+		return NULL;
 	}
-	if (f)
-		fclose(f);
 	return buf;
 }
 

@@ -4,6 +4,7 @@
  * metadata and extra columns kept.
  */
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,16 +20,38 @@ static int nomem(struct stray_error *err)
 	return stray_error_set(err, STRAY_ENOMEM, 0, 0);
 }
 
-/* Row-wise checks with line numbers (curve.h's check has none). */
+static int bad_value(struct stray_error *err, const char *name, long line,
+		     const char *field, const char *reason, double v)
+{
+	char text[32];
+
+	stray_error_at(err, STRAY_EPARSE, name, line, field, reason);
+	snprintf(text, sizeof(text), "%.6g", v);
+	stray_error_text(err, text);
+	return STRAY_EPARSE;
+}
+
+/*
+ * Row-wise checks with line numbers (curve.h's check has none), and the
+ * physics of a curve (docs/limits.md): theta_deg in [0, 180], alpha >= 0,
+ * alpha(0) = 1 where 0 is given (alpha is normalised by the on-axis beam,
+ * docs/normalisation.md), and some alpha > 0 (an all-zero curve would seal
+ * a flight table that never flags the Sun).
+ */
 static int check_rows(const char *name, const struct stray_table *t,
 		      int c_theta, int c_alpha, int c_sigma,
 		      struct stray_error *err)
 {
 	size_t i;
+	int any_light = 0;
 
 	for (i = 0; i < t->n_rows; i++) {
 		const double *row = t->cell + i * t->n_cols;
 
+		if (!(row[c_theta] >= 0.0 && row[c_theta] <= 180.0))
+			return bad_value(err, name, t->line[i], "theta_deg",
+					 "must be in [0, 180] degrees",
+					 row[c_theta]);
 		if (i > 0 && !(row[c_theta] > t->cell[(i - 1) * t->n_cols +
 						      (size_t)c_theta]))
 			return stray_error_at(err, STRAY_EPARSE, name,
@@ -40,7 +63,24 @@ static int check_rows(const char *name, const struct stray_table *t,
 		if (c_sigma >= 0 && row[c_sigma] < 0.0)
 			return stray_error_at(err, STRAY_EPARSE, name,
 				t->line[i], "sigma", "must be >= 0");
+		if (row[c_theta] == 0.0) {
+			/* 5 % or 3 sigma: a drift-corrected reduction is
+			 * only near 1; a mis-normalised curve is far off */
+			double tol = c_sigma >= 0 ? 3.0 * row[c_sigma] : 0.0;
+
+			if (tol < 0.05)
+				tol = 0.05;
+			if (fabs(row[c_alpha] - 1.0) > tol)
+				return bad_value(err, name, t->line[i], "alpha",
+					"must be 1 at theta_deg 0 (normalised "
+					"by the on-axis beam)", row[c_alpha]);
+		}
+		any_light |= row[c_alpha] > 0.0;
 	}
+	if (!any_light)
+		return stray_error_at(err, STRAY_EPARSE, name, 0, "alpha",
+				      "every value is 0 (an all-zero curve is "
+				      "not a measurement)");
 	return STRAY_OK;
 }
 

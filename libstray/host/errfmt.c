@@ -6,14 +6,36 @@
 
 #include "stray/errfmt.h"
 
+/*
+ * Copy src into dst, escaping what a terminal must not be sent raw:
+ * control bytes always, and bytes >= 0x80 too when high is set (the
+ * offending text may be binary garbage; file names may be UTF-8).
+ */
+static void copy_escaped(char *dst, size_t size, const char *src, int high)
+{
+	static const char hex[] = "0123456789abcdef";
+	size_t o = 0;
+
+	for (; *src && o + 1 < size; src++) {
+		unsigned char ch = (unsigned char)*src;
+
+		if (ch >= 0x20 && ch != 0x7f && (ch < 0x80 || !high)) {
+			dst[o++] = (char)ch;
+			continue;
+		}
+		if (o + 5 > size)
+			break;
+		dst[o++] = '\\';
+		dst[o++] = 'x';
+		dst[o++] = hex[ch >> 4];
+		dst[o++] = hex[ch & 15];
+	}
+	dst[o] = '\0';
+}
+
 static void copy_text(char *dst, size_t size, const char *src)
 {
-	size_t n = strlen(src);
-
-	if (n >= size)
-		n = size - 1;
-	memcpy(dst, src, n);
-	dst[n] = '\0';
+	copy_escaped(dst, size, src, 0);
 }
 
 void stray_error_locate(struct stray_error *err, const char *file, long line)
@@ -29,7 +51,7 @@ void stray_error_locate(struct stray_error *err, const char *file, long line)
 void stray_error_text(struct stray_error *err, const char *text)
 {
 	if (err && text && err->text[0] == '\0')
-		copy_text(err->text, sizeof(err->text), text);
+		copy_escaped(err->text, sizeof(err->text), text, 1);
 }
 
 void stray_error_column(struct stray_error *err, const char *name)

@@ -5,6 +5,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "stray/errfmt.h"
@@ -14,19 +16,38 @@ int stray_file_read(const char *path, char **buf, size_t *len,
 		    struct stray_error *err)
 {
 	FILE *f = fopen(path, "rb");
+	struct stat st;
 	size_t cap = 65536, n = 0;
 	char *b;
 
 	*buf = NULL;
 	*len = 0;
 	if (!f)		/* a missing input is the caller's mistake: bad input */
-		return stray_error_at(err, errno == ENOENT ? STRAY_ENOTFOUND
-							   : STRAY_EIO,
-				      path, 0, 0, strerror(errno));
+		return stray_error_at(err, errno == ENOENT || errno == ENOTDIR ? STRAY_ENOTFOUND
+				      : errno == EISDIR ? STRAY_EINVAL : STRAY_EIO,
+				      path, 0, 0, errno == EISDIR
+				      ? "is a directory, not a file"
+				      : strerror(errno));
+	/* a pipe (/dev/stdin, <(cmd)) is read up to the limit; a directory
+	 * or a device never */
+	if (fstat(fileno(f), &st) == 0 && !S_ISREG(st.st_mode) &&
+	    !S_ISFIFO(st.st_mode)) {
+		fclose(f);
+		return stray_error_at(err, STRAY_EINVAL, path, 0, 0,
+				      S_ISDIR(st.st_mode)
+				      ? "is a directory, not a file"
+				      : "is not a regular file");
+	}
+	if (fstat(fileno(f), &st) == 0 && st.st_size > STRAY_FILE_READ_MAX) {
+		fclose(f);
+		return stray_error_at(err, STRAY_EINVAL, path, 0, 0,
+				      "larger than the 256 MiB input limit "
+				      "(docs/limits.md)");
+	}
 	b = malloc(cap);
 	while (b) {
 		n += fread(b + n, 1, cap - n - 1, f);
-		if (n < cap - 1)
+		if (n < cap - 1 || n > (size_t)STRAY_FILE_READ_MAX)
 			break;
 		cap *= 2;
 		{
@@ -41,6 +62,13 @@ int stray_file_read(const char *path, char **buf, size_t *len,
 		fclose(f);
 		return stray_error_at(err, STRAY_ENOMEM, path, 0, 0, 0);
 	}
+	if (n > (size_t)STRAY_FILE_READ_MAX) {	/* grew while being read */
+		free(b);
+		fclose(f);
+		return stray_error_at(err, STRAY_EINVAL, path, 0, 0,
+				      "larger than the 256 MiB input limit "
+				      "(docs/limits.md)");
+	}
 	if (ferror(f)) {
 		free(b);
 		fclose(f);
@@ -53,39 +81,212 @@ int stray_file_read(const char *path, char **buf, size_t *len,
 	return STRAY_OK;
 }
 
+/*
+ * Pending temporaries: a fixed registry of the paths being written, so a
+ * SIGINT/SIGTERM (or an exit that skipped stray_file_abort) removes them.
+ * The handler only calls unlink, signal and raise (async-signal-safe).
+ */
+#define PENDING_MAX 16
+
+static char pending[PENDING_MAX][sizeof(((struct stray_file_out *)0)->tmp)];
+static volatile sig_atomic_t pending_used[PENDING_MAX];
+static int handlers_set;
+
+/* Deferred mode: closed temporaries wait here for stray_file_finish. */
+static char ready_path[PENDING_MAX][sizeof(pending[0])];	/* copies */
+static int ready[PENDING_MAX];
+static int deferring;
+
+static pid_t pending_owner;	/* a forked child never removes them */
+
+static void pending_unlink_all(void)
+{
+	int i;
+
+	if (getpid() != pending_owner)
+		return;
+	for (i = 0; i < PENDING_MAX; i++)
+		if (pending_used[i]) {
+			unlink(pending[i]);
+			pending_used[i] = 0;
+		}
+}
+
+static void on_signal(int sig)
+{
+	pending_unlink_all();
+	signal(sig, SIG_DFL);
+	raise(sig);
+}
+
+static void install_handlers(void)
+{
+	static const int sigs[] = { SIGINT, SIGTERM, SIGHUP };
+	size_t i;
+
+	if (handlers_set)
+		return;
+	handlers_set = 1;
+	atexit(pending_unlink_all);
+	for (i = 0; i < sizeof(sigs) / sizeof(sigs[0]); i++) {
+		struct sigaction old, sa;
+
+		/* leave a program's own handlers (and ignored signals) alone */
+		if (sigaction(sigs[i], NULL, &old) != 0 ||
+		    old.sa_handler != SIG_DFL)
+			continue;
+		memset(&sa, 0, sizeof(sa));
+		sa.sa_handler = on_signal;
+		sigemptyset(&sa.sa_mask);
+		sigaction(sigs[i], &sa, NULL);
+	}
+}
+
+static int pending_add(const char *tmp)
+{
+	int i;
+
+	install_handlers();
+	pending_owner = getpid();
+	for (i = 0; i < PENDING_MAX; i++)
+		if (!pending_used[i]) {
+			memcpy(pending[i], tmp, strlen(tmp) + 1);
+			pending_used[i] = 1;
+			return 0;
+		}
+	return -1;
+}
+
+static int pending_find(const char *tmp)
+{
+	int i;
+
+	for (i = 0; i < PENDING_MAX; i++)
+		if (pending_used[i] && strcmp(pending[i], tmp) == 0)
+			return i;
+	return -1;
+}
+
+static void pending_drop(const char *tmp)
+{
+	int i = pending_find(tmp);
+
+	if (i >= 0) {
+		ready[i] = 0;
+		pending_used[i] = 0;
+	}
+}
+
+void stray_file_defer(void)
+{
+	deferring = 1;
+}
+
+int stray_file_finish(int ok, struct stray_error *err)
+{
+	int i, rc = STRAY_OK;
+
+	deferring = 0;
+	for (i = 0; i < PENDING_MAX; i++) {
+		if (!pending_used[i] || !ready[i])
+			continue;
+		if (ok && rc == STRAY_OK && rename(pending[i], ready_path[i]) != 0)
+			rc = stray_error_at(err, STRAY_EIO, ready_path[i], 0, 0,
+					    strerror(errno));
+		else if (!ok || rc != STRAY_OK)
+			unlink(pending[i]);
+		ready[i] = 0;
+		pending_used[i] = 0;
+	}
+	return rc;
+}
+
 int stray_file_open_atomic(struct stray_file_out *out, const char *path,
 			   struct stray_error *err)
 {
-	int n = snprintf(out->tmp, sizeof(out->tmp), "%s.tmp.%ld", path,
-			 (long)getpid());
+	struct stat st;
+	int n;
 
 	out->path = path;
 	out->f = NULL;
-	if (n < 0 || (size_t)n >= sizeof(out->tmp))
+	out->tmp[0] = '\0';
+	if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
+		/* /dev/stdout, a pipe: written in place, never renamed over
+		 * (as root that would replace the device node) */
+		if (S_ISDIR(st.st_mode))
+			return stray_error_at(err, STRAY_EINVAL, path, 0, 0,
+					      "is a directory, not a file");
+		out->f = fopen(path, "wb");
+		if (!out->f)
+			return stray_error_at(err, STRAY_EIO, path, 0, 0,
+					      strerror(errno));
+		return STRAY_OK;
+	}
+	n = snprintf(out->tmp, sizeof(out->tmp), "%s.tmp.%ld", path,
+		     (long)getpid());
+	if (n < 0 || (size_t)n >= sizeof(out->tmp)) {
+		out->tmp[0] = '\0';
 		return stray_error_at(err, STRAY_EINVAL, path, 0, "path",
 				      "too long");
+	}
+	if (pending_add(out->tmp) != 0)
+		return stray_error_at(err, STRAY_EIO, path, 0, 0,
+				      "too many files open for writing");
 	out->f = fopen(out->tmp, "wb");
-	if (!out->f)
-		return stray_error_at(err, STRAY_EIO, path, 0, 0, strerror(errno));
+	if (!out->f) {
+		int saved = errno;
+
+		pending_drop(out->tmp);
+		return stray_error_at(err, STRAY_EIO, path, 0, 0,
+				      strerror(saved));
+	}
 	return STRAY_OK;
 }
 
 int stray_file_commit(struct stray_file_out *out, struct stray_error *err)
 {
-	int bad = ferror(out->f) || fflush(out->f) != 0 ||
-		  fsync(fileno(out->f)) != 0;
-	int saved = errno;
+	int bad, saved;
+
+	if (!out->tmp[0]) {	/* a device or pipe, written in place */
+		bad = ferror(out->f) || fflush(out->f) != 0;
+		saved = errno;
+		if (fclose(out->f) != 0 && !bad) {
+			bad = 1;
+			saved = errno;
+		}
+		out->f = NULL;
+		return bad ? stray_error_at(err, STRAY_EIO, out->path, 0, 0,
+				saved ? strerror(saved) : "write error")
+			   : STRAY_OK;
+	}
+	bad = ferror(out->f) || fflush(out->f) != 0 ||
+	      fsync(fileno(out->f)) != 0;
+	saved = errno;
 
 	if (fclose(out->f) != 0 && !bad) {
 		bad = 1;
 		saved = errno;
 	}
 	out->f = NULL;
-	if (!bad && rename(out->tmp, out->path) == 0)
+	if (!bad && deferring) {	/* renamed by stray_file_finish */
+		int i = pending_find(out->tmp);
+
+		size_t n = strlen(out->path);
+
+		if (i >= 0 && n < sizeof(ready_path[i])) {
+			memcpy(ready_path[i], out->path, n + 1);
+			ready[i] = 1;
+			return STRAY_OK;
+		}
+	}
+	if (!bad && rename(out->tmp, out->path) == 0) {
+		pending_drop(out->tmp);
 		return STRAY_OK;
+	}
 	if (!bad)
 		saved = errno;
 	remove(out->tmp);
+	pending_drop(out->tmp);
 	return stray_error_at(err, STRAY_EIO, out->path, 0, 0,
 			      saved ? strerror(saved) : "write error");
 }
@@ -95,5 +296,8 @@ void stray_file_abort(struct stray_file_out *out)
 	if (out->f)
 		fclose(out->f);
 	out->f = NULL;
-	remove(out->tmp);
+	if (out->tmp[0]) {
+		remove(out->tmp);
+		pending_drop(out->tmp);
+	}
 }

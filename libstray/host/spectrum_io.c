@@ -54,10 +54,12 @@ static int check_rows(const char *name, const struct stray_table *t,
 		      struct stray_error *err)
 {
 	size_t i;
+	int is_qe;
 
 	if (t->n_cols != 2 || strcmp(t->col[0], "wavelength_nm") != 0)
 		return stray_error_at(err, STRAY_EPARSE, name, 0, "header",
 			"a spectrum needs the columns wavelength_nm,<quantity>");
+	is_qe = strcmp(t->col[1], "qe") == 0;	/* a fraction: <= 1 */
 	if (t->n_rows < 2)
 		return stray_error_at(err, STRAY_EPARSE, name, 0,
 			"wavelength_nm", "a spectrum needs at least 2 rows");
@@ -69,10 +71,15 @@ static int check_rows(const char *name, const struct stray_table *t,
 			return stray_error_at(err, STRAY_EPARSE, name,
 				t->line[i], "wavelength_nm",
 				"wavelengths must be > 0 and strictly increasing");
-		if (row[1] < 0.0) {
+		if (row[1] < 0.0 || (is_qe && row[1] > 1.0)) {
+			char text[32];
+
 			stray_error_at(err, STRAY_EPARSE, name, t->line[i],
-				       NULL, "must be >= 0");
+				       NULL, row[1] < 0.0 ? "must be >= 0"
+				       : "a quantum efficiency must be <= 1");
 			stray_error_column(err, t->col[1]);
+			snprintf(text, sizeof(text), "%.6g", row[1]);
+			stray_error_text(err, text);
 			return STRAY_EPARSE;
 		}
 	}

@@ -18,6 +18,8 @@
 #include "stray/table.h"
 
 #define FIELDS_MAX 64
+#define STR_(x) #x
+#define STRAY_STR(x) STR_(x)
 
 struct row_fields {
 	size_t n;
@@ -103,6 +105,9 @@ static int take_header(const char *name, long lineno, struct row_fields *r,
 {
 	size_t i, j;
 
+	if (r->n == 0)		/* never a zero-width table (realloc(p, 0)) */
+		return stray_error_at(err, STRAY_EPARSE, name, lineno,
+				      "header", "no column names");
 	for (i = 0; i < r->n; i++) {
 		if (r->field[i][0] == '\0')
 			return stray_error_at(err, STRAY_EPARSE, name, lineno,
@@ -141,6 +146,10 @@ static int take_row(const char *name, long lineno, struct row_fields *r,
 		stray_error_text(err, got);
 		return STRAY_EPARSE;
 	}
+	if (t->n_rows == STRAY_TABLE_ROWS_MAX)
+		return stray_error_at(err, STRAY_EPARSE, name, lineno, "row",
+				      "more than " STRAY_STR(STRAY_TABLE_ROWS_MAX)
+				      " rows (docs/limits.md)");
 	if (t->n_rows == *cap) {
 		size_t nc = *cap ? 2 * *cap : 64;
 		double *cell = realloc(t->cell, nc * t->n_cols * sizeof(*cell));
@@ -186,7 +195,11 @@ static int take_line(const char *name, long lineno, const char *s,
 
 	if (len > 0 && s[len - 1] == '\r')
 		len--;
-	while (k < len && (s[k] == ' ' || s[k] == '\t'))
+	if (lineno == 1 && len >= 3 && memcmp(s, "\xEF\xBB\xBF", 3) == 0) {
+		s += 3;		/* a UTF-8 byte-order mark (spreadsheets) */
+		len -= 3;
+	}
+	while (k < len && (s[k] == ' ' || s[k] == '\t' || s[k] == '\r'))
 		k++;
 	if (k == len)
 		return STRAY_OK;	/* blank line */

@@ -3,6 +3,7 @@
  * streamed in 64 KiB blocks, and its check against the manifest.
  */
 #include <openssl/evp.h>
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -18,9 +19,15 @@ int stray_sweep_sha256_file(const char *path,
 	unsigned int md_len = 0, i;
 	EVP_MD_CTX *ctx = EVP_MD_CTX_new();
 	FILE *f = fopen(path, "rb");
+	int missing = !f && errno == ENOENT;
 	int ok = ctx && f && EVP_DigestInit_ex(ctx, EVP_sha256(), NULL);
 	size_t n;
 
+	if (missing) {		/* the manifest lists it: bad input, exit 2 */
+		EVP_MD_CTX_free(ctx);
+		return stray_error_at(err, STRAY_ENOTFOUND, path, 0, "file",
+			"listed in manifest.csv but missing from the folder");
+	}
 	while (ok && (n = fread(buf, 1, sizeof(buf), f)) > 0)
 		ok = EVP_DigestUpdate(ctx, buf, n);
 	ok = ok && !ferror(f) && EVP_DigestFinal_ex(ctx, md, &md_len) &&

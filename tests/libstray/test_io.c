@@ -95,7 +95,7 @@ static void test_curve_save_load_round_trip(void **state)
 	assert_int_equal(stray_curve_alloc(&c, 3, 1, &err), STRAY_OK);
 	for (i = 0; i < 3; i++) {
 		c.theta_deg[i] = 10.0 * i;
-		c.alpha[i] = pow(10.0, -3.0 * i) / 3.0;
+		c.alpha[i] = pow(10.0, -3.0 * i);	/* alpha(0) = 1 */
 		c.sigma[i] = 0.01 * c.alpha[i];
 	}
 	assert_int_equal(stray_curve_add_column(&c, "order1", order, &err), 0);

@@ -218,6 +218,56 @@ static void test_errors_bad_manifest_cell(void **state)
 	expect_bad(k, "manifest.csv", "angle_deg");
 }
 
+/* A frame the manifest lists but the folder lacks: bad input, exit 2. */
+static void test_errors_listed_frame_missing(void **state)
+{
+	struct bad_case *k = *state;
+	const struct synth_entry *e = first(k, "AMBIENT");
+	char p[256];
+
+	path_of(k, e, p, sizeof(p));
+	assert_int_equal(unlink(p), 0);
+	expect_bad(k, e->file, "listed in manifest.csv but missing");
+}
+
+/* A row given twice is named as such (was "no FULL frame at this angle"). */
+static void test_errors_duplicate_manifest_row(void **state)
+{
+	struct bad_case *k = *state;
+	char p[256], line[1024];
+	FILE *f;
+
+	snprintf(p, sizeof(p), "%s/manifest.csv", k->dir);
+	f = fopen(p, "r");
+	assert_non_null(f);
+	do		/* the first data line */
+		assert_non_null(fgets(line, sizeof(line), f));
+	while (line[0] == '#' || strncmp(line, "file", 4) == 0);
+	assert_int_equal(fclose(f), 0);
+	f = fopen(p, "a");
+	assert_non_null(f);
+	fputs(line, f);
+	assert_int_equal(fclose(f), 0);
+	expect_bad(k, "manifest.csv", "listed twice");
+}
+
+/* A run refused after the reduction writes nothing (r.csv was written
+ * before --map-regions 65 was refused). */
+static void test_errors_late_refusal_writes_nothing(void **state)
+{
+	struct bad_case *k = *state;
+	char map[160];
+	char *argv[] = { "stray", "reduce", k->dir, "--out", k->out, "--map",
+			 map, "--map-regions", "65", NULL };
+
+	snprintf(map, sizeof(map), "%s/m.csv", k->root);
+	run_stray(&k->run, argv);
+	assert_int_equal(k->run.status, 2);
+	assert_int_equal(k->run.err_lines, 1);
+	assert_int_equal(access(k->out, F_OK), -1);
+	assert_int_equal(access(map, F_OK), -1);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -235,6 +285,12 @@ int main(void)
 						setup, teardown),
 		cmocka_unit_test_setup_teardown(test_errors_bad_manifest_cell,
 						setup, teardown),
+		cmocka_unit_test_setup_teardown(test_errors_listed_frame_missing,
+						setup, teardown),
+		cmocka_unit_test_setup_teardown(
+			test_errors_duplicate_manifest_row, setup, teardown),
+		cmocka_unit_test_setup_teardown(
+			test_errors_late_refusal_writes_nothing, setup, teardown),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -285,7 +285,7 @@ static void test_cli_bad_input(void **state)
 	expect_bad_input(":3: wavelength_nm: wavelengths must be > 0 and strictly increasing");
 	STRAY("photometry", "--sun",
 	      write_temp("wavelength_nm,irr\n400,0.1\n500,-2\n", ".csv"));
-	expect_bad_input(":3: irr: must be >= 0");
+	expect_bad_input(":3: irr '-2': must be >= 0");
 	STRAY("fdr", "--sensor", write_temp("{\"pixel_pitch\": 2.2}", ".json"));
 	expect_bad_input("sensor key 'pixel_pitch': unknown");
 	STRAY("fdr", "--sensor", write_temp("{\"t_exp_s\": -0.1}", ".json"));

@@ -7,6 +7,7 @@
  */
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "tracer_test.h"
 #include "tracer/baffle.h"
@@ -377,8 +378,10 @@ static void test_baffle_obj_export(void **state)
 	build(&s, sets, 1);
 	fd = mkstemp(path);
 	assert_true(fd >= 0);
+	close(fd);	/* the export renames a new file over this one */
 	assert_int_equal(tracer_obj_export(&s.mesh, path, NULL), 0);
-	f = fdopen(fd, "r");
+	f = fopen(path, "r");
+	assert_non_null(f);
 	while (fgets(line, sizeof(line), f)) {
 		n_f += line[0] == 'f';
 		n_g += line[0] == 'g';

@@ -13,7 +13,14 @@
 
 #include "stray/error.h"
 
-/* Read a whole file into a new NUL-terminated buffer (caller frees). */
+/* Input limit (docs/limits.md): no input file is read past this size. */
+#define STRAY_FILE_READ_MAX (256L * 1024 * 1024)
+
+/*
+ * Read a whole regular file into a new NUL-terminated buffer (caller
+ * frees).  A directory, a device or a file over STRAY_FILE_READ_MAX is
+ * refused as bad input (STRAY_EINVAL) before anything is read.
+ */
 int stray_file_read(const char *path, char **buf, size_t *len,
 		    struct stray_error *err);
 
@@ -33,5 +40,15 @@ int stray_file_commit(struct stray_file_out *out, struct stray_error *err);
 
 /* Abandon: close and remove the temporary. */
 void stray_file_abort(struct stray_file_out *out);
+
+/*
+ * One run, all or nothing: after stray_file_defer, stray_file_commit
+ * closes and syncs but leaves the temporary in place (the target path
+ * is copied); stray_file_finish(1) then renames every one into
+ * place, stray_file_finish(0) removes them all.  Temporaries are always
+ * removed on exit, SIGINT, SIGTERM and SIGHUP unless committed.
+ */
+void stray_file_defer(void);
+int stray_file_finish(int ok, struct stray_error *err);
 
 #endif /* STRAY_FILE_H */

@@ -15,6 +15,9 @@
 
 #include "stray/error.h"
 
+/* Input limits (docs/limits.md): a table longer than this is refused. */
+#define STRAY_TABLE_ROWS_MAX 100000
+
 struct stray_table {
 	size_t n_rows, n_cols;
 	char **col;		/* n_cols column names */
