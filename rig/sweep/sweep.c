@@ -127,12 +127,13 @@ static int slot_of(const struct rig_wheel_cfg *w, double nd)
 }
 
 /* Exposure and slot for a lit frame type at the current angle: from the
- * manifest if the group has begun, else by search. */
+ * manifest if the group has begun, else by search, one test frame per
+ * call; RIG_EAGAIN while the search goes on. */
 static int lit_setting(struct rig_sweep *sw, int type, double theta,
 		       struct rig_error *err)
 {
 	const struct stray_sweep_entry *first;
-	int rc;
+	int rc, done;
 
 	if (sw->have[type])
 		return RIG_OK;
@@ -141,13 +142,16 @@ static int lit_setting(struct rig_sweep *sw, int type, double theta,
 		sw->slot[type] = slot_of(&sw->lab->cfg->wheel,
 					 first->ndtrans);
 	} else {
-		if (!(sw->t_exp_s[type] > 0))
+		if (sw->expo_it == 0 && !(sw->t_exp_s[type] > 0))
 			sw->t_exp_s[type] = sw->cfg->t_init_s;
-		rc = rig_expo_search(sw->lab, &sw->img, &sw->t_exp_s[type],
-				     &sw->slot[type], err);
+		rc = rig_expo_step(sw->lab, &sw->img, &sw->t_exp_s[type],
+				   &sw->slot[type], &done, err);
 		if (rc != RIG_OK)
 			return rc;
+		if (!done && ++sw->expo_it < RIG_EXPO_ITER_MAX)
+			return RIG_EAGAIN;
 	}
+	sw->expo_it = 0;
 	sw->have[type] = 1;
 	return RIG_OK;
 }
@@ -260,6 +264,8 @@ static int step_once(struct rig_sweep *sw, struct rig_error *err)
 		if (rc == RIG_OK)
 			rc = lit_setting(sw, type, sw->angles[sw->i_angle],
 					 err);
+		if (rc == RIG_EAGAIN)
+			return RIG_OK;	/* a test frame taken: step again */
 		if (rc != RIG_OK)
 			return rc;
 		t = sw->t_exp_s[type];

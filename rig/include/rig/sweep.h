@@ -33,6 +33,7 @@ struct rig_sweep {
 	int n_angles, i_angle;
 	int at_angle;		/* stage verified at angles[i_angle] */
 	int have[STRAY_SWEEP_FRAMETYP_COUNT];	/* exposure found at this angle */
+	int expo_it;		/* test frames of the search in progress */
 	double t_exp_s[STRAY_SWEEP_FRAMETYP_COUNT];
 	int slot[STRAY_SWEEP_FRAMETYP_COUNT];
 	struct rig_image img;
@@ -87,6 +88,12 @@ void rig_sweep_close(struct rig_sweep *sw);
  */
 int rig_expo_search(struct rig_lab *lab, struct rig_image *img,
 		    double *t_exp_s, int *slot, struct rig_error *err);
+/* One test frame of that search (at most RIG_EXPO_ITER_MAX make a
+ * search); *done = 1 when (t, slot) is settled.  The sweep takes one per
+ * step, so the daemon serves its clients between test frames. */
+#define RIG_EXPO_ITER_MAX 24
+int rig_expo_step(struct rig_lab *lab, struct rig_image *img,
+		  double *t_exp_s, int *slot, int *done, struct rig_error *err);
 
 /* Peak of the 3-pixel row-neighbourhood mean of an image, DN. */
 double rig_image_peak3(const struct rig_image *img);
