@@ -204,6 +204,10 @@ static int check(const struct rig_config *c, const char *name,
 {
 	const struct rig_sweep_cfg *s = &c->sweep;
 
+	if (c->socket_mode & 0002)
+		return rig_cfg_bad(err, name, "", "socket_mode",
+				   "world-writable (o+w) refused: anyone on "
+				   "the machine could drive the lab");
 	if (c->stage.min_deg >= c->stage.max_deg)
 		return rig_cfg_bad(err, name, "stage", "min_deg",
 				   "not below max_deg");

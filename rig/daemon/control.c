@@ -83,7 +83,9 @@ static void act(struct rig_daemon *d, const struct rig_request *req,
 		break;
 	case RIG_CMD_SWEEP:
 		end_sweep(d);
-		rc = rig_sweep_open(&d->sweep, &d->lab, req->dir, req->resume,
+		rc = rig_sweep_open(&d->sweep, &d->lab, req->dir,
+				    (req->resume ? RIG_SWEEP_RESUME : 0) |
+				    (req->force_plan ? RIG_SWEEP_FORCE_PLAN : 0),
 				    &err);
 		d->sweep_open = rc == RIG_OK;
 		d->state = rc == RIG_OK ? RIG_RUNNING : RIG_IDLE;

@@ -37,6 +37,7 @@ static int parse_args(const cJSON *o, struct rig_request *req, char *msg,
 	const cJSON *t = cJSON_GetObjectItemCaseSensitive(o, "theta_deg");
 	const cJSON *dir = cJSON_GetObjectItemCaseSensitive(o, "dir");
 	const cJSON *res = cJSON_GetObjectItemCaseSensitive(o, "resume");
+	const cJSON *force = cJSON_GetObjectItemCaseSensitive(o, "force_plan");
 
 	if (req->cmd == RIG_CMD_MOVE) {
 		if (!cJSON_IsNumber(t) || !isfinite(t->valuedouble))
@@ -53,8 +54,12 @@ static int parse_args(const cJSON *o, struct rig_request *req, char *msg,
 	if (res && !cJSON_IsBool(res))
 		return bad(msg, size, "sweep: %s",
 			   "resume must be true or false");
+	if (force && !cJSON_IsBool(force))
+		return bad(msg, size, "sweep: %s",
+			   "force_plan must be true or false");
 	strcpy(req->dir, dir->valuestring);
 	req->resume = cJSON_IsTrue(res);
+	req->force_plan = cJSON_IsTrue(force);
 	return RIG_OK;
 }
 

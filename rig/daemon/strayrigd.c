@@ -2,8 +2,15 @@
  * strayrigd.c - the lab sweep daemon.
  *
  *   strayrigd --config FILE [--socket PATH]     serve the control socket
- *   strayrigd --config FILE --sweep DIR [--resume]
+ *   strayrigd --config FILE --sweep DIR [--resume [--force-plan]]
  *                                              one sweep, then exit
+ *
+ * The socket, or the sweep folder, is claimed before the lab is touched:
+ * a second daemon on the same socket or folder is refused at once and
+ * never drives the devices.  Exit 0 done, 1 refused because in use (a
+ * live socket, a folder another writer holds) or a device/I/O failure,
+ * 2 bad input (config, arguments, a path that is not a socket, a resume
+ * whose plan differs from the folder's plan.json).
  *
  * On SIGINT, SIGTERM or SIGHUP the current step finishes, the lab is made
  * safe (lamp off, beam blocked, shutter closed, stage stopped) and the
@@ -30,11 +37,14 @@ static void usage(FILE *out)
 {
 	fprintf(out,
 		"usage: strayrigd --config FILE [--socket PATH]\n"
-		"       strayrigd --config FILE --sweep DIR [--resume]\n\n"
+		"       strayrigd --config FILE --sweep DIR [--resume "
+		"[--force-plan]]\n\n"
 		"  -c, --config FILE   JSON configuration (docs/rig-config.md)\n"
 		"  -s, --socket PATH   control socket (overrides the config)\n"
 		"  -w, --sweep DIR     run one sweep into DIR and exit\n"
 		"  -r, --resume        continue the sweep already in DIR\n"
+		"  -f, --force-plan    resume even if the config's plan "
+		"differs from DIR/plan.json\n"
 		"  -h, --help          this text\n");
 }
 
@@ -50,15 +60,15 @@ static void install_signals(void)
 	signal(SIGPIPE, SIG_IGN);
 }
 
-static int run_sweep(struct rig_daemon *d, const char *dir, int resume,
-		     struct rig_error *err)
+/* The folder was claimed before the lab started (rig_sweep_claim). */
+static int run_sweep(struct rig_daemon *d, struct rig_error *err)
 {
 	struct rig_progress p;
-	int rc = rig_sweep_open(&d->sweep, &d->lab, dir, resume, err);
+	int rc = rig_sweep_attach(&d->sweep, &d->lab, err);
 
+	d->sweep_open = rc == RIG_OK;	/* attach closes it on failure */
 	if (rc != RIG_OK)
 		return rc;
-	d->sweep_open = 1;
 	while (rc == RIG_OK && !d->sweep.finished && !stop_flag) {
 		rc = rig_sweep_step(&d->sweep, err);
 		rig_sweep_progress(&d->sweep, &p);
@@ -80,6 +90,26 @@ static int run_sweep(struct rig_daemon *d, const char *dir, int resume,
 	return rc;
 }
 
+static int exit_code(int rc)
+{
+	return rc == RIG_OK ? 0 : rc == RIG_EPARSE || rc == RIG_EINVAL ? 2 : 1;
+}
+
+/* Claim the folder or the socket: nothing else may hold it. */
+static int claim(struct rig_daemon *d, const char *dir, int flags,
+		 struct rig_error *err)
+{
+	d->listen_fd = d->sock_lock_fd = -1;
+	if (dir) {
+		if (rig_sweep_claim(&d->sweep, &d->cfg, dir, flags, err) !=
+		    RIG_OK)
+			return err->code;
+		d->sweep_open = 1;
+		return RIG_OK;
+	}
+	return rig_daemon_listen(d, err);
+}
+
 int main(int argc, char **argv)
 {
 	static const struct option opts[] = {
@@ -87,20 +117,22 @@ int main(int argc, char **argv)
 		{ "socket", required_argument, NULL, 's' },
 		{ "sweep", required_argument, NULL, 'w' },
 		{ "resume", no_argument, NULL, 'r' },
+		{ "force-plan", no_argument, NULL, 'f' },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 }
 	};
 	static struct rig_daemon d;
 	const char *config = NULL, *sock = NULL, *dir = NULL;
 	struct rig_error err;
-	int opt, resume = 0, rc;
+	int opt, flags = 0, rc;
 
-	while ((opt = getopt_long(argc, argv, "c:s:w:rh", opts, NULL)) != -1) {
+	while ((opt = getopt_long(argc, argv, "c:s:w:rfh", opts, NULL)) != -1) {
 		switch (opt) {
 		case 'c': config = optarg; break;
 		case 's': sock = optarg; break;
 		case 'w': dir = optarg; break;
-		case 'r': resume = 1; break;
+		case 'r': flags |= RIG_SWEEP_RESUME; break;
+		case 'f': flags |= RIG_SWEEP_FORCE_PLAN; break;
 		case 'h': usage(stdout); return 0;
 		default: usage(stderr); return 2;
 		}
@@ -120,16 +152,24 @@ int main(int argc, char **argv)
 		snprintf(d.cfg.socket_path, sizeof(d.cfg.socket_path), "%s",
 			 sock);
 	install_signals();
+	if ((rc = claim(&d, dir, flags, &err)) != RIG_OK) {
+		fprintf(stderr, "strayrigd: %s\n", err.msg);
+		return exit_code(rc);
+	}
 	if (rig_daemon_start(&d, &err) != RIG_OK) {
 		fprintf(stderr, "strayrigd: %s\n", err.msg);
+		if (d.sweep_open)
+			rig_sweep_close(&d.sweep);
+		rig_daemon_unlisten(&d);
 		return 1;
 	}
-	rc = dir ? run_sweep(&d, dir, resume, &err)
+	rc = dir ? run_sweep(&d, &err)
 		 : rig_daemon_serve(&d, &stop_flag, &err);
 	rig_daemon_stop(&d);
+	rig_daemon_unlisten(&d);
 	if (rc != RIG_OK) {
 		fprintf(stderr, "strayrigd: %s\n", err.msg);
-		return rc == RIG_EPARSE || rc == RIG_EINVAL ? 2 : 1;
+		return exit_code(rc);
 	}
 	return 0;
 }

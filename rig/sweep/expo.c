@@ -9,7 +9,6 @@
 
 #include "rig/sweep.h"
 
-#define EXPO_ITER_MAX 24
 #define GUARD_FRAC 0.95		/* above this the frame counts as saturated */
 #define ACCEPT_FRAC 0.5
 
@@ -60,38 +59,47 @@ static int retarget(const struct rig_lab *lab, double peak, double *t,
 	return 0;
 }
 
+int rig_expo_step(struct rig_lab *lab, struct rig_image *img,
+		  double *t_exp_s, int *slot, int *done, struct rig_error *err)
+{
+	const struct rig_sweep_cfg *s = &lab->cfg->sweep;
+	double sat = lab->cfg->camera.sat_dn, peak;
+	int rc, last_slot = *slot;
+
+	*done = 0;
+	rc = rig_lab_wheel(lab, *slot, err);
+	if (rc == RIG_OK)
+		rc = rig_lab_capture(lab, *t_exp_s, img, err);
+	if (rc != RIG_OK)
+		return rc;
+	peak = rig_image_peak3(img);
+	if (peak >= GUARD_FRAC * sat) {
+		if (*t_exp_s > s->t_min_s)
+			*t_exp_s = quantize_us(fmax(s->t_min_s, *t_exp_s / 10));
+		else if (*slot + 1 < lab->cfg->wheel.n_slots)
+			++*slot;
+		else
+			return rig_error_set(err, RIG_ERANGE,
+				"exposure: saturated (peak %.0f DN) at %g s "
+				"with the densest ND", peak, *t_exp_s);
+		return RIG_OK;
+	}
+	if (peak >= ACCEPT_FRAC * sat)
+		*done = 1;
+	else if (retarget(lab, peak, t_exp_s, slot) && last_slot == *slot)
+		*done = 1;	/* at t_max with the clearest slot */
+	return RIG_OK;
+}
+
 int rig_expo_search(struct rig_lab *lab, struct rig_image *img,
 		    double *t_exp_s, int *slot, struct rig_error *err)
 {
-	const struct rig_sweep_cfg *s = &lab->cfg->sweep;
-	double sat = lab->cfg->camera.sat_dn, t = *t_exp_s, peak = 0;
-	int k = *slot, it, rc, last_slot;
+	int it, rc, done = 0;
 
-	for (it = 0; it < EXPO_ITER_MAX; it++) {
-		rc = rig_lab_wheel(lab, k, err);
-		if (rc == RIG_OK)
-			rc = rig_lab_capture(lab, t, img, err);
+	for (it = 0; it < RIG_EXPO_ITER_MAX && !done; it++) {
+		rc = rig_expo_step(lab, img, t_exp_s, slot, &done, err);
 		if (rc != RIG_OK)
 			return rc;
-		peak = rig_image_peak3(img);
-		if (peak >= GUARD_FRAC * sat) {
-			if (t > s->t_min_s)
-				t = quantize_us(fmax(s->t_min_s, t / 10));
-			else if (k + 1 < lab->cfg->wheel.n_slots)
-				k++;
-			else
-				return rig_error_set(err, RIG_ERANGE,
-					"exposure: saturated (peak %.0f DN) at "
-					"%g s with the densest ND", peak, t);
-			continue;
-		}
-		if (peak >= ACCEPT_FRAC * sat)
-			break;
-		last_slot = k;
-		if (retarget(lab, peak, &t, &k) && last_slot == k)
-			break;	/* at t_max with the clearest slot */
 	}
-	*t_exp_s = t;
-	*slot = k;
 	return RIG_OK;
 }

@@ -64,34 +64,55 @@ static void seed_settings(struct rig_sweep *sw)
 	}
 }
 
-int rig_sweep_open(struct rig_sweep *sw, struct rig_lab *lab,
-		   const char *dir, int resume, struct rig_error *err)
+int rig_sweep_claim(struct rig_sweep *sw, const struct rig_config *cfg,
+		    const char *dir, int flags, struct rig_error *err)
 {
-	const struct rig_camera_cfg *cam = &lab->cfg->camera;
 	struct stray_error se;
 	int rc;
 
 	memset(sw, 0, sizeof(*sw));
-	sw->lab = lab;
-	sw->cfg = &lab->cfg->sweep;
+	sw->cfg = &cfg->sweep;
 	rc = rig_sweep_angles(sw->cfg, &sw->angles, &sw->n_angles, err);
 	if (rc != RIG_OK)
 		return rc;
+	stray_error_clear(&se);
+	if (stray_sweep_store_open(&sw->mf, dir, flags & RIG_SWEEP_RESUME,
+				   &se) != STRAY_OK) {
+		rig_sweep_close(sw);
+		return store_fail(err, &se);
+	}
+	/* The lock is ours: the plan cannot change under us. */
+	rc = rig_sweep_plan_check(dir, cfg, flags & RIG_SWEEP_FORCE_PLAN,
+				  err);
+	if (rc != RIG_OK)
+		rig_sweep_close(sw);
+	return rc;
+}
+
+int rig_sweep_attach(struct rig_sweep *sw, struct rig_lab *lab,
+		     struct rig_error *err)
+{
+	const struct rig_camera_cfg *cam = &lab->cfg->camera;
+
+	sw->lab = lab;
 	sw->img.px = malloc((size_t)cam->n_rows * cam->n_cols *
 			    sizeof(*sw->img.px));
 	if (!sw->img.px) {
 		rig_sweep_close(sw);
 		return rig_error_set(err, RIG_ENOMEM, "sweep: no memory");
 	}
-	stray_error_clear(&se);
-	if (stray_sweep_store_open(&sw->mf, dir, resume, &se) != STRAY_OK) {
-		rig_sweep_close(sw);
-		return store_fail(err, &se);
-	}
 	seed_settings(sw);
 	sw->done_at_open = (long)sw->mf.n;
 	sw->t_open_s = rig_hal_now(lab->hal);
 	return RIG_OK;
+}
+
+int rig_sweep_open(struct rig_sweep *sw, struct rig_lab *lab,
+		   const char *dir, int flags, struct rig_error *err)
+{
+	int rc = rig_sweep_claim(sw, lab->cfg, dir, flags, err);
+
+	return rc == RIG_OK ? rig_sweep_attach(sw, lab, err) : rc;
 }
 
 static int slot_of(const struct rig_wheel_cfg *w, double nd)
@@ -106,12 +127,13 @@ static int slot_of(const struct rig_wheel_cfg *w, double nd)
 }
 
 /* Exposure and slot for a lit frame type at the current angle: from the
- * manifest if the group has begun, else by search. */
+ * manifest if the group has begun, else by search, one test frame per
+ * call; RIG_EAGAIN while the search goes on. */
 static int lit_setting(struct rig_sweep *sw, int type, double theta,
 		       struct rig_error *err)
 {
 	const struct stray_sweep_entry *first;
-	int rc;
+	int rc, done;
 
 	if (sw->have[type])
 		return RIG_OK;
@@ -120,13 +142,16 @@ static int lit_setting(struct rig_sweep *sw, int type, double theta,
 		sw->slot[type] = slot_of(&sw->lab->cfg->wheel,
 					 first->ndtrans);
 	} else {
-		if (!(sw->t_exp_s[type] > 0))
+		if (sw->expo_it == 0 && !(sw->t_exp_s[type] > 0))
 			sw->t_exp_s[type] = sw->cfg->t_init_s;
-		rc = rig_expo_search(sw->lab, &sw->img, &sw->t_exp_s[type],
-				     &sw->slot[type], err);
+		rc = rig_expo_step(sw->lab, &sw->img, &sw->t_exp_s[type],
+				   &sw->slot[type], &done, err);
 		if (rc != RIG_OK)
 			return rc;
+		if (!done && ++sw->expo_it < RIG_EXPO_ITER_MAX)
+			return RIG_EAGAIN;
 	}
+	sw->expo_it = 0;
 	sw->have[type] = 1;
 	return RIG_OK;
 }
@@ -239,6 +264,8 @@ static int step_once(struct rig_sweep *sw, struct rig_error *err)
 		if (rc == RIG_OK)
 			rc = lit_setting(sw, type, sw->angles[sw->i_angle],
 					 err);
+		if (rc == RIG_EAGAIN)
+			return RIG_OK;	/* a test frame taken: step again */
 		if (rc != RIG_OK)
 			return rc;
 		t = sw->t_exp_s[type];
@@ -285,8 +312,11 @@ void rig_sweep_progress(const struct rig_sweep *sw, struct rig_progress *p)
 	p->elapsed_s = rig_hal_now(sw->lab->hal) - sw->t_open_s;
 	rate = sw->taken > 0 ? p->elapsed_s / sw->taken : 0;
 	p->eta_s = rate * (double)(p->total - p->done);
-	p->theta_deg = sw->i_angle < sw->n_angles ? sw->angles[sw->i_angle]
-						  : NAN;
+	/* Past the end (finished, or resumed when already complete) the
+	 * sweep's angle is its last, never NaN. */
+	p->theta_deg = sw->n_angles == 0 ? 0
+		       : sw->angles[sw->i_angle < sw->n_angles ? sw->i_angle
+							     : sw->n_angles - 1];
 	p->finished = sw->finished;
 }
 

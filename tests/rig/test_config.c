@@ -82,6 +82,21 @@ static void test_config_errors_name_the_key(void **state)
 	expect_error("{\"vlab\":{\"bias_dn\":[1,2,3]}}", "vlab.bias_dn");
 }
 
+/* A socket anyone on the machine may write to would let anyone drive
+ * the lab: socket_mode with o+w is refused (issue 14), 0660 is not. */
+static void test_config_world_writable_socket_refused(void **state)
+{
+	struct rig_config c;
+	struct rig_error err;
+
+	(void)state;
+	expect_error("{\"socket_mode\":511}", "socket_mode: world-writable");
+	expect_error("{\"socket_mode\":438}", "socket_mode: world-writable");
+	expect_error("{\"socket_mode\":2}", "socket_mode: world-writable");
+	assert_int_equal(parse(&c, "{\"socket_mode\":432}", &err), RIG_OK);
+	assert_int_equal(c.socket_mode, 0660);
+}
+
 /* The fault schedule names devices as enum rig_device does, in order. */
 static void test_config_fault_devices_are_the_device_enum(void **state)
 {
@@ -128,6 +143,7 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_config_values_land),
 		cmocka_unit_test(test_config_errors_name_the_key),
+		cmocka_unit_test(test_config_world_writable_socket_refused),
 		cmocka_unit_test(test_config_fault_devices_are_the_device_enum),
 		cmocka_unit_test(test_config_missing_file),
 	};

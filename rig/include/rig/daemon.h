@@ -4,7 +4,7 @@
  * Requests and responses are one JSON object per line on a Unix socket
  * (created 0600 unless configured; no network listener):
  *   {"cmd":"status"} {"cmd":"home"} {"cmd":"move","theta_deg":12.5}
- *   {"cmd":"sweep","dir":"/data/s1","resume":false}
+ *   {"cmd":"sweep","dir":"/data/s1","resume":false,"force_plan":false}
  *   {"cmd":"pause"} {"cmd":"resume"} {"cmd":"abort"} {"cmd":"safe"}
  *   {"cmd":"shutdown"}
  * Every response has "ok" (bool); a refusal or failure has "error", one
@@ -23,6 +23,22 @@
 
 enum rig_run_state { RIG_IDLE, RIG_RUNNING, RIG_PAUSED, RIG_FAULTED };
 
+/* Control connections: at most RIG_CLIENTS_MAX at once (the oldest is
+ * dropped for a new one), a request line of at most RIG_REQUEST_MAX
+ * bytes, and RIG_CLIENT_DEADLINE_MS from accept to the answer sent. */
+#define RIG_CLIENTS_MAX 32
+#define RIG_REQUEST_MAX 4096
+#define RIG_CLIENT_DEADLINE_MS 2000
+
+struct rig_client {
+	int fd;				/* -1: free */
+	char in[RIG_REQUEST_MAX + 1];
+	size_t n_in;
+	char *out;			/* the answer line, once handled */
+	size_t n_out, off;
+	long long deadline_ms;		/* CLOCK_MONOTONIC */
+};
+
 struct rig_daemon {
 	struct rig_config cfg;
 	struct rig_hal hal;
@@ -34,6 +50,8 @@ struct rig_daemon {
 	enum rig_run_state state;
 	char last_error[RIG_ERROR_MSG_MAX];
 	int quit;
+	int listen_fd, sock_lock_fd;	/* rig_daemon_listen */
+	struct rig_client clients[RIG_CLIENTS_MAX];
 };
 
 /* Bring up the backend and the lab (made safe at once). */
@@ -50,6 +68,7 @@ struct rig_request {
 	double theta_deg;	/* move */
 	char dir[RIG_PATH_MAX];	/* sweep */
 	int resume;		/* sweep */
+	int force_plan;		/* sweep: resume even if the plan changed */
 };
 
 /* Parse and check one request line (pure: no lab, no files).  On error
@@ -64,7 +83,23 @@ char *rig_control_handle(struct rig_daemon *d, const char *request);
 /* One unit of background work: a sweep step when running. */
 void rig_daemon_work(struct rig_daemon *d);
 
-/* Serve the socket until shutdown or *stop becomes nonzero. */
+/*
+ * Claim the control socket (listen.c): refused if another daemon holds
+ * the path's lock (PATH.lock) or answers on the socket (RIG_ESTATE), or
+ * if PATH is not a socket (RIG_EINVAL; never deleted); a stale socket is
+ * replaced.  Done before the lab is touched.
+ */
+int rig_daemon_listen(struct rig_daemon *d, struct rig_error *err);
+/* Close the socket, remove it and release its lock. */
+void rig_daemon_unlisten(struct rig_daemon *d);
+
+/* Control connections (clients.c): one poll() round over the listener
+ * and every client, waiting at most max_wait_ms. */
+void rig_clients_init(struct rig_daemon *d);
+void rig_clients_run(struct rig_daemon *d, int max_wait_ms);
+void rig_clients_close(struct rig_daemon *d);
+
+/* Serve the claimed socket until shutdown or *stop becomes nonzero. */
 int rig_daemon_serve(struct rig_daemon *d, volatile int *stop,
 		     struct rig_error *err);
 

@@ -33,6 +33,7 @@ struct rig_sweep {
 	int n_angles, i_angle;
 	int at_angle;		/* stage verified at angles[i_angle] */
 	int have[STRAY_SWEEP_FRAMETYP_COUNT];	/* exposure found at this angle */
+	int expo_it;		/* test frames of the search in progress */
 	double t_exp_s[STRAY_SWEEP_FRAMETYP_COUNT];
 	int slot[STRAY_SWEEP_FRAMETYP_COUNT];
 	struct rig_image img;
@@ -45,8 +46,33 @@ struct rig_sweep {
 int rig_sweep_angles(const struct rig_sweep_cfg *cfg, double **angles,
 		     int *n, struct rig_error *err);
 
+/* Flags of rig_sweep_open and rig_sweep_claim. */
+#define RIG_SWEEP_RESUME 1	/* continue the sweep already in dir */
+#define RIG_SWEEP_FORCE_PLAN 2	/* resume even if the plan changed */
+
+/*
+ * Open a sweep folder: rig_sweep_claim then rig_sweep_attach.  Claim
+ * takes the folder (the sweep store's one-writer lock, refused with
+ * RIG_EIO while another writer holds it) and checks the plan
+ * (plan.json, rig_sweep_plan_check) without touching the lab; attach
+ * binds the lab and readies the first step.
+ */
 int rig_sweep_open(struct rig_sweep *sw, struct rig_lab *lab,
-		   const char *dir, int resume, struct rig_error *err);
+		   const char *dir, int flags, struct rig_error *err);
+int rig_sweep_claim(struct rig_sweep *sw, const struct rig_config *cfg,
+		    const char *dir, int flags, struct rig_error *err);
+int rig_sweep_attach(struct rig_sweep *sw, struct rig_lab *lab,
+		     struct rig_error *err);
+
+/*
+ * The plan (plan.c): the config values that shape the folder (angles,
+ * repeats, exposure limits and target, camera window and saturation, ND
+ * transmissions) kept in dir/plan.json.  Written when absent; if stored
+ * and different, refused with RIG_EINVAL naming the first key that
+ * differs, unless force, when the new plan replaces it.
+ */
+int rig_sweep_plan_check(const char *dir, const struct rig_config *cfg,
+			 int force, struct rig_error *err);
 /* Take the next frame (or finish); on failure the lab is made safe. */
 int rig_sweep_step(struct rig_sweep *sw, struct rig_error *err);
 void rig_sweep_progress(const struct rig_sweep *sw, struct rig_progress *p);
@@ -62,6 +88,12 @@ void rig_sweep_close(struct rig_sweep *sw);
  */
 int rig_expo_search(struct rig_lab *lab, struct rig_image *img,
 		    double *t_exp_s, int *slot, struct rig_error *err);
+/* One test frame of that search (at most RIG_EXPO_ITER_MAX make a
+ * search); *done = 1 when (t, slot) is settled.  The sweep takes one per
+ * step, so the daemon serves its clients between test frames. */
+#define RIG_EXPO_ITER_MAX 24
+int rig_expo_step(struct rig_lab *lab, struct rig_image *img,
+		  double *t_exp_s, int *slot, int *done, struct rig_error *err);
 
 /* Peak of the 3-pixel row-neighbourhood mean of an image, DN. */
 double rig_image_peak3(const struct rig_image *img);
