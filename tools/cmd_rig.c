@@ -27,7 +27,10 @@ static const char usage[] =
 	"  status               state, angle, lines, sweep progress and ETA\n"
 	"  home                 home the rotation stage\n"
 	"  move THETA_DEG       move the stage (refused outside the limits)\n"
-	"  sweep DIR [--resume] start (or resume) a sweep into DIR\n"
+	"  sweep DIR [--resume [--force-plan]]\n"
+	"                       start (or resume) a sweep into DIR; resuming\n"
+	"                       with a plan other than DIR/plan.json is\n"
+	"                       refused unless --force-plan\n"
 	"  pause | resume       hold a sweep (lab made safe) and go on\n"
 	"  abort | safe         stop; lamp off, beam blocked, shutter closed\n"
 	"  shutdown             make safe and stop the daemon\n"
@@ -40,7 +43,8 @@ static const char *const plain[] = { "status", "home", "pause", "resume",
 				     "abort", "safe", "shutdown", NULL };
 
 /* Build the request for argv[0..n); NULL after a usage message. */
-static cJSON *build_request(int n, char **args, int resume, int *rc)
+static cJSON *build_request(int n, char **args, int resume, int force_plan,
+			    int *rc)
 {
 	cJSON *req = cJSON_CreateObject();
 	const char *const *p;
@@ -49,7 +53,7 @@ static cJSON *build_request(int n, char **args, int resume, int *rc)
 	*rc = CLI_USAGE;
 	cJSON_AddStringToObject(req, "cmd", args[0]);
 	for (p = plain; *p; p++)
-		if (!strcmp(*p, args[0]) && n == 1 && !resume)
+		if (!strcmp(*p, args[0]) && n == 1 && !resume && !force_plan)
 			return req;
 	if (!strcmp(args[0], "move") && n == 2) {
 		char *end;
@@ -64,9 +68,11 @@ static cJSON *build_request(int n, char **args, int resume, int *rc)
 				args[1]);
 		return NULL;
 	}
-	if (!strcmp(args[0], "sweep") && n == 2) {
+	if (!strcmp(args[0], "sweep") && n == 2 && (resume || !force_plan)) {
 		cJSON_AddStringToObject(req, "dir", args[1]);
 		cJSON_AddBoolToObject(req, "resume", resume);
+		if (force_plan)
+			cJSON_AddBoolToObject(req, "force_plan", 1);
 		return req;
 	}
 	cJSON_Delete(req);
@@ -159,12 +165,13 @@ int cmd_rig(int argc, char **argv)
 	static const struct option opts[] = {
 		{ "socket", required_argument, NULL, 's' },
 		{ "resume", no_argument, NULL, 'r' },
+		{ "force-plan", no_argument, NULL, 'f' },
 		{ "json", no_argument, &cli.json, 1 },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 }
 	};
 	const char *sock = getenv("STRAYRIGD_SOCKET");
-	int opt, resume = 0, rc;
+	int opt, resume = 0, force_plan = 0, rc;
 	cJSON *req;
 
 	while ((opt = getopt_long(argc, argv, "hs:", opts, NULL)) != -1) {
@@ -173,6 +180,7 @@ int cmd_rig(int argc, char **argv)
 		case 'h': fputs(usage, stdout); return CLI_OK;
 		case 's': sock = optarg; break;
 		case 'r': resume = 1; break;
+		case 'f': force_plan = 1; break;
 		default:
 			return cli_usage_error("rig", "unknown option '%s'",
 					       argv[optind - 1]);
@@ -180,7 +188,8 @@ int cmd_rig(int argc, char **argv)
 	}
 	if (optind >= argc)
 		return cli_usage_error("rig", "no action given");
-	req = build_request(argc - optind, argv + optind, resume, &rc);
+	req = build_request(argc - optind, argv + optind, resume, force_plan,
+			    &rc);
 	if (!req)
 		return rc;
 	rc = talk(sock ? sock : DEFAULT_SOCKET, req);

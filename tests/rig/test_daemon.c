@@ -228,6 +228,9 @@ static void test_daemon_stray_rig_client(void **state)
 	assert_non_null(strstr(out, "outside limits"));
 	assert_int_equal(stray_rig("move north", out, sizeof(out)), 2);
 	assert_int_equal(stray_rig("teleport", out, sizeof(out)), 2);
+	/* --force-plan only with --resume (a new sweep has no plan yet) */
+	assert_int_equal(stray_rig("sweep /tmp/never --force-plan", out,
+				   sizeof(out)), 2);
 	assert_int_equal(stray_rig("move 3", out, sizeof(out)), 0);
 }
 
