@@ -9,8 +9,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <errno.h>
-#include <sys/stat.h>
 
 #include "cli.h"
 #include "commands.h"
@@ -22,7 +20,9 @@
 #include "image_cv.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"
+#include "stray/file.h"
 #include "stray/sensor_geom.h"
+#include "stray/sweep_store.h"
 
 static const char usage[] =
 	"usage: stray frames (--curve C.csv --theta DEG | --alpha A) [--frames N]\n"
@@ -201,10 +201,19 @@ struct frames_state {
 	struct stray_region_map map;
 	struct frames_evidence ev[2];
 	long n_false[2], n_found[2];
+	uint16_t *det_rows;		/* detector row of each frame row */
+	struct stray_dir_out dir;	/* --out-dir, filled as a temporary */
+	struct stray_sweep_manifest mf;
+	int dir_open, store_open;
 };
+
+static int close_store(struct frames_state *st, int ok,
+		       struct stray_error *err);
 
 static void state_free(struct frames_state *st)
 {
+	close_store(st, 0, NULL);	/* a failed run leaves no folder */
+	free(st->det_rows);
 	free(st->weight);
 	free(st->expect);
 	free(st->tiles);
@@ -336,25 +345,83 @@ static void frame_cfg(const struct frames_state *st, struct stray_frame_cfg *c)
 	c->psf_sigma_px = st->dc.window_radius_px * STRAY_FRAMES_PSF_PER_RADIUS;
 }
 
-static int save_frame(const struct frames_state *st, int i, size_t n_stars,
+/* --out-dir: a sweep folder (stray/sweep_store.h) filled as a temporary
+ * and renamed into place when the whole run succeeds (stray/file.h). */
+static int open_store(struct frames_state *st, struct stray_error *err)
+{
+	int i, rc;
+
+	if (!st->a.out_dir)
+		return STRAY_OK;
+	st->det_rows = malloc((size_t)st->rows * sizeof(uint16_t));
+	if (!st->det_rows)
+		return stray_error_set(err, STRAY_ENOMEM, "frame", "no memory");
+	for (i = 0; i < st->rows; i++)
+		st->det_rows[i] = (uint16_t)(st->row0 + i);
+	if ((rc = stray_dir_open_atomic(&st->dir, st->a.out_dir, err)))
+		return rc;
+	st->dir_open = 1;
+	rc = stray_sweep_store_open(&st->mf, st->dir.tmp, 0, err);
+	st->store_open = rc == STRAY_OK;
+	return rc;
+}
+
+/* Close the store; rename the folder into place when ok, else remove it. */
+static int close_store(struct frames_state *st, int ok,
+		       struct stray_error *err)
+{
+	if (st->store_open)
+		stray_sweep_manifest_free(&st->mf);	/* the lock */
+	st->store_open = 0;
+	if (!st->dir_open)
+		return STRAY_OK;
+	st->dir_open = 0;
+	if (ok)
+		return stray_dir_commit(&st->dir, err);
+	stray_dir_abort(&st->dir);
+	return STRAY_OK;
+}
+
+/* One rendered frame as a FULL lab frame with the renderer's keywords. */
+static int save_frame(struct frames_state *st, int i, size_t n_stars,
 		      struct stray_error *err)
 {
-	struct frames_fits_meta m;
-	char path[4096];
+	const struct stray_sensor *sn = &st->s.sensor;
+	struct stray_sweep_key k[] = {
+		{ "ALPHA", STRAY_SWEEP_KEY_DOUBLE, st->alpha, 0, NULL,
+		  "system attenuation" },
+		{ "KPX", STRAY_SWEEP_KEY_DOUBLE, st->k_px, 0, NULL,
+		  "k_px = A_cs/(n_px A_px)" },
+		{ "NORM", STRAY_SWEEP_KEY_STRING, 0.0, 0,
+		  stray_normalisation_name(st->s.normalisation),
+		  "normalisation of eq. 2.3" },
+		{ "STRAYE", STRAY_SWEEP_KEY_DOUBLE, st->fm.stray_e, 0, NULL,
+		  "[e-] mean stray per pixel" },
+		{ "STARSRC", STRAY_SWEEP_KEY_STRING, 0.0, 0, "synthetic",
+		  "star field: no catalogue" },
+		{ "NSTARS", STRAY_SWEEP_KEY_LONG, 0.0, (long)n_stars, NULL,
+		  "stars rendered" },
+	};
+	struct stray_sweep_frame f;
+	struct stray_sweep_image im;
 
-	snprintf(path, sizeof(path), "%s/frame_%03d.fits", st->a.out_dir, i);
-	m.theta_deg = st->a.has_theta ? st->a.theta_deg : 0.0;	/* --alpha */
-	m.t_exp_s = st->s.sensor.t_exp_s;
-	m.alpha = st->alpha;
-	m.k_px = st->k_px;
-	m.stray_e = st->fm.stray_e;
-	m.normalisation = stray_normalisation_name(st->s.normalisation);
-	m.seqnum = i;
-	m.col0 = st->col0;
-	m.row0 = st->row0;
-	m.sat_dn = STRAY_FRAMES_SAT_DN;
-	m.n_stars = n_stars;
-	return frames_fits_write(path, st->dn, st->cols, st->rows, &m, err);
+	memset(&f, 0, sizeof(f));
+	f.type = STRAY_SWEEP_FULL;		/* rendered: source on */
+	f.angle_deg = st->a.has_theta ? st->a.theta_deg : 0.0;	/* --alpha */
+	f.exptime_s = sn->t_exp_s;
+	f.ndtrans = 1.0;			/* no ND filter */
+	f.seqnum = i;
+	f.sat_dn = STRAY_FRAMES_SAT_DN;
+	f.full_frame = st->rows == (int)sn->pixels_y;
+	f.instrument = "stray frames";
+	f.extra = k;
+	f.n_extra = sizeof(k) / sizeof(k[0]);
+	im.n_rows = (size_t)st->rows;
+	im.n_cols = (size_t)st->cols;
+	im.col0 = st->col0;
+	im.rows = st->det_rows;
+	im.px = st->dn;
+	return stray_sweep_store_append(&st->mf, &f, &im, err);
 }
 
 /* The first frame in e- as a false-colour PNG (the expectation buffer is
@@ -389,9 +456,8 @@ static int run_frames(struct frames_state *st, struct stray_error *err)
 	f.mag_max = st->a.mag_max;
 	/* eq. 2.2 and 2.12: F_0 t_exp A_cs, the e- of an m = 0 star */
 	f.f0_e = st->s.flux.zero_mag * st->fm.m.t_exp_s * st->fm.m.a_cs_m2;
-	if (st->a.out_dir && mkdir(st->a.out_dir, 0777) && errno != EEXIST)
-		return stray_error_at(err, STRAY_EIO, st->a.out_dir, 0, 0,
-				      strerror(errno));
+	if ((rc = open_store(st, err)) != STRAY_OK)
+		return rc;
 	for (i = 0; i < (int)st->a.frames; i++) {
 		uint64_t seed = stray_frame_seed((uint64_t)st->a.seed, (uint64_t)i);
 
@@ -425,7 +491,7 @@ static int run_frames(struct frames_state *st, struct stray_error *err)
 		if (st->a.png && i == 0 && (rc = save_png(st, err)) != STRAY_OK)
 			return rc;
 	}
-	return STRAY_OK;
+	return close_store(st, 1, err);
 }
 
 struct det_result {

@@ -4,12 +4,16 @@
  */
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "image_cv.h"
+extern "C" {
+#include "stray/file.h"
+}
 
 static void set_msg(char *msg, size_t size, const char *text)
 {
@@ -48,6 +52,36 @@ static cv::Mat to_8bit(const cv::Mat &src, int log_scale)
 	return out;
 }
 
+/* Encoded in memory, then written through the one atomic path
+ * (stray/file.h): never half a PNG, none left by a failed run. */
+static int write_png(const char *path, const cv::Mat &img, char *msg,
+		     size_t msg_size)
+{
+	std::vector<unsigned char> png;
+	struct stray_file_out out;
+	struct stray_error err;
+
+	if (!cv::imencode(".png", img, png)) {
+		set_msg(msg, msg_size, "cannot encode the PNG image");
+		return -1;
+	}
+	stray_error_clear(&err);
+	if (stray_file_open_atomic(&out, path, &err) != STRAY_OK) {
+		set_msg(msg, msg_size, "cannot write the PNG file");
+		return -1;
+	}
+	if (fwrite(png.data(), 1, png.size(), out.f) != png.size()) {
+		stray_file_abort(&out);
+		set_msg(msg, msg_size, "cannot write the PNG file");
+		return -1;
+	}
+	if (stray_file_commit(&out, &err) != STRAY_OK) {
+		set_msg(msg, msg_size, "cannot write the PNG file");
+		return -1;
+	}
+	return 0;
+}
+
 extern "C" int image_cv_false_colour(const char *path, const float *img,
 				     size_t rows, size_t cols, int log_scale,
 				     size_t min_width, char *msg,
@@ -65,10 +99,8 @@ extern "C" int image_cv_false_colour(const char *path, const float *img,
 				   cv::INTER_NEAREST);
 		else
 			big = colour;
-		if (!cv::imwrite(path, big)) {
-			set_msg(msg, msg_size, "cannot write the PNG file");
+		if (write_png(path, big, msg, msg_size) != 0)
 			return -1;
-		}
 	} catch (const cv::Exception &e) {
 		set_msg(msg, msg_size, e.what());
 		return -1;

@@ -27,7 +27,7 @@ install: install-tools
 OPENCV_CFLAGS := -I/usr/include/opencv4
 OPENCV_LDLIBS := -lopencv_imgcodecs -lopencv_imgproc -lopencv_core
 CV_CXX = $(CXX) -std=c++17 -Wall -Wextra -Werror $(OPT) $(SANFLAGS) -MMD -MP \
-	-Itools $(OPENCV_CFLAGS)
+	-Itools -Ilibstray/include $(OPENCV_CFLAGS)
 
 IMAGE_CV_OBJ := $(B)/obj/tools/image_cv.o
 $(IMAGE_CV_OBJ): tools/image_cv.cpp

@@ -79,14 +79,15 @@ static const struct cmd *find_command(const char *name)
 /*
  * Commands whose outputs are all written at the end: their files are
  * renamed into place only when the command succeeds (stray/file.h), so a
- * failed run leaves none of them.  trace and reduce do this themselves;
- * sweep and frames read their own outputs back and are not deferred.
+ * failed run leaves none of them (frames: its --out-dir sweep folder
+ * too, stray_dir_open_atomic).  trace and reduce do this themselves;
+ * sweep reads its own outputs back and is not deferred.
  */
 static int run_all_or_nothing(const struct cmd *c, int argc, char **argv)
 {
 	static const char *const deferred[] = { "photometry", "fdr",
 		"exclusion", "photometer", "firmware-table", "orbit",
-		"diagnose", "report" };
+		"diagnose", "report", "frames" };
 	struct stray_error err;
 	size_t i;
 	int rc, defer = 0;

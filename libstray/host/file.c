@@ -1,7 +1,11 @@
 /*
  * file.c - whole-file reads and atomic writes (hosted).
  */
+#define _DEFAULT_SOURCE	/* syscall */
 #include <errno.h>
+#include <fcntl.h>
+#include <stdint.h>
+#include <sys/syscall.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -99,6 +103,50 @@ static int deferring;
 
 static pid_t pending_owner;	/* a forked child never removes them */
 
+/* One entry of getdents64 (Linux): the raw call is async-signal-safe,
+ * opendir is not. */
+struct dirent64_raw {
+	uint64_t ino;
+	int64_t off;
+	unsigned short reclen;
+	unsigned char type;
+	char name[];
+};
+
+/* Remove a temporary folder and the files in it (flat: a sweep folder
+ * holds only files); raw system calls only, so the handler may call it. */
+static void remove_dir_flat(const char *dir)
+{
+	long long buf[512];	/* aligned for the entries */
+	int pass, fd;
+
+	for (pass = 0; pass < 4; pass++) {
+		long n, i;
+
+		if ((fd = open(dir, O_RDONLY | O_DIRECTORY)) < 0)
+			return;
+		while ((n = syscall(SYS_getdents64, fd, buf, sizeof(buf))) > 0)
+			for (i = 0; i < n;) {
+				struct dirent64_raw *d = (struct dirent64_raw *)
+					((char *)buf + i);
+
+				if (strcmp(d->name, ".") && strcmp(d->name, ".."))
+					unlinkat(fd, d->name, 0);
+				i += d->reclen;
+			}
+		close(fd);
+		if (rmdir(dir) == 0 || errno != ENOTEMPTY)
+			return;
+	}
+}
+
+/* A temporary file, or a temporary folder with its files. */
+static void remove_tmp(const char *path)
+{
+	if (unlink(path) != 0 && (errno == EISDIR || errno == EPERM))
+		remove_dir_flat(path);
+}
+
 static void pending_unlink_all(void)
 {
 	int i;
@@ -107,7 +155,7 @@ static void pending_unlink_all(void)
 		return;
 	for (i = 0; i < PENDING_MAX; i++)
 		if (pending_used[i]) {
-			unlink(pending[i]);
+			remove_tmp(pending[i]);
 			pending_used[i] = 0;
 		}
 }
@@ -194,7 +242,7 @@ int stray_file_finish(int ok, struct stray_error *err)
 			rc = stray_error_at(err, STRAY_EIO, ready_path[i], 0, 0,
 					    strerror(errno));
 		else if (!ok || rc != STRAY_OK)
-			unlink(pending[i]);
+			remove_tmp(pending[i]);
 		ready[i] = 0;
 		pending_used[i] = 0;
 	}
@@ -299,5 +347,79 @@ void stray_file_abort(struct stray_file_out *out)
 	if (out->tmp[0]) {
 		remove(out->tmp);
 		pending_drop(out->tmp);
+	}
+}
+
+int stray_dir_open_atomic(struct stray_dir_out *out, const char *path,
+			  struct stray_error *err)
+{
+	struct stat st;
+	int n;
+
+	out->path = path;
+	out->tmp[0] = '\0';
+	if (stat(path, &st) == 0) {
+		if (!S_ISDIR(st.st_mode))
+			return stray_error_at(err, STRAY_EINVAL, path, 0, 0,
+					      "exists and is not a folder");
+		if (rmdir(path) != 0)	/* an empty folder is replaced */
+			return stray_error_at(err, STRAY_EINVAL, path, 0, 0,
+				"exists and is not empty; give a new folder");
+		if (mkdir(path, 0777) != 0)
+			return stray_error_at(err, STRAY_EIO, path, 0, 0,
+					      strerror(errno));
+	}
+	n = snprintf(out->tmp, sizeof(out->tmp), "%s.tmp.%ld", path,
+		     (long)getpid());
+	if (n < 0 || (size_t)n >= sizeof(out->tmp)) {
+		out->tmp[0] = '\0';
+		return stray_error_at(err, STRAY_EINVAL, path, 0, "path",
+				      "too long");
+	}
+	if (pending_add(out->tmp) != 0) {
+		out->tmp[0] = '\0';
+		return stray_error_at(err, STRAY_EIO, path, 0, 0,
+				      "too many files open for writing");
+	}
+	if (mkdir(out->tmp, 0777) != 0) {
+		int saved = errno;
+
+		pending_drop(out->tmp);
+		out->tmp[0] = '\0';
+		return stray_error_at(err, STRAY_EIO, path, 0, 0,
+				      strerror(saved));
+	}
+	return STRAY_OK;
+}
+
+int stray_dir_commit(struct stray_dir_out *out, struct stray_error *err)
+{
+	int i = pending_find(out->tmp), fd;
+	size_t n = strlen(out->path);
+
+	if (deferring && i >= 0 && n < sizeof(ready_path[i])) {
+		memcpy(ready_path[i], out->path, n + 1);
+		ready[i] = 1;	/* renamed by stray_file_finish */
+		return STRAY_OK;
+	}
+	if ((fd = open(out->tmp, O_RDONLY | O_DIRECTORY)) >= 0) {
+		fsync(fd);
+		close(fd);
+	}
+	if (rename(out->tmp, out->path) == 0) {
+		pending_drop(out->tmp);
+		return STRAY_OK;
+	}
+	i = errno;
+	stray_dir_abort(out);
+	return stray_error_at(err, STRAY_EIO, out->path, 0, 0, strerror(i));
+}
+
+void stray_dir_abort(struct stray_dir_out *out)
+{
+	if (out->tmp[0]) {
+		remove_tmp(out->tmp);
+		pending_drop(out->tmp);
+		out->tmp[0] = '\0';
 	}
 }

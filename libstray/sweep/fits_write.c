@@ -27,6 +27,28 @@ static void rows_keyword(const struct stray_sweep_image *img, char *out,
 				      img->rows[r]);
 }
 
+/* The writer's own keywords, after the lab-frame ones. */
+static void write_extra(fitsfile *f, const struct stray_sweep_frame *m,
+			int *status)
+{
+	size_t i;
+
+	for (i = 0; i < m->n_extra; i++) {
+		const struct stray_sweep_key *k = &m->extra[i];
+
+		if (k->kind == STRAY_SWEEP_KEY_DOUBLE)
+			fits_write_key(f, TDOUBLE, k->key, (void *)&k->d,
+				       k->comment, status);
+		else if (k->kind == STRAY_SWEEP_KEY_LONG)
+			fits_write_key(f, TLONG, k->key, (void *)&k->l,
+				       k->comment, status);
+		else
+			fits_write_key(f, TSTRING, k->key,
+				       (void *)(k->s ? k->s : ""), k->comment,
+				       status);
+	}
+}
+
 static int write_keys(fitsfile *f, const struct stray_sweep_image *img,
 		      const struct stray_sweep_frame *m, char *rows,
 		      size_t rows_size, int *status)
@@ -65,8 +87,14 @@ static int write_keys(fitsfile *f, const struct stray_sweep_image *img,
 			       (void *)&m->monitor,
 			       "lamp level from the monitor, 1 = nominal",
 			       status);
-	fits_write_key(f, TSTRING, "INSTRUME", "strayrigd",
-		       "written by the straylight lab daemon", status);
+	if (m->instrument)
+		fits_write_key(f, TSTRING, "INSTRUME", (void *)m->instrument,
+			       "written by the straylight toolkit", status);
+	else
+		fits_write_key(f, TSTRING, "INSTRUME",
+			       STRAY_SWEEP_INSTRUME_RIG,
+			       "written by the straylight lab daemon", status);
+	write_extra(f, m, status);
 	return *status;
 }
 

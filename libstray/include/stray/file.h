@@ -51,4 +51,21 @@ void stray_file_abort(struct stray_file_out *out);
 void stray_file_defer(void);
 int stray_file_finish(int ok, struct stray_error *err);
 
+/*
+ * A folder written as one output (a sweep folder of `stray frames`):
+ * filled as path.tmp.PID, renamed into place by stray_dir_commit (at
+ * stray_file_finish when deferred), removed with its files on abort,
+ * failure, exit and the signals above.  path must not exist or be an
+ * empty folder (refused as bad input before anything is written).
+ */
+struct stray_dir_out {
+	char tmp[4096];		/* the folder to fill */
+	const char *path;
+};
+
+int stray_dir_open_atomic(struct stray_dir_out *out, const char *path,
+			  struct stray_error *err);
+int stray_dir_commit(struct stray_dir_out *out, struct stray_error *err);
+void stray_dir_abort(struct stray_dir_out *out);
+
 #endif /* STRAY_FILE_H */

@@ -114,6 +114,24 @@ int stray_sweep_sha256_check(const char *path, const char *hex,
 
 /* ---- writer ------------------------------------------------------------ */
 
+/* A keyword a writer adds to a frame's header (after the lab-frame
+ * ones): a double, a long or a string value, with its comment. */
+enum stray_sweep_key_kind {
+	STRAY_SWEEP_KEY_DOUBLE, STRAY_SWEEP_KEY_LONG, STRAY_SWEEP_KEY_STRING
+};
+
+struct stray_sweep_key {
+	const char *key;	/* up to 8 characters */
+	int kind;		/* enum stray_sweep_key_kind */
+	double d;
+	long l;
+	const char *s;
+	const char *comment;
+};
+
+/* INSTRUME when a frame names no instrument. */
+#define STRAY_SWEEP_INSTRUME_RIG "strayrigd"
+
 /* What a frame's FITS header says beyond its image. */
 struct stray_sweep_frame {
 	int type;		/* enum stray_sweep_frametyp */
@@ -123,6 +141,9 @@ struct stray_sweep_frame {
 	int full_frame;		/* 1: omit ROWS (all detector rows stored) */
 	int has_monitor;
 	double monitor;		/* lamp level, 1 = nominal (MONITOR) */
+	const char *instrument;	/* INSTRUME; NULL: the lab daemon */
+	const struct stray_sweep_key *extra;	/* n_extra more keywords */
+	size_t n_extra;
 };
 
 /* A frame's pixels: n_rows x n_cols, row-major, of detector rows[]. */
