@@ -1,7 +1,8 @@
 /*
  * test_frames_cli.c - `stray frames` as a user runs it: the JSON keys of
  * issue 13, the thesis normalisation (k_px = 1) against the consistent
- * one, FITS output, and bad input (one stderr line naming the value,
+ * one, the sweep folder of --out-dir (read back through the store), all
+ * or nothing on failure and SIGINT, and bad input (one stderr line naming the value,
  * exit 2).
  */
 #include <setjmp.h>
@@ -10,8 +11,13 @@
 #include <stdint.h>
 #include <cJSON.h>
 #include <cmocka.h>
+#include <dirent.h>
+#include <fitsio.h>
 #include <math.h>
+#include <signal.h>
+#include <time.h>
 
+#include "stray/sweep_store.h"
 #include "tools/run_cli.h"
 
 #define STRAY(r, ...) run_stray(r, (char *[]){ "stray", __VA_ARGS__, NULL })
@@ -99,27 +105,151 @@ static void test_frames_normalisations_agree(void **state)
 	cJSON_Delete(b);
 }
 
+/* Remove a flat folder (a sweep folder holds only files). */
+static void remove_dir(const char *dir)
+{
+	DIR *d = opendir(dir);
+	struct dirent *e;
+	char path[1024];
+
+	while (d && (e = readdir(d)) != NULL)
+		if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) {
+			snprintf(path, sizeof(path), "%s/%s", dir, e->d_name);
+			unlink(path);
+		}
+	if (d)
+		closedir(d);
+	rmdir(dir);
+}
+
+static void sleep_ms(long ms)
+{
+	struct timespec t = { ms / 1000, (ms % 1000) * 1000000L };
+
+	nanosleep(&t, NULL);
+}
+
+/* Entries of a folder other than . and .. */
+static int dir_entries(const char *dir)
+{
+	DIR *d = opendir(dir);
+	struct dirent *e;
+	int n = 0;
+
+	while (d && (e = readdir(d)) != NULL)
+		n += strcmp(e->d_name, ".") && strcmp(e->d_name, "..");
+	if (d)
+		closedir(d);
+	return n;
+}
+
+/* --out-dir is a sweep folder: the store's reader loads the manifest,
+ * checks the hash and reads the keywords back, the renderer's too. */
 static void test_frames_writes_fits(void **state)
 {
-	char dir[] = "/tmp/stray_frames_XXXXXX", path[256];
-	FILE *f;
-	char head[80];
+	char dir[] = "/tmp/stray_frames_XXXXXX", path[600], text[FLEN_VALUE];
+	struct stray_sweep_manifest m;
+	struct stray_sweep_fits f;
+	struct stray_error err;
+	double alpha = 0.0;
+	long nstars = -1;
+	int st = 0;
 
 	(void)state;
-	assert_non_null(mkdtemp(dir));
+	stray_error_clear(&err);
+	assert_non_null(mkdtemp(dir));	/* an empty folder may be given */
 	assert_int_equal(STRAY(&r, "frames", "--alpha", "1e-6", "--window", "64",
-			       "--frames", "2", "--save", "1", "--out-dir", dir), 0);
-	snprintf(path, sizeof(path), "%s/frame_000.fits", dir);
-	f = fopen(path, "rb");
-	assert_non_null(f);
-	assert_int_equal(fread(head, 1, 80, f), 80);
-	fclose(f);
-	assert_memory_equal(head, "SIMPLE  =", 9);
-	snprintf(path, sizeof(path), "%s/frame_001.fits", dir);
-	assert_null(fopen(path, "rb"));		/* --save 1 */
-	snprintf(path, sizeof(path), "%s/frame_000.fits", dir);
-	unlink(path);
-	rmdir(dir);
+			       "--theta", "12", "--frames", "2", "--save", "1",
+			       "--out-dir", dir), 0);
+	assert_int_equal(stray_sweep_manifest_load(dir, &m, &err), STRAY_OK);
+	assert_int_equal(m.n, 1);			/* --save 1 */
+	assert_int_equal(m.e[0].type, STRAY_SWEEP_FULL);
+	assert_true(m.e[0].angle_deg == 12.0);
+	assert_int_equal(m.e[0].seqnum, 0);
+	snprintf(path, sizeof(path), "%s/%s", dir, m.e[0].file);
+	assert_int_equal(stray_sweep_sha256_check(path, m.e[0].sha256, &err),
+			 STRAY_OK);
+	assert_int_equal(stray_sweep_fits_open(path, &f, &err), STRAY_OK);
+	assert_int_equal(f.h.n_cols, 64);
+	assert_int_equal(f.h.n_rows, 64);
+	assert_int_equal(f.h.type, STRAY_SWEEP_FULL);
+	assert_true(f.h.angle_deg == 12.0 && f.h.ndtrans == 1.0);
+	fits_read_key(f.fptr, TDOUBLE, "ALPHA", &alpha, NULL, &st);
+	fits_read_key(f.fptr, TLONG, "NSTARS", &nstars, NULL, &st);
+	fits_read_key(f.fptr, TSTRING, "INSTRUME", text, NULL, &st);
+	assert_int_equal(st, 0);
+	assert_true(fabs(alpha - 1e-6) < 1e-15);
+	assert_true(nstars >= 0);
+	assert_string_equal(text, "stray frames");
+	fits_read_key(f.fptr, TSTRING, "NORM", text, NULL, &st);
+	assert_int_equal(st, 0);
+	assert_string_equal(text, "consistent");
+	stray_sweep_fits_close(&f);
+	stray_sweep_manifest_free(&m);
+	/* a folder that holds something is never written into */
+	STRAY(&r, "frames", "--alpha", "1e-6", "--window", "64",
+	      "--out-dir", dir);
+	expect_bad("not empty");
+	remove_dir(dir);
+}
+
+/* All or nothing: a run that fails after frames were rendered and saved
+ * (here the PNG of frame 0 cannot be written) leaves no folder and no
+ * temporary. */
+static void test_frames_failed_run_leaves_nothing(void **state)
+{
+	char base[] = "/tmp/stray_frames_XXXXXX", dir[256];
+
+	(void)state;
+	assert_non_null(mkdtemp(base));
+	snprintf(dir, sizeof(dir), "%s/out", base);
+	STRAY(&r, "frames", "--alpha", "1e-6", "--window", "64", "--frames",
+	      "3", "--save", "3", "--out-dir", dir, "--png",
+	      "/nonexistent/frame.png");
+	assert_int_not_equal(r.status, 0);
+	assert_int_equal(dir_entries(base), 0);
+	/* the same run with a good PNG leaves both */
+	snprintf(dir, sizeof(dir), "%s/png.png", base);
+	assert_int_equal(STRAY(&r, "frames", "--alpha", "1e-6", "--window",
+			       "64", "--png", dir), 0);
+	assert_int_equal(dir_entries(base), 1);
+	unlink(dir);
+	rmdir(base);
+}
+
+/* SIGINT while frames are being saved: no folder, no temporary. */
+static void test_frames_sigint_leaves_nothing(void **state)
+{
+	char base[] = "/tmp/stray_frames_XXXXXX", dir[256];
+	const char *bin = getenv("STRAY_BIN") ? getenv("STRAY_BIN")
+					      : "build/bin/stray";
+	pid_t pid;
+	int i, status = 0;
+
+	(void)state;
+	assert_non_null(mkdtemp(base));
+	snprintf(dir, sizeof(dir), "%s/out", base);
+	pid = fork();
+	assert_true(pid >= 0);
+	if (pid == 0) {
+		int fd = open("/dev/null", O_WRONLY);
+
+		dup2(fd, 1);
+		dup2(fd, 2);
+		execl(bin, "stray", "frames", "--alpha", "1e-6", "--window",
+		      "512", "--frames", "1000", "--save", "1000", "--out-dir",
+		      dir, (char *)NULL);
+		_exit(127);
+	}
+	for (i = 0; i < 3000 && dir_entries(base) == 0; i++)
+		sleep_ms(10);		/* until the temporary folder exists */
+	assert_int_equal(dir_entries(base), 1);
+	sleep_ms(200);			/* some frames in it */
+	kill(pid, SIGINT);
+	assert_int_equal(waitpid(pid, &status, 0), pid);
+	assert_true(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT);
+	assert_int_equal(dir_entries(base), 0);
+	rmdir(base);
 }
 
 /* A float FITS map (BITPIX -32, big-endian), nx x ny cells: a ramp along
@@ -234,6 +364,8 @@ int main(void)
 		cmocka_unit_test(test_frames_curve_theta),
 		cmocka_unit_test(test_frames_normalisations_agree),
 		cmocka_unit_test(test_frames_writes_fits),
+		cmocka_unit_test(test_frames_failed_run_leaves_nothing),
+		cmocka_unit_test(test_frames_sigint_leaves_nothing),
 		cmocka_unit_test(test_frames_map),
 		cmocka_unit_test(test_frames_bad_input),
 	};
