@@ -1,6 +1,7 @@
 /*
  * cli.c - shared plumbing of the subcommands: errors, numbers, JSON.
  */
+#include <getopt.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -81,4 +82,27 @@ int cli_json_emit(cJSON *obj)
 cJSON *cli_json_number(double v)
 {
 	return isfinite(v) ? cJSON_CreateNumber(v) : cJSON_CreateNull();
+}
+
+int cli_next_option(const char *cmd, int argc, char **argv,
+		    const struct option *opts, const char *usage, int *opt)
+{
+	while ((*opt = getopt_long(argc, argv, "h", opts, NULL)) == 0)
+		;	/* a flag, set by getopt_long itself */
+	if (*opt == 'h') {
+		fputs(usage, stdout);
+		return -1;
+	}
+	if (*opt == '?')
+		return cli_usage_error(cmd, "unknown option '%s'",
+				       argv[optind - 1]);
+	return CLI_OK;
+}
+
+int cli_no_operands(const char *cmd, int argc, char **argv)
+{
+	if (optind < argc)
+		return cli_usage_error(cmd, "unexpected argument '%s'",
+				       argv[optind]);
+	return CLI_OK;
 }

@@ -33,6 +33,19 @@ int cli_parse_double(const char *cmd, const char *opt, const char *text,
 int cli_parse_count(const char *cmd, const char *opt, const char *text,
 		    double lo, double hi, double *out);
 
+/*
+ * One step of a subcommand's getopt_long loop (short options: "h"):
+ * *opt = the next option, flags (0) skipped, or -1 when none is left;
+ * --help prints usage and returns -1; an unknown option is a usage error
+ * (2).  CLI_OK otherwise.
+ */
+struct option;
+int cli_next_option(const char *cmd, int argc, char **argv,
+		    const struct option *opts, const char *usage, int *opt);
+
+/* After the options: any operand left is a usage error (2). */
+int cli_no_operands(const char *cmd, int argc, char **argv);
+
 /* Print a JSON object to stdout (pretty) and free it; returns 0 or 1. */
 int cli_json_emit(cJSON *obj);
 

@@ -155,10 +155,9 @@ static int parse_args(int argc, char **argv, struct fdr_setup *s,
 	};
 	int opt, rc;
 
-	while ((opt = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+	while ((rc = cli_next_option("fdr", argc, argv, opts, usage,
+				     &opt)) == CLI_OK && opt != -1) {
 		switch (opt) {
-		case 0: break;
-		case 'h': fputs(usage, stdout); return -1;
 		case 's': a->source = optarg; break;
 		case 'p': a->plot = optarg; break;
 		case 'a':
@@ -166,18 +165,16 @@ static int parse_args(int argc, char **argv, struct fdr_setup *s,
 				return CLI_USAGE;
 			a->has_alpha = 1;
 			break;
-		case '?':
-			return cli_usage_error("fdr", "unknown option '%s'",
-					       argv[optind - 1]);
 		default:
 			rc = fdr_setup_option(s, "fdr", opt, optarg);
 			if (rc != 1)
 				return rc ? rc : CLI_USAGE;
 		}
 	}
-	if (optind < argc)
-		return cli_usage_error("fdr", "unexpected argument '%s'",
-				       argv[optind]);
+	if (rc == CLI_OK)
+		rc = cli_no_operands("fdr", argc, argv);
+	if (rc != CLI_OK)
+		return rc;
 	if (strcmp(a->source, "sun") && strcmp(a->source, "moon") &&
 	    strcmp(a->source, "earth"))
 		return cli_usage_error("fdr", "option '--source': '%s' is not sun, moon or earth",

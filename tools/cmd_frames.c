@@ -161,23 +161,13 @@ static int parse_args(int argc, char **argv, struct fdr_setup *s,
 	};
 	int opt, rc;
 
-	while ((opt = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
-		if (opt == 0)
-			continue;
-		if (opt == 'h') {
-			fputs(usage, stdout);
-			return -1;
-		}
-		if (opt == '?')
-			return cli_usage_error("frames", "unknown option '%s'",
-					       argv[optind - 1]);
+	while ((rc = cli_next_option("frames", argc, argv, opts, usage,
+				     &opt)) == CLI_OK && opt != -1)
 		if ((rc = parse_opt(s, a, opt)) != CLI_OK)
 			return rc;
-	}
-	if (optind < argc)
-		return cli_usage_error("frames", "unexpected argument '%s'",
-				       argv[optind]);
-	return check_args(a);
+	if (rc == CLI_OK)
+		rc = cli_no_operands("frames", argc, argv);
+	return rc == CLI_OK ? check_args(a) : rc;
 }
 
 #define MAX_DET 200000

@@ -129,21 +129,12 @@ static int parse_args(int argc, char **argv, struct reduce_args *a,
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 }
 	};
-	int opt, rc = CLI_OK;
+	int opt, rc;
 
-	while (rc == CLI_OK &&
-	       (opt = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
-		if (opt == 0)
-			continue;
-		if (opt == 'h') {
-			fputs(usage, stdout);
-			return -1;
-		}
-		if (opt == '?')
-			return cli_usage_error("reduce", "unknown option '%s'",
-					       argv[optind - 1]);
-		rc = take_option(opt, a, o);
-	}
+	while ((rc = cli_next_option("reduce", argc, argv, opts, usage,
+				     &opt)) == CLI_OK && opt != -1)
+		if ((rc = take_option(opt, a, o)) != CLI_OK)
+			return rc;
 	if (rc != CLI_OK)
 		return rc;
 	if (optind + 1 != argc)
