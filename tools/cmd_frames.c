@@ -47,7 +47,8 @@ static const char usage[] =
 	NORMALISATION_USAGE
 	"  --map M.fits        focal-plane stray-light map (stray trace --focal-map):\n"
 	"                      its shape spreads the stray light, alpha sets the level\n"
-	"  --out-dir D         write the first --save (3) frames as FITS there\n"
+	"  --out-dir D         the first --save (3) frames as a sweep folder\n"
+	"                      (manifest.csv + FITS); D must not exist or be empty\n"
 	"  --mag-max M         faintest star rendered (10)\n"
 	"  --png F.png         the first frame in false colour (log scale)\n"
 	"  --plot-validation V.csv --plot F.png\n"

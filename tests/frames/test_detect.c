@@ -33,25 +33,33 @@ static void render(double stray_e, uint16_t *dn, float *e, int with_stars)
 	stray_frame_sample(&c, e, 77, dn);
 }
 
-static void test_detect_finds_injected_stars(void **state)
+/* A quiet frame (~ 100 e-/px), with or without the stars, through both
+ * detectors. */
+static void detect_quiet(int with_stars, struct frames_detect_out out[2])
 {
 	static uint16_t dn[W * W];
 	static float e[W * W];
 	struct frames_model fm;
 	struct frames_detect_cfg dc;
+	char msg[128];
+
+	fixture_model(&fm, 1e-6, W);
+	frames_detect_cfg_init(&dc, &fm, stray_sensor_st16_like());
+	render(fm.stray_e, dn, e, with_stars);
+	assert_int_equal(frames_detect(dn, W, W, &dc, FRAMES_DET_THESIS |
+				       FRAMES_DET_THRESHOLD, out, NULL, msg,
+				       sizeof(msg)), 0);
+}
+
+static void test_detect_finds_injected_stars(void **state)
+{
 	struct frames_detection det[2][256];
 	struct frames_detect_out out[2] = { { det[0], 256, 0 }, { det[1], 256, 0 } };
-	char msg[128];
 	int d, k;
 	size_t i;
 
 	(void)state;
-	fixture_model(&fm, 1e-6, W);	/* ~ 100 e-/px: quiet */
-	frames_detect_cfg_init(&dc, &fm, stray_sensor_st16_like());
-	render(fm.stray_e, dn, e, 1);
-	assert_int_equal(frames_detect(dn, W, W, &dc, FRAMES_DET_THESIS |
-				       FRAMES_DET_THRESHOLD, out, NULL, msg,
-				       sizeof(msg)), 0);
+	detect_quiet(1, out);
 	for (d = 0; d < 2; d++) {
 		assert_int_equal(out[d].n, N_STARS);
 		for (k = 0; k < N_STARS; k++) {
@@ -72,21 +80,11 @@ static void test_detect_finds_injected_stars(void **state)
 
 static void test_detect_quiet_frame_is_empty(void **state)
 {
-	static uint16_t dn[W * W];
-	static float e[W * W];
-	struct frames_model fm;
-	struct frames_detect_cfg dc;
 	struct frames_detection det[2][16];
 	struct frames_detect_out out[2] = { { det[0], 16, 0 }, { det[1], 16, 0 } };
-	char msg[128];
 
 	(void)state;
-	fixture_model(&fm, 1e-6, W);
-	frames_detect_cfg_init(&dc, &fm, stray_sensor_st16_like());
-	render(fm.stray_e, dn, e, 0);
-	assert_int_equal(frames_detect(dn, W, W, &dc, FRAMES_DET_THESIS |
-				       FRAMES_DET_THRESHOLD, out, NULL, msg,
-				       sizeof(msg)), 0);
+	detect_quiet(0, out);
 	assert_int_equal(out[0].n, 0);
 	assert_int_equal(out[1].n, 0);
 	/* and a detection far from every star is false */
