@@ -10,21 +10,17 @@
 
 void stray_frame_cfg_defaults(struct stray_frame_cfg *c, int cols, int rows)
 {
+	static const struct stray_frame_cfg off;	/* no light, no noise,
+							 * uniform, no truth
+							 * effects */
+
+	*c = off;
 	c->cols = cols;
 	c->rows = rows;
-	c->col0 = 0;
-	c->row0 = 0;
-	c->stray_e = 0.0;
-	c->weight = 0;
-	c->dark_e = 0.0;
-	c->read_noise_e = 0.0;
 	c->gain_e_per_dn = STRAY_FRAMES_GAIN_E_PER_DN;
 	c->bias_dn = STRAY_FRAMES_BIAS_DN;
 	c->sat_dn = STRAY_FRAMES_SAT_DN;
 	c->psf_sigma_px = 1.5;
-	c->gradient = 0.0;
-	c->hot_frac = 0.0;
-	c->hot_e = 0.0;
 }
 
 uint64_t stray_frame_seed(uint64_t seed, uint64_t i)
