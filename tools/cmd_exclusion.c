@@ -284,7 +284,7 @@ static int plot_exclusion(const struct fdr_setup *s, const struct excl_args *a,
 	{
 		struct plot_spec p = { a->plot, title,
 			"off-axis angle #gh [deg]", "attenuation #ga", 0, 1,
-			NAN, NAN, amin / 10.0, 3.0, series, ns };
+			NAN, NAN, amin / 10.0, 3.0, series, ns, 0 };
 
 		return plot_render(&p, err);
 	}

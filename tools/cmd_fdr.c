@@ -86,7 +86,7 @@ static int plot_fdr(const struct fdr_setup *s, const struct fdr_args *a,
 		struct plot_spec p = {
 			a->plot, title, "system attenuation #ga#dsys#u",
 			"false detections per image", 1, 1, al[0], al[N - 1],
-			1e-6, ymax * 3.0, series, 3
+			1e-6, ymax * 3.0, series, 3, 0
 		};
 
 		snprintf(title, sizeof(title),

@@ -195,7 +195,7 @@ static int plot_run(const char *prefix, const struct orbit_run *r,
 			{ hx, hy, 2, NULL, NULL, PLOT_RED, PLOT_DASHED, "Sun exclusion angle" },
 		};
 		struct plot_spec p = { p1, "Off-axis angles along the orbit (boresight at the zenith)",
-			"time [h]", "off-axis angle [deg]", 0, 0, 0.0, NAN, 0.0, 180.0, s, 4 };
+			"time [h]", "off-axis angle [deg]", 0, 0, 0.0, NAN, 0.0, 180.0, s, 4, 0 };
 
 		if ((rc = plot_render(&p, err)) != STRAY_OK)
 			return rc;
@@ -208,7 +208,7 @@ static int plot_run(const char *prefix, const struct orbit_run *r,
 		};
 		struct plot_spec p = { p2, "False stars predicted on board",
 			"time [h]", "false stars per image", 0, 1, 0.0, NAN,
-			1e-6, 1e6, s, 2 };
+			1e-6, 1e6, s, 2, 0 };
 
 		return plot_render(&p, err);
 	}

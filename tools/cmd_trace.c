@@ -333,7 +333,7 @@ static int plot_curve(const struct trace_args *a,
 	struct plot_series ser[TRACER_ORDERS];
 	struct plot_spec sp = { a->plot, "stray trace: attenuation curve",
 				"theta (deg)", "alpha", 0, 1, NAN, NAN, NAN,
-				NAN, ser, 1 };
+				NAN, ser, 1, 0 };
 	int k, rc = STRAY_OK;
 
 	if (!buf)

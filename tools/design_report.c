@@ -166,7 +166,7 @@ int design_plot(const struct sweep_summary *s, const char *path,
 	struct plot_series ser;
 	struct plot_spec sp = { path, "stray sweep: Sun exclusion angle per "
 				"design", "design", "Sun exclusion angle (deg)",
-				0, 0, -0.5, s->n - 0.5, NAN, NAN, &ser, 1 };
+				0, 0, -0.5, s->n - 0.5, NAN, NAN, &ser, 1, 0 };
 	size_t i;
 	int rc;
 

@@ -153,7 +153,8 @@ static void draw_legend(const struct plot_spec *p)
 	if (n == 0)
 		return;
 	pllegend(&w, &h, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX,
-		 PL_POSITION_TOP | PL_POSITION_RIGHT | PL_POSITION_INSIDE,
+		 (p->legend_bottom ? PL_POSITION_BOTTOM : PL_POSITION_TOP) |
+		 PL_POSITION_RIGHT | PL_POSITION_INSIDE,
 		 0.02, 0.02, 0.08, 0, PLOT_BLACK, 1, 0, 0, n, opt, 1.0, 0.8,
 		 2.0, 0.0, tcol, text, NULL, NULL, NULL, NULL, lcol, lsty, lw,
 		 scol, ssc, snum, sym);

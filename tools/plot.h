@@ -34,6 +34,7 @@ struct plot_spec {
 	double x_min, x_max, y_min, y_max;	/* NaN: from the data */
 	const struct plot_series *series;
 	size_t n_series;
+	int legend_bottom;		/* 1: legend bottom right (default top) */
 };
 
 /* Render spec to spec->path; STRAY_EIO when the file cannot be written. */

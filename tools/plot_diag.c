@@ -56,7 +56,7 @@ int diag_plot(const char *path, const struct diag_data *d,
 		};
 		struct plot_spec p = { path, "stray diagnose: measured and model",
 			"off-axis angle #gh [deg]", "attenuation #ga", 0, 1,
-			NAN, NAN, amin / 3.0, 3.0, s, 3 };
+			NAN, NAN, amin / 3.0, 3.0, s, 3, 0 };
 
 		rc = plot_render(&p, err);
 	}
@@ -69,7 +69,7 @@ int diag_plot(const char *path, const struct diag_data *d,
 		};
 		struct plot_spec p = { rpath, "log#d10#u(measured / model)",
 			"off-axis angle #gh [deg]", "residual", 0, 0,
-			NAN, NAN, NAN, NAN, s, 2 };
+			NAN, NAN, NAN, NAN, s, 2, 0 };
 
 		resid_path(path, rpath, sizeof(rpath));
 		rc = plot_render(&p, err);

@@ -41,7 +41,7 @@ static int plot_alpha(const char *dir,
 	p = (struct plot_spec){ path, "Lens attenuation (fig. 3.7)",
 		"boresight offset angle theta, deg",
 		"normalised attenuation alpha_lens", 0, 1, NAN, NAN, NAN, NAN,
-		s, 2 };
+		s, 2, 0 };
 	rc = plot_render(&p, err);
 	free(buf);
 	return rc;
@@ -76,7 +76,7 @@ static int plot_profiles(const char *dir,
 	snprintf(path, sizeof(path), "%s/profiles.png", dir);
 	p = (struct plot_spec){ path, "Row-collapsed J per angle (fig. 3.9)",
 		"detector column", "mean J / Pbar(0)", 0, 1, NAN, NAN, NAN,
-		NAN, s, k };
+		NAN, s, k, 0 };
 	rc = plot_render(&p, err);
 	free(x), free(y), free(s);
 	return rc;
@@ -114,7 +114,7 @@ static int plot_tracks(const char *dir,
 	snprintf(path, sizeof(path), "%s/ghosts.png", dir);
 	p = (struct plot_spec){ path, "Ghost tracks", "theta, deg",
 		"detector column", 0, 0, NAN, NAN, (double)r->col0,
-		(double)r->col0 + (double)r->n_cols, s, r->n_tracks };
+		(double)r->col0 + (double)r->n_cols, s, r->n_tracks, 0 };
 	if (rc == STRAY_OK && r->n_tracks > 0)
 		rc = plot_render(&p, err);
 	for (i = 0; i < STRAY_REDUCE_TRACKS_MAX; i++)
