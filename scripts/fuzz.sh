@@ -4,6 +4,7 @@
 #
 #   scripts/fuzz.sh ci   SECONDS RUNS JOBS build/fuzz/fuzz_x ...
 #   scripts/fuzz.sh long SECONDS RUNS JOBS build/fuzz/fuzz_x ...
+#   scripts/fuzz.sh merge build/fuzz/fuzz_x ...
 #
 # Each target X reads tests/fuzz/corpus/X (the kept, minimised corpus) and
 # tests/fuzz/seeds/X (hand-written seeds); neither is ever written.  New
@@ -13,7 +14,27 @@
 # limit), whichever comes first, or at its first crash; crash, leak,
 # timeout and out-of-memory inputs land in build/fuzz/artifacts/.  Exit 1
 # when any target crashed (its report is printed), else 0.
+# `merge` rewrites tests/fuzz/corpus/X as the inputs of the kept corpus and
+# of build/fuzz/corpus-X that add coverage beyond the seeds (-merge=1).
 set -u
+
+if [ "$1" = merge ]; then
+	shift
+	for bin in "$@"; do
+		name=$(basename "$bin") short=${name#fuzz_}
+		keep=tests/fuzz/corpus/$short seeds=tests/fuzz/seeds/$short
+		tmp=build/fuzz/merge-$short
+		rm -rf "$tmp" && mkdir -p "$tmp" "$keep" "build/fuzz/corpus-$short"
+		[ -d "$seeds" ] && cp "$seeds"/* "$tmp"/
+		"$bin" -merge=1 "$tmp" "$keep" "build/fuzz/corpus-$short" \
+			>"build/fuzz/$name.merge.log" 2>&1 ||
+			{ tail -n 20 "build/fuzz/$name.merge.log"; exit 1; }
+		[ -d "$seeds" ] && (cd "$seeds" && for f in *; do rm -f "../../../../$tmp/$f"; done)
+		rm -rf "$keep" && mv "$tmp" "$keep"
+		echo "$name: $(ls "$keep" | wc -l) files, $(cat "$keep"/* 2>/dev/null | wc -c) bytes beyond the seeds"
+	done
+	exit 0
+fi
 
 mode=$1 secs=$2 runs=$3 jobs=$4
 shift 4

@@ -68,10 +68,4 @@ fuzz: $(FUZZ_TARGETS)
 	@scripts/fuzz.sh long $(FUZZ_SECONDS) $(FUZZ_RUNS) $(FUZZ_JOBS) $(FUZZ_TARGETS)
 
 fuzz-merge: $(FUZZ_TARGETS)
-	@for f in $(FUZZ_TARGETS); do n=$$(basename $$f); s=$${n#fuzz_}; \
-		mkdir -p tests/fuzz/corpus/$$s build/fuzz/corpus-$$s; \
-		$$f -merge=1 tests/fuzz/corpus/$$s build/fuzz/corpus-$$s \
-			$$(ls -d tests/fuzz/seeds/$$s 2>/dev/null) \
-			>build/fuzz/$$n.merge.log 2>&1 || exit 1; \
-		echo "$$n: $$(ls tests/fuzz/corpus/$$s | wc -l) files, $$(du -sk tests/fuzz/corpus/$$s | cut -f1) KB"; \
-	done
+	@scripts/fuzz.sh merge $(FUZZ_TARGETS)
