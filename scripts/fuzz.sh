@@ -80,6 +80,7 @@ if [ "$mode" = one ]; then	# internal: xargs calls back here
 fi
 
 for b in "$@"; do rm -f "$out/results/$(basename "$b")"; done
+start=$(date +%s)
 printf '%s\n' "$@" | xargs -P "$jobs" -n 1 "$0" one "$mode" "$secs" "$runs"
 
 fail=0
@@ -93,6 +94,7 @@ for b in "$@"; do
 		"$((execs / (t > 0 ? t : 1)))" "$crashes"
 	[ "$crashes" -ne 0 ] && fail=1
 done
+echo "fuzz: $# targets in $(( $(date +%s) - start )) s wall time, $jobs at a time"
 for b in "$@"; do
 	name=$(basename "$b")
 	read -r _ _ _ crashes _ <"$out/results/$name" 2>/dev/null || continue

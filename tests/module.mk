@@ -58,12 +58,14 @@ build/fuzz/fuzz_scene_json: tests/fuzz/fuzz_scene_json.c $(wildcard tracer/*.c) 
 		$(TRACER_LDLIBS) -lstdc++ $(STRAY_LDLIBS)
 
 .PHONY: fuzz fuzz-ci fuzz-smoke fuzz-merge
-fuzz-ci: $(FUZZ_TARGETS)
+fuzz-ci:
+	@$(MAKE) --no-print-directory -j$(FUZZ_JOBS) $(FUZZ_TARGETS)
 	@echo "== fuzz: $(words $(FUZZ_TARGETS)) targets, $(FUZZ_CI_SECONDS) s each, $(FUZZ_JOBS) at a time"
 	@scripts/fuzz.sh ci $(FUZZ_CI_SECONDS) 0 $(FUZZ_JOBS) $(FUZZ_TARGETS)
 fuzz-smoke: fuzz-ci
 
-fuzz: $(FUZZ_TARGETS)
+fuzz:
+	@$(MAKE) --no-print-directory -j$(FUZZ_JOBS) $(FUZZ_TARGETS)
 	@echo "== fuzz: $(words $(FUZZ_TARGETS)) targets, $(FUZZ_RUNS) runs or $(FUZZ_SECONDS) s each (0: no limit)"
 	@scripts/fuzz.sh long $(FUZZ_SECONDS) $(FUZZ_RUNS) $(FUZZ_JOBS) $(FUZZ_TARGETS)
 
