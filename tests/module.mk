@@ -19,34 +19,56 @@ $(B)/tests/tools/%: $(B)/obj/tests/tools/%.o tests/tools/run_cli.h $(STRAY_BIN)
 
 $(B)/obj/tests/tools/%.o: EXTRA_CFLAGS += -I/usr/include/cjson
 
-# Parsers under libFuzzer (clang): `make fuzz` runs each for FUZZ_SECONDS;
-# `make test` replays a fixed number of runs with a fixed seed.
-FUZZ_SECONDS ?= 60
-FUZZ_RUNS ?= 20000
-FUZZ_TARGETS := $(patsubst tests/fuzz/%.c,build/fuzz/%,$(wildcard tests/fuzz/fuzz_*.c))
+# Parsers under libFuzzer (clang), run by scripts/fuzz.sh two at a time
+# (FUZZ_JOBS), each on tests/fuzz/corpus/<target> and tests/fuzz/seeds/<target>:
+#   make fuzz-ci     in `make test`: each target FUZZ_CI_SECONDS (30 s; issue
+#                    14's double free took 7-22 s from the seeds alone, 1 s
+#                    from the kept corpus), fails on any crash
+#   make fuzz        the long campaign: FUZZ_RUNS runs (10^7) per target,
+#                    at most FUZZ_SECONDS (3600) each (0: no time limit;
+#                    fuzz_scene_json, ~150 runs/s through assimp, stops at
+#                    the hour); new inputs kept in build/fuzz/corpus-<target>
+#   make fuzz-merge  minimise those into tests/fuzz/corpus/ (-merge=1)
+# Both print executions and crashes per target; crash inputs land in
+# build/fuzz/artifacts/.
+FUZZ_JOBS ?= 2
+FUZZ_CI_SECONDS ?= 30
+FUZZ_SECONDS ?= 3600
+FUZZ_RUNS ?= 10000000
+FUZZ_TARGETS := $(patsubst tests/fuzz/%.c,build/fuzz/%,\
+	$(wildcard tests/fuzz/fuzz_*.c)) build/fuzz/fuzz_tracer_args
 FUZZ_LIB_SRC := $(STRAY_CORE_SRC) $(STRAY_HOST_SRC) libstray/host/builtin_data.S
+FUZZ_CFLAGS = -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined \
+	$(CPPFLAGS_HOST) -I/usr/include/cjson -DSTRAY_DATA_DIR=\"libstray/data\"
 
 build/fuzz/%: tests/fuzz/%.c $(FUZZ_LIB_SRC)
 	@mkdir -p $(dir $@)
-	$(CLANG) -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined \
-		$(CPPFLAGS_HOST) -I/usr/include/cjson -DSTRAY_DATA_DIR=\"libstray/data\" \
-		-o $@ $^ -lcsv -lcjson -lm
+	$(CLANG) $(FUZZ_CFLAGS) -o $@ $^ -lcsv -lcjson -lm
 
-fuzz: $(FUZZ_TARGETS)
-	@for f in $(FUZZ_TARGETS); do \
-		n=$$(basename $$f); mkdir -p build/fuzz/corpus-$$n; \
-		echo "== $$n ($(FUZZ_SECONDS) s)"; \
-		$$f -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
-			build/fuzz/corpus-$$n tests/fuzz/seeds/$${n#fuzz_} 2>&1 \
-			| grep -E 'stat::number_of_executed_units|ERROR|SUMMARY' ; \
-	done
+# The sweep manifest alone (fuzz_reduce_input shares its time with FITS).
+build/fuzz/fuzz_sweep_manifest: tests/fuzz/fuzz_sweep_manifest.c \
+		$(STRAY_SWEEP_SRC) $(FUZZ_LIB_SRC)
+	@mkdir -p $(dir $@)
+	$(CLANG) $(FUZZ_CFLAGS) -o $@ $^ $(STRAY_LDLIBS)
 
-# New inputs go to a scratch corpus (the first folder), never the seeds.
-fuzz-smoke: $(FUZZ_TARGETS)
-	@for f in $(FUZZ_TARGETS); do \
-		n=$$(basename $$f); echo "== $$n ($(FUZZ_RUNS) runs, seed 1)"; \
-		rm -rf build/fuzz/smoke-$$n; mkdir -p build/fuzz/smoke-$$n; \
-		$$f -runs=$(FUZZ_RUNS) -seed=1 build/fuzz/smoke-$$n tests/fuzz/seeds/$${n#fuzz_} \
-			>build/fuzz/$$n.log 2>&1 || { cat build/fuzz/$$n.log; exit 1; }; \
-		grep -E '^#[0-9]+.*DONE' build/fuzz/$$n.log | tail -n 1; \
-	done
+# Scene files: the JSON, then the OBJ/STL meshes it names through assimp.
+build/fuzz/fuzz_scene_json: tests/fuzz/fuzz_scene_json.c $(wildcard tracer/*.c) \
+		$(FUZZ_LIB_SRC)
+	@mkdir -p $(dir $@)
+	$(CLANG) $(FUZZ_CFLAGS) -D_DEFAULT_SOURCE -Itracer/include -o $@ $^ \
+		$(TRACER_LDLIBS) -lstdc++ $(STRAY_LDLIBS)
+
+.PHONY: fuzz fuzz-ci fuzz-smoke fuzz-merge
+fuzz-ci:
+	@$(MAKE) --no-print-directory -j$(FUZZ_JOBS) $(FUZZ_TARGETS)
+	@echo "== fuzz: $(words $(FUZZ_TARGETS)) targets, $(FUZZ_CI_SECONDS) s each, $(FUZZ_JOBS) at a time"
+	@scripts/fuzz.sh ci $(FUZZ_CI_SECONDS) 0 $(FUZZ_JOBS) $(FUZZ_TARGETS)
+fuzz-smoke: fuzz-ci
+
+fuzz:
+	@$(MAKE) --no-print-directory -j$(FUZZ_JOBS) $(FUZZ_TARGETS)
+	@echo "== fuzz: $(words $(FUZZ_TARGETS)) targets, $(FUZZ_RUNS) runs each, at most $(FUZZ_SECONDS) s (0: no limit)"
+	@scripts/fuzz.sh long $(FUZZ_SECONDS) $(FUZZ_RUNS) $(FUZZ_JOBS) $(FUZZ_TARGETS)
+
+fuzz-merge: $(FUZZ_TARGETS)
+	@scripts/fuzz.sh merge $(FUZZ_TARGETS)

@@ -47,8 +47,8 @@ $(B)/bench/bench_trace: $(B)/obj/bench/bench_trace.o $(TRACER_LIB) $(STRAY_LIB)
 peer-check: $(B)/bench/bench_trace
 	$(B)/bench/bench_trace --peer
 
-# libFuzzer (clang) on the angle list and --set parsers: `make fuzz-tracer`
-# (also run by `make fuzz`); seeds in tests/tracer/fuzz_seeds.
+# libFuzzer (clang) on the angle list and --set parsers, run with the
+# others (FUZZ_TARGETS in tests/module.mk); seeds in tests/fuzz/seeds/tracer_args.
 TRACER_FUZZ := build/fuzz/fuzz_tracer_args
 $(TRACER_FUZZ): tests/tracer/fuzz_tracer_args.c tracer/angles.c \
 		tracer/baffle_params.c $(STRAY_CORE_SRC) $(STRAY_HOST_SRC) \
@@ -59,27 +59,9 @@ $(TRACER_FUZZ): tests/tracer/fuzz_tracer_args.c tracer/angles.c \
 		-I/usr/include/cjson -DSTRAY_DATA_DIR=\"libstray/data\" \
 		-o $@ $^ -lcsv -lcjson -lm
 
-.PHONY: fuzz-tracer
-fuzz-tracer: $(TRACER_FUZZ)
-	@mkdir -p build/fuzz/corpus-tracer
-	$(TRACER_FUZZ) -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
-		build/fuzz/corpus-tracer tests/tracer/fuzz_seeds 2>&1 \
-		| grep -E 'stat::number_of_executed_units|ERROR|SUMMARY'
-fuzz: fuzz-tracer
-
 # The virtual photometer draws its noise from the tracer's Philox streams.
 $(B)/obj/tools/cmd_photometer.o: EXTRA_CFLAGS += -Itracer/include
 
-# make test replays it for a fixed number of runs, like the others.
-.PHONY: fuzz-tracer-smoke
-fuzz-tracer-smoke: $(TRACER_FUZZ)
-	@echo "== fuzz_tracer_args ($(FUZZ_RUNS) runs, seed 1)"
-	@rm -rf build/fuzz/smoke-tracer && mkdir -p build/fuzz/smoke-tracer
-	@$(TRACER_FUZZ) -runs=$(FUZZ_RUNS) -seed=1 build/fuzz/smoke-tracer \
-		tests/tracer/fuzz_seeds > build/fuzz/fuzz_tracer_args.log 2>&1 \
-		|| { cat build/fuzz/fuzz_tracer_args.log; exit 1; }
-	@grep -E '^#[0-9]+.*DONE' build/fuzz/fuzz_tracer_args.log | tail -n 1
-fuzz-smoke: fuzz-tracer-smoke
 
 # The focal-map CLI test runs build/bin/stray and reads its FITS back,
 # also through the reader `stray frames` uses (tools/focal_map_read.c).
