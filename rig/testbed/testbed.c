@@ -75,7 +75,7 @@ struct node {
 	char name[32];		/* sysfs name */
 	char devnode[64];
 	char syspath[256];
-	char parent[256];	/* HID: the USB interface above */
+	char sub[3][256];	/* HID: interface, hid, hidraw below */
 	uint16_t vid, pid;
 	uint8_t eps[USB_EP_MAX];
 	int n_eps, ep_max_packet;
@@ -285,6 +285,9 @@ static void plug_hid(struct node *n)
 		"dev", n->dev == RIG_DEV_WHEEL ? "240:0\n" : "240:1\n", NULL,
 		"DEVNAME", n->devnode, NULL);
 	g_strlcpy(n->syspath, usb, sizeof(n->syspath));
+	g_strlcpy(n->sub[0], intf, sizeof(n->sub[0]));
+	g_strlcpy(n->sub[1], hid, sizeof(n->sub[1]));
+	g_strlcpy(n->sub[2], raw, sizeof(n->sub[2]));
 	device_link(raw);
 	put_file(n->devnode + 1, "", 0);
 	g_free(usb);
@@ -326,6 +329,10 @@ static void unplug(struct node *n)
 	n->gone = 1;
 	n_disconnects++;
 	note("%s: unplugged (remove uevent)", n->what);
+	for (i = 2; n->kind == N_HID && i >= 0; i--) {
+		umockdev_testbed_uevent(tb, n->sub[i], "remove");
+		umockdev_testbed_remove_device(tb, n->sub[i]);
+	}
 	umockdev_testbed_uevent(tb, n->syspath, "remove");
 	umockdev_testbed_remove_device(tb, n->syspath);
 	for (i = 0; i < n->n_urbs; i++)
@@ -362,6 +369,8 @@ static void host_sleep(uint64_t ns)
 			continue;
 		plug(n);
 		umockdev_testbed_uevent(tb, n->syspath, "add");
+		if (n->kind == N_HID)
+			umockdev_testbed_uevent(tb, n->sub[2], "add");
 		n_replugs++;
 		note("%s: plugged back (add uevent)", n->what);
 	}
@@ -602,12 +611,14 @@ static int discard(struct node *n, uint64_t addr)
 		r->done = 1;
 		r->status = -ENOENT;
 		n_timeouts++;
-		/* The simulated HAL's read waited its timeout on the
-		 * virtual clock: the camera driver's (exposure + timeout_s). */
+		/* The simulated HAL's read waited out its timeout on the
+		 * virtual clock; libusb keeps the URB's timeout to itself,
+		 * so this is the camera driver's own formula (camera.c
+		 * read_frame: exposure in whole ms + timeout_s). */
 		if (n->dev == RIG_DEV_CAMERA)
-			hal.ops->clock_sleep(hal.self,
-				sim.cam.exposure_us * 1e-6 +
-				cfg.camera.timeout_s);
+			hal.ops->clock_sleep(hal.self, 1e-3 * (double)
+				(unsigned)(sim.cam.exposure_us / 1000 +
+					   cfg.camera.timeout_s * 1000));
 		note("%s: URB on 0x%02x never completed; discarded",
 		     n->what, r->ep);
 		return 0;
