@@ -117,3 +117,17 @@ $(B)/tests/rig/testbed_sweep: tests/rig/testbed/test_testbed.sh $(RIG_BIN) \
 	@mkdir -p $(dir $@)
 	install -m 755 $< $@
 TESTS_SLOW += $(B)/tests/rig/testbed_sweep
+
+# strayrig-probe (`stray rig probe`): what the real backend finds, and one
+# exchange with each device (rig/probe/probe.c).
+RIG_PROBE_BIN := $(B)/bin/strayrig-probe
+$(B)/obj/rig/probe/probe.o: EXTRA_CFLAGS += $(RIG_CFLAGS)
+$(RIG_PROBE_BIN): $(B)/obj/rig/probe/probe.o $(RIG_LIB) $(STRAY_LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_BASE) -o $@ $< $(RIG_LIB) $(RIG_LDLIBS)
+all: $(RIG_PROBE_BIN)
+install-rig: install-rig-probe
+install-rig-probe: $(RIG_PROBE_BIN)
+	install -d $(DESTDIR)$(PREFIX)/bin
+	install -m 755 $(RIG_PROBE_BIN) $(DESTDIR)$(PREFIX)/bin/
+$(B)/tests/rig/testbed_sweep: $(RIG_PROBE_BIN) $(STRAY_BIN)

@@ -66,12 +66,14 @@ struct urb {
 	uint8_t ep, type;
 	int len, status, actual, done;
 	uint8_t *in;		/* IN data to deliver */
+	int ctrl_in;		/* in[] starts with the 8 setup bytes */
 };
 
 struct node {
 	enum node_kind kind;
 	int dev;		/* enum rig_device */
 	const char *what;
+	const char *serial;	/* iSerialNumber, HID_UNIQ */
 	char name[32];		/* sysfs name */
 	char devnode[64];
 	char syspath[256];
@@ -203,6 +205,7 @@ static void plug_usb(struct node *n)
 		"idVendor", vid, "idProduct", pid, "busnum", "1",
 		"devnum", devnum, "speed", "480", "bConfigurationValue", "1",
 		"bNumConfigurations", "1", "manufacturer", "straylight",
+		"serial", n->serial,
 		"product", n->what, "dev", n->dev == RIG_DEV_STAGE ? "189:1\n"
 								  : "189:2\n",
 		NULL, "DEVTYPE", "usb_device", "DEVNAME", n->devnode,
@@ -277,7 +280,7 @@ static void plug_hid(struct node *n)
 		"bInterfaceNumber", "00", "bInterfaceClass", "03", NULL,
 		"DEVTYPE", "usb_interface", NULL);
 	hid = umockdev_testbed_add_device(tb, "hid", hidname, intf, NULL,
-		"HID_ID", hid_id, "HID_NAME", hid_name, "HID_UNIQ", "",
+		"HID_ID", hid_id, "HID_NAME", hid_name, "HID_UNIQ", n->serial,
 		NULL);
 	umockdev_testbed_set_attribute_binary(tb, hid, "report_descriptor",
 		(guint8 *)rdesc(n), RDESC_LEN);
@@ -481,6 +484,44 @@ static int sim_rc_to_status(struct node *n, int rc)
 	return rc == RIG_OK ? 0 : -EPROTO;
 }
 
+/* Standard GET_DESCRIPTOR (string) on endpoint 0: language 0x0409,
+ * 1 manufacturer, 2 product, 3 serial; anything else stalls.  The answer
+ * is delivered at reap as IN data after the 8 setup bytes. */
+static void control_in(struct node *n, const uint8_t *s, struct urb *r)
+{
+	const char *str = NULL;
+	uint16_t want = (uint16_t)(s[6] | s[7] << 8);
+	uint8_t d[2 + 2 * 32];
+	size_t len, i;
+
+	r->done = 1;
+	if (s[0] != 0x80 || s[1] != 6 || s[3] != 3) {
+		r->status = -EPIPE;
+		return;
+	}
+	if (s[2] == 0) {
+		d[0] = 4, d[1] = 3, d[2] = 0x09, d[3] = 0x04;
+		len = 4;
+	} else {
+		str = s[2] == 1 ? "straylight" : s[2] == 2 ? n->what
+		    : n->serial;
+		for (i = 0; str[i] && i < 32; i++) {
+			d[2 + 2 * i] = (uint8_t)str[i];
+			d[3 + 2 * i] = 0;
+		}
+		len = 2 + 2 * i;
+		d[0] = (uint8_t)len, d[1] = 3;
+	}
+	if (len > want)
+		len = want;
+	r->in = g_malloc((size_t)r->len);
+	memset(r->in, 0, (size_t)r->len);
+	memcpy(r->in + 8, d, len);
+	r->actual = (int)len;
+	r->status = 0;
+	r->ctrl_in = 1;
+}
+
 static int submit(struct node *n, UMockdevIoctlData *arg)
 {
 	UMockdevIoctlData *ud = umockdev_ioctl_data_resolve(arg, 0,
@@ -516,7 +557,10 @@ static int submit(struct node *n, UMockdevIoctlData *arg)
 	bd = u->buffer_length > 0 ? umockdev_ioctl_data_resolve(ud,
 			offsetof(struct usbdevfs_urb, buffer),
 			(gsize)u->buffer_length, NULL) : NULL;
-	if (u->type == USBDEVFS_URB_TYPE_CONTROL) {
+	if (u->type == USBDEVFS_URB_TYPE_CONTROL && bd &&
+	    bd->data_len >= 8 && (bd->data[0] & 0x80)) {
+		control_in(n, bd->data, r);
+	} else if (u->type == USBDEVFS_URB_TYPE_CONTROL) {
 		if (bd && bd->data_len >= 8 && n->dev == RIG_DEV_STAGE)
 			ftdi_request(n, bd->data);
 		r->done = 1;
@@ -586,11 +630,12 @@ static int reap(struct node *n, UMockdevIoctlData *arg)
 	u = (struct usbdevfs_urb *)ud->data;
 	u->status = r.status;
 	u->actual_length = r.actual;
-	if (r.in && r.actual > 0) {
+	if (r.in && (r.actual > 0 || r.ctrl_in)) {
 		bd = umockdev_ioctl_data_resolve(ud,
 			offsetof(struct usbdevfs_urb, buffer),
 			(gsize)r.len, NULL);
-		memcpy(bd->data, r.in, (size_t)r.actual);
+		memcpy(bd->data + (r.ctrl_in ? 8 : 0), r.in + (r.ctrl_in ? 8 : 0),
+		       (size_t)r.actual);
 		g_object_unref(bd);
 	}
 	g_free(r.in);
@@ -1066,6 +1111,7 @@ static void build_lab(void)
 	n = add_node(N_USB, RIG_DEV_STAGE, "stage");
 	g_strlcpy(n->name, "1-2", sizeof(n->name));
 	g_strlcpy(n->devnode, "/dev/bus/usb/001/002", sizeof(n->devnode));
+	n->serial = cfg.stage.serial[0] ? cfg.stage.serial : "83000001";
 	n->vid = cfg.stage.usb.vid;
 	n->pid = cfg.stage.usb.pid;
 	n->eps[0] = 0x81;
@@ -1076,6 +1122,7 @@ static void build_lab(void)
 	n = add_node(N_USB, RIG_DEV_CAMERA, "camera");
 	g_strlcpy(n->name, "1-3", sizeof(n->name));
 	g_strlcpy(n->devnode, "/dev/bus/usb/001/003", sizeof(n->devnode));
+	n->serial = cfg.camera.serial[0] ? cfg.camera.serial : "CAM0001";
 	n->vid = cfg.camera.usb.vid;
 	n->pid = cfg.camera.usb.pid;
 	n->eps[0] = RIG_FL_EP_CMD;
@@ -1085,12 +1132,15 @@ static void build_lab(void)
 	n = add_node(N_HID, RIG_DEV_WHEEL, "wheel");
 	g_strlcpy(n->name, "hidraw0", sizeof(n->name));
 	g_strlcpy(n->devnode, "/dev/hidraw0", sizeof(n->devnode));
+	n->serial = cfg.wheel.serial[0] ? cfg.wheel.serial : "ND0001";
 	n->vid = cfg.wheel.vid;
 	n->pid = cfg.wheel.pid;
 	if (cfg.monitor.enabled) {
 		n = add_node(N_HID, RIG_DEV_MONITOR, "monitor");
 		g_strlcpy(n->name, "hidraw1", sizeof(n->name));
 		g_strlcpy(n->devnode, "/dev/hidraw1", sizeof(n->devnode));
+		n->serial = cfg.monitor.serial[0] ? cfg.monitor.serial
+						   : "MON0001";
 		n->vid = cfg.monitor.vid;
 		n->pid = cfg.monitor.pid;
 	}
@@ -1164,6 +1214,14 @@ int main(int argc, char **argv)
 		fprintf(stderr, "rig-testbed: %s\n", err.msg);
 		return 2;
 	}
+	for (i = 0; i < cfg.sim.n_faults; i++)
+		if (cfg.sim.faults[i].kind == RIG_FAULT_KILL) {
+			fprintf(stderr, "rig-testbed: %s: sim.faults[%d]: kind "
+				"'kill' cannot run under the test bed (the "
+				"device side would kill the test bed, not the "
+				"daemon)\n", config, i);
+			return 2;
+		}
 	logf = logpath ? fopen(logpath, "w") : stderr;
 	shim = getenv("RIG_TESTBED_SHIM");
 	if (!shim) {

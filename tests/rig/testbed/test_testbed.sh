@@ -59,6 +59,17 @@ if sweep_pair faults tests/rig/testbed/faults.json; then
 	*) bad "faults: test bed summary" "$line" ;;
 	esac
 fi
+echo "[ RUN      ] stray rig probe"
+B=$B scripts/rig-testbed.sh "$B/bin/stray" rig probe \
+	--config examples/rig-testbed.json >"$tmp/probe.out" 2>"$tmp/probe.err"
+rc=$?
+n_ok=$(grep -c '^[a-z]* *ok: ' "$tmp/probe.out")
+if [ $rc -eq 0 ] && [ "$n_ok" -eq 5 ] &&
+	grep -q '^probe: every device answered' "$tmp/probe.out"; then
+	ok "probe: 5 devices found and answered once"
+else
+	bad "probe" "exit $rc, $n_ok devices ok: $(tail -n 2 "$tmp/probe.out" "$tmp/probe.err" | tr '\n' ' ')"
+fi
 total=$((passed + failed))
 echo "[==========] $total test(s) run."
 echo "[  PASSED  ] $passed test(s)."
