@@ -70,6 +70,18 @@ if [ $rc -eq 0 ] && [ "$n_ok" -eq 5 ] &&
 else
 	bad "probe" "exit $rc, $n_ok devices ok: $(tail -n 2 "$tmp/probe.out" "$tmp/probe.err" | tr '\n' ' ')"
 fi
+echo "[ RUN      ] rig/udev/99-straylight.rules names the default devices"
+missing=""
+for id in 0403:faf0 04b4:00f1 16c0:05df 16c0:05e0; do
+	grep -q "idVendor}==\"${id%:*}\", ATTRS\{0,1\}{idProduct}==\"${id#*:}\"" \
+		rig/udev/99-straylight.rules || missing="$missing $id"
+done
+# the same ids, as the probe found them under the test bed
+for id in 0403:faf0 04b4:00f1 16c0:05df 16c0:05e0; do
+	grep -q "found .* $id" "$tmp/probe.out" || missing="$missing probe:$id"
+done
+if [ -z "$missing" ]; then ok "udev rules: stage, camera, wheel, monitor"
+else bad "udev rules" "no rule for$missing"; fi
 total=$((passed + failed))
 echo "[==========] $total test(s) run."
 echo "[  PASSED  ] $passed test(s)."
