@@ -3,7 +3,8 @@
  * the command the test bed runs.  Two jobs only (testbed.h):
  *   nanosleep  reported to the test bed's clock node (the device side
  *              runs on the simulator's virtual clock), then slept for at
- *              most 5 ms of real time so hotplug threads get to run;
+ *              most 5 ms of real time, 200 ms after a device came back
+ *              (libusb's hotplug thread must see it first);
  *   ioctl      after GPIO_GET_LINEHANDLE_IOCTL succeeds, opens the chip
  *              node again and binds the new fd to the handle the test
  *              bed created, doing what the kernel does with anon inodes.
@@ -41,6 +42,7 @@ int nanosleep(const struct timespec *req, struct timespec *rem)
 	static int clock_fd = -2;
 	struct timespec shortened;
 	uint64_t ns;
+	int replugged;
 
 	if (!real)
 		real = (nanosleep_fn)dlsym(RTLD_NEXT, "nanosleep");
@@ -49,9 +51,12 @@ int nanosleep(const struct timespec *req, struct timespec *rem)
 	if (clock_fd < 0 || !req)
 		return real(req, rem);
 	ns = (uint64_t)req->tv_sec * 1000000000u + (uint64_t)req->tv_nsec;
-	next_ioctl()(clock_fd, RIGTB_SLEEP, &ns);
+	/* > 0: devices were plugged back; libusb's hotplug thread must
+	 * see their "add" uevents before the host looks for them. */
+	replugged = next_ioctl()(clock_fd, RIGTB_SLEEP, &ns);
 	shortened.tv_sec = 0;
-	shortened.tv_nsec = ns < 5000000 ? (long)ns : 5000000;
+	shortened.tv_nsec = replugged > 0 ? 200000000
+			  : ns < 5000000 ? (long)ns : 5000000;
 	if (rem)
 		rem->tv_sec = rem->tv_nsec = 0;
 	return real(&shortened, NULL);

@@ -17,6 +17,9 @@
  * simulator backend's own ops table (rig/sim/sim.c), the code that
  * answers the simulated HAL: one device model serves both paths.
  *
+ * RIGTB_SLEEP answers the number of devices plugged back, so the shim
+ * gives the host's hotplug thread time to see them.
+ *
  * Faults of the simulator's schedule become what the kernel shows: a
  * disconnect removes the device (sysfs, node, "remove" uevent; URBs
  * complete with -ESHUTDOWN, then -ENODEV) and it is plugged back ("add"
@@ -360,9 +363,9 @@ static int sim_open(struct node *n)
 
 /* A host sleep: the virtual clock moves; unplugged devices come back
  * when the fault schedule lets them re-open. */
-static void host_sleep(uint64_t ns)
+static int host_sleep(uint64_t ns)
 {
-	int i;
+	int i, replugged = 0;
 
 	hal.ops->clock_sleep(hal.self, (double)ns * 1e-9);
 	for (i = 0; i < n_nodes; i++) {
@@ -375,8 +378,10 @@ static void host_sleep(uint64_t ns)
 		if (n->kind == N_HID)
 			umockdev_testbed_uevent(tb, n->sub[2], "add");
 		n_replugs++;
+		replugged++;
 		note("%s: plugged back (add uevent)", n->what);
 	}
+	return replugged;
 }
 
 /* ---- usbdevfs ---- */
@@ -1020,9 +1025,8 @@ static gboolean tb_ioctl(UMockdevIoctlBase *base, UMockdevIoctlClient *c)
 	case N_CLOCK:
 		if (req == RIGTB_SLEEP) {
 			d = umockdev_ioctl_data_resolve(arg, 0, 8, NULL);
-			host_sleep(*(uint64_t *)d->data);
+			rc = host_sleep(*(uint64_t *)d->data);
 			g_object_unref(d);
-			rc = 0;
 		}
 		break;
 	}
