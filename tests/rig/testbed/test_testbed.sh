@@ -51,10 +51,11 @@ sweep_pair demo examples/rig-testbed.json
 echo "[ RUN      ] fault schedule (tests/rig/testbed/faults.json)"
 if sweep_pair faults tests/rig/testbed/faults.json; then
 	# What the kernel would show for the schedule: three devices gone
-	# and back with uevents, one URB that never completed.
+	# and back with uevents, two URBs that never completed (the camera's
+	# timeout and stall).
 	line=$(grep "command exit" "$tmp/faults-tb.log")
 	case "$line" in
-	*"3 disconnects, 3 re-plugs, 1 URBs never completed, 5 faults fired"*)
+	*"3 disconnects, 3 re-plugs, 2 URBs never completed, 6 faults fired"*)
 		ok "faults: $line" ;;
 	*) bad "faults: test bed summary" "$line" ;;
 	esac
@@ -69,6 +70,18 @@ if [ $rc -eq 0 ] && [ "$n_ok" -eq 5 ] &&
 	ok "probe: 5 devices found and answered once"
 else
 	bad "probe" "exit $rc, $n_ok devices ok: $(tail -n 2 "$tmp/probe.out" "$tmp/probe.err" | tr '\n' ' ')"
+fi
+echo "[ RUN      ] the test bed flags a host that breaks a protocol"
+# A host writing an 8-byte report with id 0x09 to the wheel, whose
+# descriptor has output report 0x01: one line naming it, exit 3.
+B=$B scripts/rig-testbed.sh python3 -c \
+	"import os; f = os.open('/dev/hidraw0', os.O_RDWR); os.write(f, bytes([9] * 8))" \
+	>"$tmp/neg.out" 2>&1
+rc=$?
+if [ $rc -eq 3 ] && grep -q "wheel: output report of 8 bytes with id 0x09" "$tmp/neg.out"; then
+	ok "negative control: wrong HID report id flagged, exit 3"
+else
+	bad "negative control" "exit $rc: $(head -n 2 "$tmp/neg.out" | tr '\n' ' ')"
 fi
 echo "[ RUN      ] rig/udev/99-straylight.rules names the default devices"
 missing=""
