@@ -688,9 +688,10 @@ static int usb_ioctl(struct node *n, unsigned long req,
 	switch (req) {
 	case USBDEVFS_GET_CAPABILITIES:
 		d = umockdev_ioctl_data_resolve(arg, 0, 4, NULL);
+		/* One URB per transfer, as a current kernel allows;
+		 * DISCONNECT_CLAIM is an ioctl, not a capability. */
 		*(uint32_t *)d->data = USBDEVFS_CAP_NO_PACKET_SIZE_LIM |
-				       USBDEVFS_CAP_REAP_AFTER_DISCONNECT |
-				       USBDEVFS_CAP_DROP_PRIVILEGES * 0 | 0x08; /* DISCONNECT_CLAIM */
+				       USBDEVFS_CAP_REAP_AFTER_DISCONNECT;
 		break;
 	case USBDEVFS_CLAIMINTERFACE:
 		if (n->driver) {
