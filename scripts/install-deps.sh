@@ -16,6 +16,7 @@ PKGS=(
 	libembree-dev libassimp-dev	# ray queries, OBJ/STL import
 	libopenmpi-dev openmpi-bin	# stray-mpi
 	libusb-1.0-0-dev libhidapi-dev libgpiod-dev zlib1g-dev	# rig
+	umockdev libumockdev-dev	# rig test bed (scripts/rig-testbed.sh)
 	gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm	# flight build
 	liberfa-dev cppcheck		# ephemeris reference, flight-code checks
 )

@@ -34,6 +34,10 @@ static const char usage[] =
 	"  pause | resume       hold a sweep (lab made safe) and go on\n"
 	"  abort | safe         stop; lamp off, beam blocked, shutter closed\n"
 	"  shutdown             make safe and stop the daemon\n"
+	"  probe --config RIG.json\n"
+	"                       without the daemon: list the devices the real\n"
+	"                       backend finds and talk to each once (nothing\n"
+	"                       moves; runs strayrig-probe)\n"
 	"\n"
 	"  --socket PATH        control socket (default $STRAYRIGD_SOCKET or\n"
 	"                       " DEFAULT_SOCKET ")\n"
@@ -160,6 +164,31 @@ out:
 	return rc;
 }
 
+/* `stray rig probe --config FILE`: strayrig-probe beside this binary,
+ * else on PATH (it links the real backend; stray does not). */
+static int probe(int argc, char **argv)
+{
+	char self[4096], *slash;
+	ssize_t n;
+
+	if (argc != 3 || strcmp(argv[1], "--config"))
+		return cli_usage_error("rig", "probe: expected --config "
+				       "RIG.json");
+	n = readlink("/proc/self/exe", self, sizeof(self) - 32);
+	if (n > 0) {
+		self[n] = '\0';
+		slash = strrchr(self, '/');
+		strcpy(slash + 1, "strayrig-probe");
+		execl(self, "strayrig-probe", "--config", argv[2],
+		      (char *)NULL);
+	}
+	execlp("strayrig-probe", "strayrig-probe", "--config", argv[2],
+	       (char *)NULL);
+	fprintf(stderr, "stray rig: probe: cannot run strayrig-probe: %s\n",
+		strerror(errno));
+	return CLI_FAIL;
+}
+
 int cmd_rig(int argc, char **argv)
 {
 	static const struct option opts[] = {
@@ -174,6 +203,8 @@ int cmd_rig(int argc, char **argv)
 	int opt, resume = 0, force_plan = 0, rc;
 	cJSON *req;
 
+	if (argc >= 2 && !strcmp(argv[1], "probe"))
+		return probe(argc - 1, argv + 1);
 	while ((opt = getopt_long(argc, argv, "hs:", opts, NULL)) != -1) {
 		switch (opt) {
 		case 0: break;

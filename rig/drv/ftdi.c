@@ -16,25 +16,43 @@
 #define FTDI_STATUS_LEN 2
 #define FTDI_REQ_OUT 0x40
 #define FTDI_SIO_RESET 0
+#define FTDI_SIO_MODEM_CTRL 1
 #define FTDI_SIO_SET_FLOW_CTRL 2
 #define FTDI_SIO_SET_BAUD_RATE 3
 #define FTDI_SIO_SET_DATA 4
+#define FTDI_SIO_SET_LATENCY_TIMER 9
 #define FTDI_RESET_PURGE_RX 1
 #define FTDI_RESET_PURGE_TX 2
-#define FTDI_DIV_115200 0x001A	/* 3 MHz / 26 */
+#define FTDI_DIV_115200 0x001A	/* 3 MHz / 26, sub-integer bits 0 */
 #define FTDI_DATA_8N1 0x0008
 #define FTDI_FLOW_RTS_CTS 0x0100
+#define FTDI_RTS_ON 0x0202	/* mask bit 9 (RTS), level bit 1 */
+#define FTDI_LATENCY_MS 16	/* the chip's default, set explicitly */
+#define FTDI_PURGE_DWELL_S 0.05	/* APT protocol §2.1: 50 ms each side */
 #define FTDI_TIMEOUT_MS 500
 
+/* The set-up of the APT protocol document, §2.1 (FT_SetBaudRate,
+ * FT_SetDataCharacteristics, 50 ms, FT_Purge, 50 ms, FT_ResetDevice,
+ * FT_SetFlowControl RTS/CTS, FT_SetRts), as FTDI vendor requests
+ * [AN232B-04], plus the latency timer, so the timing does not depend on
+ * what the EEPROM or the last program left.  On the FT232 of the APT
+ * controllers wIndex of SET_BAUD_RATE carries divisor bit 16, not the
+ * interface: interface + 1 there was the sub-integer code 0.375, 113744
+ * baud (found by the umockdev test bed, rig/testbed/). */
 int rig_ftdi_setup(struct rig_hal_dev *d, int interface)
 {
+	enum { PURGE_DWELL = 0xff };
 	static const uint16_t steps[][2] = {
 		{ FTDI_SIO_RESET, 0 },
 		{ FTDI_SIO_SET_BAUD_RATE, FTDI_DIV_115200 },
 		{ FTDI_SIO_SET_DATA, FTDI_DATA_8N1 },
+		{ PURGE_DWELL, 0 },
 		{ FTDI_SIO_RESET, FTDI_RESET_PURGE_RX },
 		{ FTDI_SIO_RESET, FTDI_RESET_PURGE_TX },
+		{ PURGE_DWELL, 0 },
 		{ FTDI_SIO_SET_FLOW_CTRL, 0 },
+		{ FTDI_SIO_MODEM_CTRL, FTDI_RTS_ON },
+		{ FTDI_SIO_SET_LATENCY_TIMER, FTDI_LATENCY_MS },
 	};
 	uint16_t index = (uint16_t)(interface + 1);
 	size_t i;
@@ -43,8 +61,14 @@ int rig_ftdi_setup(struct rig_hal_dev *d, int interface)
 	for (i = 0; i < sizeof(steps) / sizeof(steps[0]); i++) {
 		uint16_t ix = index;
 
+		if (steps[i][0] == PURGE_DWELL) {
+			rig_hal_sleep(d->hal, FTDI_PURGE_DWELL_S);
+			continue;
+		}
 		if (steps[i][0] == FTDI_SIO_SET_FLOW_CTRL)
 			ix |= FTDI_FLOW_RTS_CTS;
+		if (steps[i][0] == FTDI_SIO_SET_BAUD_RATE)
+			ix = (uint16_t)(FTDI_DIV_115200 >> 16);
 		rc = rig_hal_usb_control(d, FTDI_REQ_OUT, (uint8_t)steps[i][0],
 					 steps[i][1], ix, FTDI_TIMEOUT_MS);
 		if (rc != RIG_OK)

@@ -24,6 +24,8 @@ static struct {
 	uint8_t tx[1024];	/* bytes the driver wrote */
 	size_t tx_len;
 	int controls;
+	uint16_t baud_index;	/* wIndex of SET_BAUD_RATE */
+	int rts, latency_ms;
 	uint16_t baud_value;
 	double t_s;
 	int fail_at, calls;	/* fail the fail_at-th transfer (0 = never) */
@@ -48,10 +50,16 @@ int __wrap_rig_hal_usb_control(struct rig_hal_dev *d, uint8_t type,
 			       uint8_t req, uint16_t value, uint16_t index,
 			       unsigned timeout_ms)
 {
-	(void)d, (void)type, (void)index, (void)timeout_ms;
+	(void)d, (void)type, (void)timeout_ms;
 	ctl.controls++;
-	if (req == 3)	/* FTDI_SIO_SET_BAUD_RATE */
+	if (req == 3) {	/* FTDI_SIO_SET_BAUD_RATE */
 		ctl.baud_value = value;
+		ctl.baud_index = index;
+	}
+	if (req == 1 && (value & 0x0200))	/* SIO_MODEM_CTRL, RTS */
+		ctl.rts = value & 0x02;
+	if (req == 9)	/* SIO_SET_LATENCY_TIMER */
+		ctl.latency_ms = value;
 	return fail_now() ? RIG_EDISCONNECT : RIG_OK;
 }
 
@@ -181,9 +189,15 @@ static void test_stage_open_sets_up_ftdi(void **state)
 
 	(void)state;
 	open_homed(&s, &err);
-	/* APT protocol §2.1: reset, baud, 8N1, purge x2, RTS/CTS. */
-	assert_int_equal(ctl.controls, 6);
+	/* APT protocol §2.1: reset, baud, 8N1, purge x2, RTS/CTS, RTS on,
+	 * and the latency timer. */
+	assert_int_equal(ctl.controls, 8);
 	assert_int_equal(ctl.baud_value, 0x001A);	/* 115200 baud */
+	/* On an FT232, wIndex bit 0 is divisor bit 16: 1 would be 113744
+	 * baud (the umockdev test bed found it). */
+	assert_int_equal(ctl.baud_index, 0);
+	assert_true(ctl.rts);
+	assert_int_equal(ctl.latency_ms, 16);
 }
 
 static void test_stage_move_sends_absolute_counts(void **state)
