@@ -415,69 +415,131 @@ static FILE *csv_open(const struct mission_args *a, const struct mission *m,
 	return out->f;
 }
 
+/* Epochs are taken in blocks: what every head shares (orbit, attitude,
+ * Sun, albedo) is made for the block in parallel over epochs, then each
+ * head flies the block in order (its flags latch from frame to frame),
+ * the heads in parallel. */
+#define BLOCK 4096
+
+struct block {
+	double r[BLOCK][3], mib[BLOCK][3][3];
+	float sun[BLOCK][3];
+	int32_t t_tt[BLOCK];
+	int bad[BLOCK];
+	uint32_t flags[MISSION_HEADS_MAX][BLOCK];
+	float sun_deg[MISSION_HEADS_MAX][BLOCK];
+};
+
+static void shared_inputs(struct mission *m, struct block *b, size_t i0,
+			  size_t nb)
+{
+	long j;
+
+#pragma omp parallel for schedule(static)
+	for (j = 0; j < (long)nb; j++) {
+		double t = m->t0 + (double)(i0 + (size_t)j) * m->step_s, v[3], q[4];
+		float pos[3];
+		int k;
+
+		b->bad[j] = stray_oem_state(&m->oem, t, b->r[j], v) != STRAY_OK ||
+			    stray_aem_attitude(&m->aem, t, q) != STRAY_OK;
+		if (b->bad[j])
+			continue;
+		b->t_tt[j] = (int32_t)lround(t);
+		for (k = 0; k < 3; k++)
+			pos[k] = (float)b->r[j][k];
+		fdrfw_sun_dir(b->t_tt[j], b->sun[j]);
+		m->albedo[i0 + (size_t)j] =
+			(float)mission_cap_albedo(pos, b->sun[j]);
+		stray_q_dcm(q, b->mib[j]);
+	}
+}
+
+static void fly_head(struct mission *m, struct block *b, size_t h,
+		     size_t i0, size_t nb, size_t sky_every)
+{
+	struct mission_head *hd = &m->head[h];
+	size_t j;
+
+	for (j = 0; j < nb; j++) {
+		size_t i = i0 + j, s = i / sky_every;
+		struct fdrfw_input in;
+		struct fdrfw_output o;
+		double mis[3][3];
+		int k, l;
+
+		memset(&in, 0, sizeof(in));
+		for (k = 0; k < 3; k++) {
+			in.pos_km[k] = (float)b->r[j][k];
+			for (l = 0; l < 3; l++)
+				mis[k][l] = hd->m_bs[k][0] * b->mib[j][0][l] +
+					    hd->m_bs[k][1] * b->mib[j][1][l] +
+					    hd->m_bs[k][2] * b->mib[j][2][l];
+		}
+		mission_fw_q(mis, in.q);
+		in.t_tt_s = b->t_tt[j];
+		in.t_exp_s = hd->table.t_exp_nominal_s;
+		/* the ground feeds the regional albedo to the Earth term */
+		hd->table.earth_albedo = m->albedo[i];
+		(void)fdrfw_frame(&hd->ctx, &in, &o);
+		hd->mask[i] = (uint8_t)(o.flags & STRAY_AVAIL_BLIND);
+		hd->stars[i] = o.false_stars_total;
+		b->flags[h][j] = o.flags;
+		b->sun_deg[h][j] = o.theta_deg[FDRFW_SUN];
+		if (i % sky_every == 0 && s < m->n_sky)
+			sky_sample(hd, s, mis, b->r[j], b->sun[j], in.t_tt_s);
+	}
+}
+
 int mission_fly(const struct mission_args *a, struct mission *m,
 		struct stray_error *err)
 {
 	struct stray_file_out out;
 	FILE *csv = csv_open(a, m, &out, err);
-	size_t i, h, sky_every = (m->n + m->n_sky - 1) / m->n_sky, j = 0;
+	size_t i0, h, i, sky_every = (m->n + m->n_sky - 1) / m->n_sky;
+	struct block *b = malloc(sizeof(*b));
 
-	if (a->csv && !csv)
-		return STRAY_EIO;
-	for (i = 0; i < m->n; i++) {
-		double t = m->t0 + (double)i * m->step_s, r[3], v[3], q[4];
-		double mib[3][3], mis[3][3];
-		struct fdrfw_input in;
-		float sun[3];
-		uint8_t all = STRAY_AVAIL_BLIND;
-		int k, l, sky = i % sky_every == 0 && j < m->n_sky;
-
-		if (stray_oem_state(&m->oem, t, r, v) != STRAY_OK ||
-		    stray_aem_attitude(&m->aem, t, q) != STRAY_OK) {
-			if (csv)
-				stray_file_abort(&out);
-			return stray_error_at(err, STRAY_ERANGE, a->oem, 0, "epoch",
-					      "outside the ephemeris");
-		}
-		memset(&in, 0, sizeof(in));
-		in.t_tt_s = (int32_t)lround(t);
-		for (k = 0; k < 3; k++)
-			in.pos_km[k] = (float)r[k];
-		fdrfw_sun_dir(in.t_tt_s, sun);
-		m->albedo[i] = (float)mission_cap_albedo(in.pos_km, sun);
-		stray_q_dcm(q, mib);
+	if ((a->csv && !csv) || !b) {
+		free(b);
 		if (csv)
-			fprintf(csv, "%.3f,%.4f", t - m->t0, m->albedo[i]);
-		for (h = 0; h < m->n_heads; h++) {
-			struct mission_head *hd = &m->head[h];
-			struct fdrfw_output o;
-
-			for (k = 0; k < 3; k++)
-				for (l = 0; l < 3; l++)
-					mis[k][l] = hd->m_bs[k][0] * mib[0][l] +
-						    hd->m_bs[k][1] * mib[1][l] +
-						    hd->m_bs[k][2] * mib[2][l];
-			mission_fw_q(mis, in.q);
-			in.t_exp_s = hd->table.t_exp_nominal_s;
-			/* the ground feeds the regional albedo to the Earth term */
-			hd->table.earth_albedo = m->albedo[i];
-			(void)fdrfw_frame(&hd->ctx, &in, &o);
-			hd->mask[i] = (uint8_t)(o.flags & STRAY_AVAIL_BLIND);
-			hd->stars[i] = o.false_stars_total;
-			all &= hd->mask[i] ? STRAY_AVAIL_BLIND : 0;
-			if (sky)
-				sky_sample(hd, j, mis, r, sun, in.t_tt_s);
-			if (csv)
-				fprintf(csv, ",%u,%.3f,%.4g", (unsigned)o.flags,
-					(double)o.theta_deg[FDRFW_SUN],
-					(double)o.false_stars_total);
-		}
-		j += sky;
-		m->any_mask[i] = all;
-		if (csv)
-			fprintf(csv, ",%d\n", all == 0);
+			stray_file_abort(&out);
+		return b ? STRAY_EIO : stray_error_set(err, STRAY_ENOMEM, "block", NULL);
 	}
-	m->n_sky = j;
+	m->n_sky = (m->n + sky_every - 1) / sky_every;
+	for (i0 = 0; i0 < m->n; i0 += BLOCK) {
+		size_t nb = m->n - i0 < BLOCK ? m->n - i0 : BLOCK, j;
+		long hh;
+
+		shared_inputs(m, b, i0, nb);
+		for (j = 0; j < nb; j++)
+			if (b->bad[j]) {
+				free(b);
+				if (csv)
+					stray_file_abort(&out);
+				return stray_error_at(err, STRAY_ERANGE, a->oem, 0,
+						      "epoch", "outside the ephemeris");
+			}
+#pragma omp parallel for schedule(dynamic, 1)
+		for (hh = 0; hh < (long)m->n_heads; hh++)
+			fly_head(m, b, (size_t)hh, i0, nb, sky_every);
+		for (j = 0; j < nb; j++) {
+			uint8_t all = STRAY_AVAIL_BLIND;
+
+			for (h = 0; h < m->n_heads; h++)
+				all &= m->head[h].mask[i0 + j] ? STRAY_AVAIL_BLIND : 0;
+			m->any_mask[i0 + j] = all;
+			if (!csv)
+				continue;
+			fprintf(csv, "%.3f,%.4f", (double)(i0 + j) * m->step_s,
+				(double)m->albedo[i0 + j]);
+			for (h = 0; h < m->n_heads; h++)
+				fprintf(csv, ",%u,%.3f,%.4g", (unsigned)b->flags[h][j],
+					(double)b->sun_deg[h][j],
+					(double)m->head[h].stars[i0 + j]);
+			fprintf(csv, ",%d\n", all == 0);
+		}
+	}
+	free(b);
 	for (h = 0; h < m->n_heads; h++) {
 		struct mission_head *hd = &m->head[h];
 		double sum = 0.0, mx = 0.0;

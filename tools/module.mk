@@ -72,3 +72,7 @@ $(B)/bench/bench_frames: $(B)/obj/bench/bench_frames.o $(FRAMES_ANALYSIS_OBJ) \
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_BASE) -o $@ $< $(FRAMES_ANALYSIS_OBJ) $(STRAY_LIB) \
 		$(FRAMES_LDLIBS) $(STRAY_LDLIBS)
+
+# `stray availability` (issue 15): the heads fly in parallel (OpenMP).
+$(B)/obj/tools/avail_mission.o: EXTRA_CFLAGS += -fopenmp
+TOOLS_LDLIBS += -fopenmp
