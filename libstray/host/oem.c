@@ -28,7 +28,9 @@ struct oem_parse {
 static int fail(struct oem_parse *p, const char *key, const char *why,
 		const char *text)
 {
-	stray_error_at(p->err, STRAY_EPARSE, p->file, p->line, key, why);
+	/* the keyword is named at run time: the line buffer does not last */
+	stray_error_at(p->err, STRAY_EPARSE, p->file, p->line, "keyword", why);
+	stray_error_column(p->err, key);
 	stray_error_text(p->err, text);
 	return STRAY_EPARSE;
 }
