@@ -13,13 +13,14 @@
 
 #define TIMELINE_BINS 4000
 
-static cJSON *stats_json(const struct stray_avail_stats *s)
+static cJSON *stats_json(const char *name, const struct stray_avail_stats *s)
 {
 	static const char *const bins[STRAY_AVAIL_BINS] = {
 		"lt_1min", "1_5min", "5_15min", "15_60min", "ge_60min" };
 	cJSON *o = cJSON_CreateObject(), *hist = cJSON_CreateObject();
 	int b;
 
+	cJSON_AddStringToObject(o, "name", name);
 	cJSON_AddNumberToObject(o, "available_frac", s->available_frac);
 	cJSON_AddNumberToObject(o, "sun_excluded_frac", s->sun_frac);
 	cJSON_AddNumberToObject(o, "moon_excluded_frac", s->moon_frac);
@@ -50,9 +51,8 @@ int mission_summary(const struct mission_args *a, const struct mission *m)
 	cJSON_AddNumberToObject(o, "mean_earth_albedo", amean);
 	for (h = 0; h < m->n_heads; h++) {
 		const struct mission_head *hd = &m->head[h];
-		cJSON *j = stats_json(&hd->st);
+		cJSON *j = stats_json(hd->name, &hd->st);
 
-		cJSON_AddStringToObject(j, "name", hd->name);
 		cJSON_AddNumberToObject(j, "false_stars_mean", hd->stars_mean);
 		cJSON_AddNumberToObject(j, "false_stars_max", hd->stars_max);
 		cJSON_AddItemToArray(heads, j);
