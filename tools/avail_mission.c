@@ -430,9 +430,14 @@ struct block {
 	float sun_deg[MISSION_HEADS_MAX][BLOCK];
 };
 
+/* The albedo is made every ALBEDO_S seconds of the span (the ground
+ * track moves ~450 km in a minute) and held between. */
+#define ALBEDO_S 60.0
+
 static void shared_inputs(struct mission *m, struct block *b, size_t i0,
 			  size_t nb)
 {
+	size_t every = m->step_s >= ALBEDO_S ? 1 : (size_t)(ALBEDO_S / m->step_s);
 	long j;
 
 #pragma omp parallel for schedule(static)
@@ -449,9 +454,15 @@ static void shared_inputs(struct mission *m, struct block *b, size_t i0,
 		for (k = 0; k < 3; k++)
 			pos[k] = (float)b->r[j][k];
 		fdrfw_sun_dir(b->t_tt[j], b->sun[j]);
-		m->albedo[i0 + (size_t)j] =
-			(float)mission_cap_albedo(pos, b->sun[j]);
+		if ((i0 + (size_t)j) % every == 0)
+			m->albedo[i0 + (size_t)j] =
+				(float)mission_cap_albedo(pos, b->sun[j]);
 		stray_q_dcm(q, b->mib[j]);
+	}
+	for (j = 0; j < (long)nb; j++) {
+		size_t i = i0 + (size_t)j;
+
+		m->albedo[i] = m->albedo[i - i % every];
 	}
 }
 

@@ -81,3 +81,5 @@ $(B)/tests/tools/test_availability: $(B)/obj/tests/tools/test_availability.o \
 		tests/tools/run_cli.h $(STRAY_BIN)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_BASE) -o $@ $< -lcmocka -lcjson -lerfa -lm
+# make bench: one year at 10 s for three heads (scripts/bench.sh runs it).
+BENCHES += bench/bench_availability.sh
