@@ -94,7 +94,10 @@ static int parse_args(int argc, char **argv, struct mission_args *a)
 		case 'O': a->write_oem = optarg; break;
 		case 'A': a->write_aem = optarg; break;
 		case 's': rc = cli_parse_double(cmd, "step-s", optarg, &a->step_s); break;
-		case 'h' + 256: rc = cli_parse_double(cmd, "hours", optarg, &a->hours); break;
+		case 'h' + 256:
+			a->hours_given = 1;
+			rc = cli_parse_double(cmd, "hours", optarg, &a->hours);
+			break;
 		case 'g': rc = cli_parse_double(cmd, "gen-step-s", optarg, &a->gen_step_s); break;
 		case 'e':
 			if (!parse_date(optarg, a))
@@ -120,6 +123,9 @@ static int parse_args(int argc, char **argv, struct mission_args *a)
 		return cli_usage_error(cmd, "option '--gen-step-s': %g is outside 1..3600", a->gen_step_s);
 	if (!(a->hours > 0.0 && a->hours <= 24.0 * 366 * 2))
 		return cli_usage_error(cmd, "option '--hours': %g is outside (0, 17568]", a->hours);
+	if (a->write_oem && a->hours_given &&
+	    a->hours * 3600.0 / a->gen_step_s > 2e6)
+		return cli_usage_error(cmd, "--hours / --gen-step-s: more than 2e6 records to write");
 	return CLI_OK;
 }
 
@@ -141,8 +147,8 @@ int cmd_availability(int argc, char **argv)
 		return rc < 0 ? CLI_OK : rc;
 	stray_error_clear(&err);
 	if (a.write_oem) {
-		if (a.hours > 24.0 * 400)
-			a.hours = 24.0;
+		if (!a.hours_given)
+			a.hours = 24.0;	/* a day of the demo mission */
 		if (mission_write_demo(&a, &err) != STRAY_OK)
 			return cli_fail("availability", &err);
 		if (!a.heads) {
