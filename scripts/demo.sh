@@ -155,6 +155,24 @@ say "orbit: the flight module along a day of a 550 km sun-synchronous orbit"
 	--out "$out/orbit.csv" | tee "$out/orbit.txt"
 "$stray" orbit --table "$out/flight_table.bin" --json > "$out/orbit.json"
 
+say "availability: three heads on a nadir-pointing, yaw-steering spacecraft (CCSDS OEM/AEM)"
+# The demo mission written as OEM/AEM and read back; heads 40 deg off the
+# zenith to either side of the track and one towards the wake.
+cat > "$out/heads.json" <<'EOF'
+{"heads": [
+ {"name": "A", "boresight_body": [0, 0.6428, -0.7660], "up_body": [1, 0, 0], "table": "flight_table.bin"},
+ {"name": "B", "boresight_body": [0, -0.6428, -0.7660], "up_body": [1, 0, 0], "table": "flight_table.bin"},
+ {"name": "C", "boresight_body": [-0.6428, 0, -0.7660], "up_body": [0, 1, 0], "table": "flight_table.bin"}
+]}
+EOF
+"$stray" availability --write-oem "$out/mission.oem" --write-aem "$out/mission.aem" \
+	--hours "${DEMO_MISSION_HOURS:-24}"
+"$stray" availability --oem "$out/mission.oem" --aem "$out/mission.aem" \
+	--heads "$out/heads.json" --plot "$out/availability" \
+	--out "$out/availability.csv" | tee "$out/availability.txt"
+"$stray" availability --oem "$out/mission.oem" --aem "$out/mission.aem" \
+	--heads "$out/heads.json" --json > "$out/availability.json"
+
 say "report: $out/report.html (and report.md)"
 "$stray" report "$out"
 if command -v chromium >/dev/null; then

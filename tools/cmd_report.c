@@ -57,6 +57,10 @@ static const struct section sections[] = {
 	{ "orbit", "A day in orbit",
 	  "Predicted false stars and exclusion flags along a 550 km sun-synchronous orbit, tracker pointing anti-nadir, evaluated by the flight module frame by frame.",
 	  "orbit.json", NULL, { "orbit.png", "orbit_fdr.png", NULL } },
+	{ "availability", "Tracker availability over a mission",
+	  "Three heads on a spacecraft in a 550 km sun-synchronous orbit, nadir pointing with yaw steering, its orbit and attitude written as CCSDS OEM/AEM and read back; each head assessed by the flight module at every epoch, the Earth's albedo by latitude and season fed to its Earth term. The table: the fraction of time each head is available and excluded by each body, its outages, and \"any head\". The figures: the availability timeline and each head's sky (Sun, Moon and nearest Earth limb in the head's frame, with its Sun exclusion cone).",
+	  "availability.json", "availability.txt",
+	  { "availability_timeline.png", "availability_sky_A.png", "availability_sky_B.png", "availability_sky_C.png" } },
 };
 
 #define N_SECTIONS (sizeof(sections) / sizeof(sections[0]))
@@ -68,7 +72,8 @@ static const char usage[] =
 	"the artifacts the other commands left in DIR (their --json output,\n"
 	"text output and --plot figures): photometry.json, fdr_sun.json,\n"
 	"reduce.json, exclusion.json, trace.json, diagnose.json, pixels.json,\n"
-	"firmware.json, orbit.json, the matching .txt files and figures.  scripts/demo.sh\n"
+	"firmware.json, orbit.json, availability.json, the matching .txt files and\n"
+	"figures.  scripts/demo.sh\n"
 	"shows which command leaves which file.\n";
 
 static int exists(const char *dir, const char *name)

@@ -44,6 +44,7 @@ static const struct cmd commands[] = {
 	  "virtual photometer sweep of a baffle (noise, floor) from a true curve" },
 	{ "firmware-table", cmd_firmware_table, "flight table of firmware_fdr (C source and CRC-sealed blob)" },
 	{ "orbit", cmd_orbit, "the flight module along a day of a sun-synchronous orbit" },
+	{ "availability", cmd_availability, "tracker availability over a mission (CCSDS OEM/AEM, several heads)" },
 	{ "trace", trace_local, "attenuation curve of a baffle by Monte Carlo ray tracing" },
 	{ "diagnose", diagnose_local, "name the physical causes of a model-measurement discrepancy" },
 	{ "reduce", cmd_reduce, "lens attenuation curve, noise floor and ghosts from a lab sweep" },
@@ -87,7 +88,7 @@ static int run_all_or_nothing(const struct cmd *c, int argc, char **argv)
 {
 	static const char *const deferred[] = { "photometry", "fdr",
 		"exclusion", "photometer", "firmware-table", "orbit",
-		"diagnose", "report", "frames" };
+		"availability", "diagnose", "report", "frames" };
 	struct stray_error err;
 	size_t i;
 	int rc, defer = 0;

@@ -1,0 +1,418 @@
+/*
+ * aem.c - CCSDS AEM (504.0-B-2) KVN reader of quaternion attitude, SLERP
+ * and writer.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "stray/aem.h"
+#include "stray/ccsds.h"
+#include "stray/errfmt.h"
+#include "stray/file.h"
+
+#define LINE_MAX_KVN 1024
+#define UNIT_TOL 1e-3
+
+enum { ST_HEADER, ST_META, ST_BETWEEN, ST_DATA };
+
+struct aem_parse {
+	const char *file;
+	long line;
+	struct stray_error *err;
+	struct stray_aem *aem;
+	size_t cap;
+	int state, segments, seg_records;
+	int frame_a, frame_b;	/* -1 unset, 1 inertial, 0 other */
+	int dir;		/* -1 unset, 0 A2B, 1 B2A */
+	int qtype;		/* -1 unset, 0 FIRST, 1 LAST */
+	int have_ts, have_type;
+};
+
+static int fail(struct aem_parse *p, const char *key, const char *why,
+		const char *text)
+{
+	/* the keyword is named at run time: the line buffer does not last */
+	stray_error_at(p->err, STRAY_EPARSE, p->file, p->line, "keyword", why);
+	stray_error_column(p->err, key);
+	stray_error_text(p->err, text);
+	return STRAY_EPARSE;
+}
+
+static int grow(struct aem_parse *p)
+{
+	struct stray_aem *a = p->aem;
+	size_t cap = p->cap ? p->cap * 2 : 256;
+	double *t = realloc(a->t, cap * sizeof(*a->t));
+	double (*q)[4];
+
+	if (t)
+		a->t = t;
+	q = realloc(a->q, cap * sizeof(*a->q));
+	if (q)
+		a->q = q;
+	if (!t || !q)
+		return stray_error_set(p->err, STRAY_ENOMEM, "records", NULL);
+	p->cap = cap;
+	return STRAY_OK;
+}
+
+static int meta_key(struct aem_parse *p, const char *k, const char *v)
+{
+	struct stray_aem *a = p->aem;
+
+	if (strcmp(k, "OBJECT_NAME") == 0) {
+		if (p->segments == 1)
+			snprintf(a->object_name, sizeof(a->object_name), "%s", v);
+	} else if (strcmp(k, "REF_FRAME_A") == 0) {
+		p->frame_a = stray_ccsds_inertial_frame(v);
+	} else if (strcmp(k, "REF_FRAME_B") == 0) {
+		p->frame_b = stray_ccsds_inertial_frame(v);
+	} else if (strcmp(k, "ATTITUDE_DIR") == 0) {
+		if (strcmp(v, "A2B") == 0)
+			p->dir = 0;
+		else if (strcmp(v, "B2A") == 0)
+			p->dir = 1;
+		else
+			return fail(p, k, "not A2B or B2A", v);
+	} else if (strcmp(k, "TIME_SYSTEM") == 0) {
+		int ts = stray_ccsds_time_system(v);
+
+		if (ts < 0)
+			return fail(p, k, "not a supported time system (UTC, TAI, TT, GPS)", v);
+		if (p->segments > 1 && ts != a->time_system)
+			return fail(p, k, "differs from the first segment's", v);
+		a->time_system = ts;
+		p->have_ts = 1;
+	} else if (strcmp(k, "ATTITUDE_TYPE") == 0) {
+		if (strcmp(v, "QUATERNION") != 0)
+			return fail(p, k, "only QUATERNION is supported", v);
+		p->have_type = 1;
+	} else if (strcmp(k, "QUATERNION_TYPE") == 0) {
+		if (strcmp(v, "FIRST") == 0)
+			p->qtype = 0;
+		else if (strcmp(v, "LAST") == 0)
+			p->qtype = 1;
+		else
+			return fail(p, k, "not FIRST or LAST", v);
+	} else if (strcmp(k, "OBJECT_ID") != 0 &&
+		   strcmp(k, "CENTER_NAME") != 0 &&
+		   strcmp(k, "START_TIME") != 0 &&
+		   strcmp(k, "STOP_TIME") != 0 &&
+		   strcmp(k, "USEABLE_START_TIME") != 0 &&
+		   strcmp(k, "USEABLE_STOP_TIME") != 0 &&
+		   strcmp(k, "INTERPOLATION_METHOD") != 0 &&
+		   strcmp(k, "INTERPOLATION_DEGREE") != 0 &&
+		   strcmp(k, "EULER_ROT_SEQ") != 0 &&
+		   strcmp(k, "RATE_FRAME") != 0) {
+		return fail(p, k, "not an AEM metadata keyword", k);
+	}
+	return STRAY_OK;
+}
+
+static int meta_stop(struct aem_parse *p)
+{
+	if (p->frame_a < 0)
+		return fail(p, "REF_FRAME_A", "missing from the metadata", "");
+	if (p->frame_b < 0)
+		return fail(p, "REF_FRAME_B", "missing from the metadata", "");
+	if (p->frame_a == p->frame_b)
+		return fail(p, "REF_FRAME_A", p->frame_a ?
+			    "both frames inertial: which is the body?" :
+			    "neither frame is inertial (EME2000, ICRF, GCRF)", "");
+	if (p->dir < 0)
+		return fail(p, "ATTITUDE_DIR", "missing from the metadata", "");
+	if (!p->have_ts)
+		return fail(p, "TIME_SYSTEM", "missing from the metadata", "");
+	if (!p->have_type)
+		return fail(p, "ATTITUDE_TYPE", "missing from the metadata", "");
+	if (p->qtype < 0)
+		return fail(p, "QUATERNION_TYPE", "missing from the metadata", "");
+	p->seg_records = 0;
+	return STRAY_OK;
+}
+
+static int data_line(struct aem_parse *p, const struct stray_kvn_line *l)
+{
+	struct stray_aem *a = p->aem;
+	double t, x[4], q[4], n;
+	int k, conj;
+
+	if (l->n_field != 5)
+		return fail(p, "data", "not an epoch and 4 quaternion components",
+			    l->field[0]);
+	if (stray_ccsds_epoch(l->field[0], a->time_system, &t) != 0)
+		return fail(p, "epoch", "not a CCSDS epoch YYYY-MM-DDThh:mm:ss",
+			    l->field[0]);
+	for (k = 0; k < 4; k++)
+		if (!stray_kvn_number(l->field[k + 1], &x[k]))
+			return fail(p, "data", "not a number", l->field[k + 1]);
+	n = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] + x[3] * x[3]);
+	if (!(fabs(n - 1.0) <= UNIT_TOL))
+		return fail(p, "data", "not a unit quaternion (|q| off 1 by more than 1e-3)",
+			    l->field[1]);
+	/* (q_c, e) from the header's order */
+	q[0] = (p->qtype == 0 ? x[0] : x[3]) / n;
+	for (k = 0; k < 3; k++)
+		q[k + 1] = (p->qtype == 0 ? x[k + 1] : x[k]) / n;
+	/* inertial -> body: as given for EME2000 A2B (or body A, B2A) */
+	conj = p->frame_a ? p->dir == 1 : p->dir == 0;
+	if (conj)
+		for (k = 1; k < 4; k++)
+			q[k] = -q[k];
+	if (a->n > 0 && !(t > a->t[a->n - 1])) {
+		if (p->seg_records == 0 && t == a->t[a->n - 1]) {
+			p->seg_records++;
+			return STRAY_OK;
+		}
+		return fail(p, "epoch", "not after the previous record's", l->field[0]);
+	}
+	if (a->n == p->cap && grow(p) != STRAY_OK)
+		return STRAY_ENOMEM;
+	/* the same rotation on the hemisphere of the previous record */
+	if (a->n > 0 && q[0] * a->q[a->n - 1][0] + q[1] * a->q[a->n - 1][1] +
+	    q[2] * a->q[a->n - 1][2] + q[3] * a->q[a->n - 1][3] < 0.0)
+		for (k = 0; k < 4; k++)
+			q[k] = -q[k];
+	a->t[a->n] = t;
+	memcpy(a->q[a->n], q, sizeof(q));
+	a->n++;
+	p->seg_records++;
+	return STRAY_OK;
+}
+
+static int word(struct aem_parse *p, const char *w)
+{
+	if (strcmp(w, "META_START") == 0 &&
+	    (p->state == ST_HEADER || p->state == ST_BETWEEN)) {
+		p->state = ST_META;
+		p->segments++;
+		p->frame_a = p->frame_b = p->dir = p->qtype = -1;
+		p->have_ts = p->have_type = 0;
+		return STRAY_OK;
+	}
+	if (strcmp(w, "META_STOP") == 0 && p->state == ST_META) {
+		p->state = ST_BETWEEN;
+		return meta_stop(p);
+	}
+	if (strcmp(w, "DATA_START") == 0 && p->state == ST_BETWEEN) {
+		p->state = ST_DATA;
+		return STRAY_OK;
+	}
+	if (strcmp(w, "DATA_STOP") == 0 && p->state == ST_DATA) {
+		p->state = ST_BETWEEN;
+		return STRAY_OK;
+	}
+	return fail(p, w, "out of place", w);
+}
+
+static int one_line(struct aem_parse *p, const struct stray_kvn_line *l,
+		    int *first)
+{
+	double ver;
+
+	if (l->kind == STRAY_KVN_BLANK || l->kind == STRAY_KVN_COMMENT)
+		return STRAY_OK;
+	if (*first) {
+		*first = 0;
+		if (l->kind != STRAY_KVN_KEYVAL ||
+		    strcmp(l->key, "CCSDS_AEM_VERS") != 0)
+			return fail(p, "CCSDS_AEM_VERS", "must come first: not an AEM",
+				    l->key ? l->key : l->field[0]);
+		if (!stray_kvn_number(l->value, &ver) || ver < 1.0 || ver >= 3.0)
+			return fail(p, "CCSDS_AEM_VERS", "not a version 1 or 2", l->value);
+		return STRAY_OK;
+	}
+	if (l->kind == STRAY_KVN_WORD)
+		return word(p, l->field[0]);
+	if (l->kind == STRAY_KVN_KEYVAL) {
+		if (p->state == ST_META)
+			return meta_key(p, l->key, l->value);
+		if (p->state == ST_HEADER &&
+		    (strcmp(l->key, "CREATION_DATE") == 0 ||
+		     strcmp(l->key, "ORIGINATOR") == 0 ||
+		     strcmp(l->key, "MESSAGE_ID") == 0))
+			return STRAY_OK;
+		return fail(p, l->key, p->state == ST_DATA ?
+			    "keyword inside the attitude data" :
+			    "not an AEM header keyword", l->key);
+	}
+	if (p->state != ST_DATA)
+		return fail(p, "data", "attitude line outside DATA_START .. DATA_STOP",
+			    l->field[0]);
+	return data_line(p, l);
+}
+
+void stray_aem_free(struct stray_aem *aem)
+{
+	free(aem->t);
+	free(aem->q);
+	memset(aem, 0, sizeof(*aem));
+}
+
+int stray_aem_parse(const char *buf, size_t len, const char *file,
+		    struct stray_aem *aem, struct stray_error *err)
+{
+	struct aem_parse p;
+	struct stray_kvn_line l;
+	char scratch[LINE_MAX_KVN];
+	size_t pos = 0;
+	int rc = STRAY_OK, first = 1, got;
+
+	memset(aem, 0, sizeof(*aem));
+	memset(&p, 0, sizeof(p));
+	p.file = file;
+	p.err = err;
+	p.aem = aem;
+	while (rc == STRAY_OK &&
+	       (got = stray_kvn_next(buf, len, &pos, &p.line, scratch,
+				     sizeof(scratch), &l, file, err)) != 0)
+		rc = got < 0 ? STRAY_EPARSE : one_line(&p, &l, &first);
+	if (rc == STRAY_OK && first)
+		rc = fail(&p, "CCSDS_AEM_VERS", "missing: the file is empty", "");
+	if (rc == STRAY_OK && p.state == ST_DATA)
+		rc = fail(&p, "DATA_STOP", "missing at the end", "");
+	if (rc == STRAY_OK && p.state == ST_META)
+		rc = fail(&p, "META_STOP", "missing at the end", "");
+	if (rc == STRAY_OK && aem->n < 2)
+		rc = fail(&p, "data", "fewer than 2 attitude records", "");
+	if (rc != STRAY_OK)
+		stray_aem_free(aem);
+	return rc;
+}
+
+int stray_aem_read(const char *path, struct stray_aem *aem,
+		   struct stray_error *err)
+{
+	char *buf;
+	size_t len;
+	int rc = stray_file_read(path, &buf, &len, err);
+
+	if (rc != STRAY_OK)
+		return rc;
+	rc = stray_aem_parse(buf, len, path, aem, err);
+	free(buf);
+	return rc;
+}
+
+void stray_q_dcm(const double q[4], double m[3][3])
+{
+	double c = q[0], e[3] = { q[1], q[2], q[3] };
+	double s = c * c - (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+	/* [e x] */
+	double x[3][3] = { { 0, -e[2], e[1] }, { e[2], 0, -e[0] },
+			   { -e[1], e[0], 0 } };
+	int i, j;
+
+	for (i = 0; i < 3; i++)
+		for (j = 0; j < 3; j++)
+			m[i][j] = (i == j ? s : 0.0) + 2.0 * e[i] * e[j] -
+				  2.0 * c * x[i][j];
+}
+
+void stray_dcm_q(const double m[3][3], double q[4])
+{
+	double tr = m[0][0] + m[1][1] + m[2][2], s;
+
+	/* Shepperd for M = R(q)^T: the signs of the skew parts flip */
+	if (tr > 0.0) {
+		s = 2.0 * sqrt(1.0 + tr);
+		q[0] = 0.25 * s;
+		q[1] = (m[1][2] - m[2][1]) / s;
+		q[2] = (m[2][0] - m[0][2]) / s;
+		q[3] = (m[0][1] - m[1][0]) / s;
+	} else if (m[0][0] > m[1][1] && m[0][0] > m[2][2]) {
+		s = 2.0 * sqrt(1.0 + m[0][0] - m[1][1] - m[2][2]);
+		q[0] = (m[1][2] - m[2][1]) / s;
+		q[1] = 0.25 * s;
+		q[2] = (m[0][1] + m[1][0]) / s;
+		q[3] = (m[0][2] + m[2][0]) / s;
+	} else if (m[1][1] > m[2][2]) {
+		s = 2.0 * sqrt(1.0 + m[1][1] - m[0][0] - m[2][2]);
+		q[0] = (m[2][0] - m[0][2]) / s;
+		q[1] = (m[0][1] + m[1][0]) / s;
+		q[2] = 0.25 * s;
+		q[3] = (m[1][2] + m[2][1]) / s;
+	} else {
+		s = 2.0 * sqrt(1.0 + m[2][2] - m[0][0] - m[1][1]);
+		q[0] = (m[0][1] - m[1][0]) / s;
+		q[1] = (m[0][2] + m[2][0]) / s;
+		q[2] = (m[1][2] + m[2][1]) / s;
+		q[3] = 0.25 * s;
+	}
+}
+
+void stray_q_slerp(const double a[4], const double b[4], double f,
+		   double q[4])
+{
+	double d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3];
+	double sb = 1.0, wa, wb, n;
+	int k;
+
+	if (d < 0.0) {
+		d = -d;
+		sb = -1.0;
+	}
+	if (d > 0.9999995) {	/* nearly equal: linear, then renormalised */
+		wa = 1.0 - f;
+		wb = f;
+	} else {
+		double th = acos(d), s = sin(th);
+
+		wa = sin((1.0 - f) * th) / s;
+		wb = sin(f * th) / s;
+	}
+	for (k = 0; k < 4; k++)
+		q[k] = wa * a[k] + sb * wb * b[k];
+	n = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+	for (k = 0; k < 4; k++)
+		q[k] /= n;
+}
+
+int stray_aem_attitude(const struct stray_aem *a, double t, double q[4])
+{
+	size_t lo = 0, hi;
+
+	if (a->n < 2 || !(t >= a->t[0] && t <= a->t[a->n - 1]))
+		return STRAY_ERANGE;
+	hi = a->n - 1;
+	while (hi - lo > 1) {
+		size_t mid = lo + (hi - lo) / 2;
+
+		if (a->t[mid] <= t)
+			lo = mid;
+		else
+			hi = mid;
+	}
+	stray_q_slerp(a->q[lo], a->q[hi],
+		      (t - a->t[lo]) / (a->t[hi] - a->t[lo]), q);
+	return STRAY_OK;
+}
+
+int stray_aem_write(FILE *f, const char *object, int ts, const double *t,
+		    const double (*q)[4], size_t n)
+{
+	static const char *const ts_names[] = { "UTC", "TAI", "TT", "GPS" };
+	char e0[40], e1[40], e[40];
+	size_t i;
+
+	if (n < 2)
+		return STRAY_EINVAL;
+	stray_ccsds_format_epoch(t[0], ts, e0, sizeof(e0));
+	stray_ccsds_format_epoch(t[n - 1], ts, e1, sizeof(e1));
+	fprintf(f, "CCSDS_AEM_VERS = 1.0\nCREATION_DATE = %s\n"
+		"ORIGINATOR = straylight\n\nMETA_START\nOBJECT_NAME = %s\n"
+		"OBJECT_ID = %s\nREF_FRAME_A = EME2000\nREF_FRAME_B = SC_BODY_1\n"
+		"ATTITUDE_DIR = A2B\nTIME_SYSTEM = %s\nSTART_TIME = %s\n"
+		"STOP_TIME = %s\nATTITUDE_TYPE = QUATERNION\n"
+		"QUATERNION_TYPE = LAST\nINTERPOLATION_METHOD = LINEAR\n"
+		"INTERPOLATION_DEGREE = 1\nMETA_STOP\n\nDATA_START\n",
+		e0, object, object, ts_names[ts], e0, e1);
+	for (i = 0; i < n; i++) {
+		stray_ccsds_format_epoch(t[i], ts, e, sizeof(e));
+		fprintf(f, "%s %.12f %.12f %.12f %.12f\n", e, q[i][1], q[i][2],
+			q[i][3], q[i][0]);
+	}
+	fputs("DATA_STOP\n", f);
+	return ferror(f) ? STRAY_EIO : STRAY_OK;
+}

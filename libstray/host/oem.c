@@ -1,0 +1,424 @@
+/*
+ * oem.c - CCSDS OEM (502.0-B-3) KVN reader, interpolation and writer.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "stray/ccsds.h"
+#include "stray/errfmt.h"
+#include "stray/file.h"
+#include "stray/oem.h"
+
+#define LINE_MAX_KVN 1024
+#define HERMITE_NODES_MAX 8
+
+enum { ST_HEADER, ST_META, ST_DATA, ST_COV };
+
+struct oem_parse {
+	const char *file;
+	long line;
+	struct stray_error *err;
+	struct stray_oem *oem;
+	size_t cap;
+	int state, segments, seg_records;
+	int have_frame, have_ts, have_center, have_interp;
+};
+
+static int fail(struct oem_parse *p, const char *key, const char *why,
+		const char *text)
+{
+	/* the keyword is named at run time: the line buffer does not last */
+	stray_error_at(p->err, STRAY_EPARSE, p->file, p->line, "keyword", why);
+	stray_error_column(p->err, key);
+	stray_error_text(p->err, text);
+	return STRAY_EPARSE;
+}
+
+static int grow(struct oem_parse *p)
+{
+	struct stray_oem *o = p->oem;
+	size_t cap = p->cap ? p->cap * 2 : 256;
+	double *t = realloc(o->t, cap * sizeof(*o->t));
+	double (*r)[3], (*v)[3];
+
+	if (t)
+		o->t = t;
+	r = realloc(o->r, cap * sizeof(*o->r));
+	if (r)
+		o->r = r;
+	v = realloc(o->v, cap * sizeof(*o->v));
+	if (v)
+		o->v = v;
+	if (!t || !r || !v)
+		return stray_error_set(p->err, STRAY_ENOMEM, "records", NULL);
+	p->cap = cap;
+	return STRAY_OK;
+}
+
+static void copy_name(char *dst, size_t size, const char *src)
+{
+	snprintf(dst, size, "%s", src);
+}
+
+static int meta_key(struct oem_parse *p, const char *k, const char *v)
+{
+	struct stray_oem *o = p->oem;
+	int seg0 = p->segments == 1;
+
+	if (strcmp(k, "OBJECT_NAME") == 0) {
+		if (seg0)
+			copy_name(o->object_name, sizeof(o->object_name), v);
+	} else if (strcmp(k, "CENTER_NAME") == 0) {
+		if (strcmp(v, "EARTH") != 0)
+			return fail(p, k, "only EARTH is supported", v);
+		p->have_center = 1;
+	} else if (strcmp(k, "REF_FRAME") == 0) {
+		if (!stray_ccsds_inertial_frame(v))
+			return fail(p, k, "not an inertial frame (EME2000, ICRF, GCRF)", v);
+		copy_name(o->ref_frame, sizeof(o->ref_frame), v);
+		p->have_frame = 1;
+	} else if (strcmp(k, "TIME_SYSTEM") == 0) {
+		int ts = stray_ccsds_time_system(v);
+
+		if (ts < 0)
+			return fail(p, k, "not a supported time system (UTC, TAI, TT, GPS)", v);
+		if (!seg0 && ts != o->time_system)
+			return fail(p, k, "differs from the first segment's", v);
+		o->time_system = ts;
+		p->have_ts = 1;
+	} else if (strcmp(k, "INTERPOLATION") == 0) {
+		if (strcmp(v, "LAGRANGE") == 0)
+			o->interp = STRAY_INTERP_LAGRANGE;
+		else if (strcmp(v, "HERMITE") == 0)
+			o->interp = STRAY_INTERP_HERMITE;
+		else if (strcmp(v, "LINEAR") == 0)
+			o->interp = STRAY_INTERP_LINEAR;
+		else
+			return fail(p, k, "not LAGRANGE, HERMITE or LINEAR", v);
+		p->have_interp = 1;
+	} else if (strcmp(k, "INTERPOLATION_DEGREE") == 0) {
+		double d;
+
+		if (!stray_kvn_number(v, &d) || d != floor(d) || d < 1 ||
+		    d > STRAY_OEM_DEGREE_MAX)
+			return fail(p, k, "not a whole degree in 1..15", v);
+		o->degree = (int)d;
+	} else if (strcmp(k, "OBJECT_ID") != 0 &&
+		   strcmp(k, "REF_FRAME_EPOCH") != 0 &&
+		   strcmp(k, "START_TIME") != 0 &&
+		   strcmp(k, "STOP_TIME") != 0 &&
+		   strcmp(k, "USEABLE_START_TIME") != 0 &&
+		   strcmp(k, "USEABLE_STOP_TIME") != 0) {
+		return fail(p, k, "not an OEM metadata keyword", k);
+	}
+	return STRAY_OK;
+}
+
+static int meta_stop(struct oem_parse *p)
+{
+	if (!p->have_center)
+		return fail(p, "CENTER_NAME", "missing from the metadata", "");
+	if (!p->have_frame)
+		return fail(p, "REF_FRAME", "missing from the metadata", "");
+	if (!p->have_ts)
+		return fail(p, "TIME_SYSTEM", "missing from the metadata", "");
+	p->seg_records = 0;
+	return STRAY_OK;
+}
+
+static int data_line(struct oem_parse *p, const struct stray_kvn_line *l)
+{
+	struct stray_oem *o = p->oem;
+	double t, x[6];
+	int k;
+
+	if (l->n_field != 7 && l->n_field != 10)
+		return fail(p, "data", "not an epoch and 6 (or 9) numbers",
+			    l->field[0]);
+	if (stray_ccsds_epoch(l->field[0], o->time_system, &t) != 0)
+		return fail(p, "epoch", "not a CCSDS epoch YYYY-MM-DDThh:mm:ss",
+			    l->field[0]);
+	for (k = 1; k < l->n_field; k++) {
+		double a;
+
+		if (!stray_kvn_number(l->field[k], k <= 6 ? &x[k - 1] : &a))
+			return fail(p, "data", "not a number", l->field[k]);
+	}
+	if (o->n > 0 && !(t > o->t[o->n - 1])) {
+		if (p->seg_records == 0 && t == o->t[o->n - 1]) {
+			p->seg_records++;	/* a repeated boundary epoch */
+			return STRAY_OK;
+		}
+		return fail(p, "epoch", "not after the previous record's", l->field[0]);
+	}
+	if (o->n == p->cap && grow(p) != STRAY_OK)
+		return STRAY_ENOMEM;
+	o->t[o->n] = t;
+	for (k = 0; k < 3; k++) {
+		o->r[o->n][k] = x[k];
+		o->v[o->n][k] = x[k + 3];
+	}
+	if (!(sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) < 1e7))
+		return fail(p, "data", "position beyond 1e7 km", l->field[1]);
+	o->n++;
+	p->seg_records++;
+	return STRAY_OK;
+}
+
+static int first_line(struct oem_parse *p, const struct stray_kvn_line *l)
+{
+	double ver;
+
+	if (l->kind != STRAY_KVN_KEYVAL || strcmp(l->key, "CCSDS_OEM_VERS") != 0)
+		return fail(p, "CCSDS_OEM_VERS", "must come first: not an OEM",
+			    l->key ? l->key : l->field[0]);
+	if (!stray_kvn_number(l->value, &ver) || ver < 1.0 || ver >= 4.0)
+		return fail(p, "CCSDS_OEM_VERS", "not a version 1, 2 or 3", l->value);
+	p->state = ST_HEADER;
+	return STRAY_OK;
+}
+
+static int one_line(struct oem_parse *p, const struct stray_kvn_line *l,
+		    int *first)
+{
+	if (l->kind == STRAY_KVN_BLANK || l->kind == STRAY_KVN_COMMENT)
+		return STRAY_OK;
+	if (*first) {
+		*first = 0;
+		return first_line(p, l);
+	}
+	if (p->state == ST_COV) {
+		if (l->kind == STRAY_KVN_WORD &&
+		    strcmp(l->field[0], "COVARIANCE_STOP") == 0)
+			p->state = ST_DATA;
+		return STRAY_OK;
+	}
+	if (l->kind == STRAY_KVN_WORD) {
+		const char *w = l->field[0];
+
+		if (strcmp(w, "META_START") == 0 && p->state != ST_META) {
+			p->state = ST_META;
+			p->segments++;
+			p->have_frame = p->have_ts = p->have_center = 0;
+			return STRAY_OK;
+		}
+		if (strcmp(w, "META_STOP") == 0 && p->state == ST_META) {
+			p->state = ST_DATA;
+			return meta_stop(p);
+		}
+		if (strcmp(w, "COVARIANCE_START") == 0 && p->state == ST_DATA) {
+			p->state = ST_COV;
+			return STRAY_OK;
+		}
+		return fail(p, w, "out of place", w);
+	}
+	if (l->kind == STRAY_KVN_KEYVAL) {
+		if (p->state == ST_META)
+			return meta_key(p, l->key, l->value);
+		if (p->state == ST_HEADER &&
+		    (strcmp(l->key, "CREATION_DATE") == 0 ||
+		     strcmp(l->key, "ORIGINATOR") == 0 ||
+		     strcmp(l->key, "MESSAGE_ID") == 0))
+			return STRAY_OK;
+		return fail(p, l->key, p->state == ST_DATA ?
+			    "keyword inside the ephemeris data" :
+			    "not an OEM header keyword", l->key);
+	}
+	if (p->state != ST_DATA)
+		return fail(p, "data", "ephemeris line outside a segment (META_START .. META_STOP first)",
+			    l->field[0]);
+	return data_line(p, l);
+}
+
+void stray_oem_free(struct stray_oem *oem)
+{
+	free(oem->t);
+	free(oem->r);
+	free(oem->v);
+	memset(oem, 0, sizeof(*oem));
+}
+
+int stray_oem_parse(const char *buf, size_t len, const char *file,
+		    struct stray_oem *oem, struct stray_error *err)
+{
+	struct oem_parse p;
+	struct stray_kvn_line l;
+	char scratch[LINE_MAX_KVN];
+	size_t pos = 0;
+	int rc = STRAY_OK, first = 1, got;
+
+	memset(oem, 0, sizeof(*oem));
+	memset(&p, 0, sizeof(p));
+	p.file = file;
+	p.err = err;
+	p.oem = oem;
+	oem->interp = STRAY_INTERP_HERMITE;
+	oem->degree = 5;
+	while (rc == STRAY_OK &&
+	       (got = stray_kvn_next(buf, len, &pos, &p.line, scratch,
+				     sizeof(scratch), &l, file, err)) != 0) {
+		if (got < 0)
+			rc = STRAY_EPARSE;
+		else
+			rc = one_line(&p, &l, &first);
+	}
+	if (rc == STRAY_OK && first)
+		rc = fail(&p, "CCSDS_OEM_VERS", "missing: the file is empty", "");
+	if (rc == STRAY_OK && p.state == ST_META)
+		rc = fail(&p, "META_STOP", "missing at the end", "");
+	if (rc == STRAY_OK && oem->n < 2)
+		rc = fail(&p, "data", "fewer than 2 ephemeris records", "");
+	if (rc != STRAY_OK)
+		stray_oem_free(oem);
+	return rc;
+}
+
+int stray_oem_read(const char *path, struct stray_oem *oem,
+		   struct stray_error *err)
+{
+	char *buf;
+	size_t len;
+	int rc = stray_file_read(path, &buf, &len, err);
+
+	if (rc != STRAY_OK)
+		return rc;
+	rc = stray_oem_parse(buf, len, path, oem, err);
+	free(buf);
+	return rc;
+}
+
+/* First of m records around t: t[k] <= t < t[k+1], centred, clamped. */
+static size_t window(const double *ts, size_t n, double t, size_t m)
+{
+	size_t lo = 0, hi = n - 1, k;
+
+	while (hi - lo > 1) {
+		size_t mid = lo + (hi - lo) / 2;
+
+		if (ts[mid] <= t)
+			lo = mid;
+		else
+			hi = mid;
+	}
+	k = lo >= (m - 1) / 2 ? lo - (m - 1) / 2 : 0;
+	if (k + m > n)
+		k = n - m;
+	return k;
+}
+
+/* Lagrange through (x_j, y_j), value at x (x relative to the nodes). */
+static void lagrange(const double *x, size_t m, double at,
+		     const double *y, size_t stride, size_t dim, double *out)
+{
+	size_t i, j, c;
+
+	for (c = 0; c < dim; c++)
+		out[c] = 0.0;
+	for (j = 0; j < m; j++) {
+		double lj = 1.0;
+
+		for (i = 0; i < m; i++)
+			if (i != j)
+				lj *= (at - x[i]) / (x[j] - x[i]);
+		for (c = 0; c < dim; c++)
+			out[c] += lj * y[j * stride + c];
+	}
+}
+
+/* Hermite through (x_j, y_j, y'_j) by Newton's divided differences on
+ * doubled nodes; value and derivative at `at`. */
+static void hermite(const double *x, size_t m, double at, const double *y,
+		    const double *yd, double *p, double *dp)
+{
+	double z[2 * HERMITE_NODES_MAX] = { 0 }, q[2 * HERMITE_NODES_MAX] = { 0 };
+	double c[2 * HERMITE_NODES_MAX] = { 0 };
+	size_t n = 2 * m, i, j;
+
+	for (i = 0; i < m; i++) {
+		z[2 * i] = z[2 * i + 1] = x[i];
+		q[2 * i] = q[2 * i + 1] = y[i];
+	}
+	c[0] = q[0];
+	/* column j of the table in place, bottom up */
+	for (j = 1; j < n; j++) {
+		for (i = n - 1; i >= j; i--) {
+			if (j == 1 && z[i] == z[i - 1])
+				q[i] = yd[i / 2];
+			else
+				q[i] = (q[i] - q[i - 1]) / (z[i] - z[i - j]);
+		}
+		c[j] = q[j];
+	}
+	*p = c[n - 1];
+	*dp = 0.0;
+	for (j = n - 1; j-- > 0;) {
+		*dp = *dp * (at - z[j]) + *p;
+		*p = *p * (at - z[j]) + c[j];
+	}
+}
+
+int stray_oem_state(const struct stray_oem *o, double t, double r[3],
+		    double v[3])
+{
+	double x[STRAY_OEM_DEGREE_MAX + 1];
+	size_t m, k, j;
+	int c;
+
+	if (o->n < 2 || !(t >= o->t[0] && t <= o->t[o->n - 1]))
+		return STRAY_ERANGE;
+	if (o->interp == STRAY_INTERP_HERMITE) {
+		m = ((size_t)o->degree + 2) / 2;
+		m = m < 2 ? 2 : m > HERMITE_NODES_MAX ? HERMITE_NODES_MAX : m;
+	} else {
+		m = o->interp == STRAY_INTERP_LINEAR ? 2 : (size_t)o->degree + 1;
+	}
+	if (m > o->n)
+		m = o->n;
+	k = window(o->t, o->n, t, m);
+	for (j = 0; j < m; j++)
+		x[j] = o->t[k + j] - o->t[k];
+	if (o->interp != STRAY_INTERP_HERMITE) {
+		lagrange(x, m, t - o->t[k], &o->r[k][0], 3, 3, r);
+		lagrange(x, m, t - o->t[k], &o->v[k][0], 3, 3, v);
+		return STRAY_OK;
+	}
+	for (c = 0; c < 3; c++) {
+		double y[HERMITE_NODES_MAX], yd[HERMITE_NODES_MAX];
+
+		for (j = 0; j < m; j++) {
+			y[j] = o->r[k + j][c];
+			yd[j] = o->v[k + j][c];
+		}
+		hermite(x, m, t - o->t[k], y, yd, &r[c], &v[c]);
+	}
+	return STRAY_OK;
+}
+
+int stray_oem_write(FILE *f, const char *object, int ts, const double *t,
+		    const double (*r)[3], const double (*v)[3], size_t n,
+		    int interp, int degree)
+{
+	static const char *const ts_names[] = { "UTC", "TAI", "TT", "GPS" };
+	static const char *const in_names[] = { "LAGRANGE", "HERMITE", "LINEAR" };
+	char e0[40], e1[40], e[40];
+	size_t i;
+
+	if (n < 2)
+		return STRAY_EINVAL;
+	stray_ccsds_format_epoch(t[0], ts, e0, sizeof(e0));
+	stray_ccsds_format_epoch(t[n - 1], ts, e1, sizeof(e1));
+	fprintf(f, "CCSDS_OEM_VERS = 2.0\nCREATION_DATE = %s\n"
+		"ORIGINATOR = straylight\n\nMETA_START\nOBJECT_NAME = %s\n"
+		"OBJECT_ID = %s\nCENTER_NAME = EARTH\nREF_FRAME = EME2000\n"
+		"TIME_SYSTEM = %s\nSTART_TIME = %s\nSTOP_TIME = %s\n"
+		"INTERPOLATION = %s\nINTERPOLATION_DEGREE = %d\nMETA_STOP\n\n",
+		e0, object, object, ts_names[ts], e0, e1, in_names[interp],
+		degree);
+	for (i = 0; i < n; i++) {
+		stray_ccsds_format_epoch(t[i], ts, e, sizeof(e));
+		fprintf(f, "%s %.6f %.6f %.6f %.9f %.9f %.9f\n", e, r[i][0],
+			r[i][1], r[i][2], v[i][0], v[i][1], v[i][2]);
+	}
+	return ferror(f) ? STRAY_EIO : STRAY_OK;
+}

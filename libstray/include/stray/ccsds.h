@@ -1,0 +1,59 @@
+/*
+ * ccsds.h - what the CCSDS KVN readers (stray/oem.h, stray/aem.h) share:
+ * epochs in the supported time systems, reduced to TT seconds since
+ * J2000.0 (2000-01-01T12:00:00 TT), and the line splitter of the KVN form
+ * (CCSDS 502.0-B-3 §7, 504.0-B-2 §6: "KEY = value", COMMENT lines, blank
+ * lines, data lines of white-space separated fields).
+ */
+#ifndef STRAY_CCSDS_H
+#define STRAY_CCSDS_H
+
+#include <stddef.h>
+
+#include "stray/error.h"
+
+enum stray_time_system { STRAY_TS_UTC, STRAY_TS_TAI, STRAY_TS_TT,
+			 STRAY_TS_GPS };
+
+/* The time system named by text (UTC, TAI, TT, GPS); -1 if unsupported. */
+int stray_ccsds_time_system(const char *text);
+
+/* An inertial frame the readers accept (EME2000, ICRF, GCRF, J2000). */
+int stray_ccsds_inertial_frame(const char *text);
+
+/*
+ * "YYYY-MM-DDThh:mm:ss[.f]" or "YYYY-DDDThh:mm:ss[.f]" (an optional
+ * trailing Z) in time system ts, to TT seconds since J2000.0.  UTC takes
+ * the leap seconds of 1972-2017 (TAI - UTC = 37 s since 2017-01-01).
+ * Returns 0, or -1 if the text is not an epoch.
+ */
+int stray_ccsds_epoch(const char *text, int ts, double *t_tt);
+
+/* The inverse for writing: t_tt to "YYYY-MM-DDThh:mm:ss.ffffff" in ts. */
+void stray_ccsds_format_epoch(double t_tt, int ts, char *buf, size_t size);
+
+/* A whole finite number (strtod, nothing after it): 1, else 0. */
+int stray_kvn_number(const char *s, double *x);
+
+/* One KVN line split in place (the line buffer is modified). */
+struct stray_kvn_line {
+	int kind;		/* STRAY_KVN_* */
+	char *key, *value;	/* KEY = value */
+	char *field[16];	/* data fields */
+	int n_field;
+};
+enum { STRAY_KVN_BLANK, STRAY_KVN_COMMENT, STRAY_KVN_KEYVAL,
+       STRAY_KVN_DATA, STRAY_KVN_WORD };
+
+/*
+ * Split the next line of buf[*pos .. len) into line (copied into scratch
+ * of size scratch_size, a line longer than that is an error); *lineno
+ * counts lines.  Returns 1 for a line, 0 at the end, -1 for a line too
+ * long or holding a NUL byte (err names file and line).
+ */
+int stray_kvn_next(const char *buf, size_t len, size_t *pos, long *lineno,
+		   char *scratch, size_t scratch_size,
+		   struct stray_kvn_line *line, const char *file,
+		   struct stray_error *err);
+
+#endif /* STRAY_CCSDS_H */

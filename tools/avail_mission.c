@@ -1,0 +1,569 @@
+/*
+ * avail_mission.c - `stray availability`: demo mission files, the heads
+ * file, and the flight module flown per head at every epoch.
+ */
+#include <cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "avail_mission.h"
+#include "fdrfw/earth.h"
+#include "fdrfw/ephem.h"
+#include "orbit.h"
+#include "stray/ccsds.h"
+#include "stray/errfmt.h"
+#include "stray/file.h"
+
+#define OMEGA_EARTH 7.2921159e-5	/* rad/s, IERS */
+#define RAD2DEG 57.2957795130823209
+
+static void unit(double a[3])
+{
+	double n = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+
+	a[0] /= n;
+	a[1] /= n;
+	a[2] /= n;
+}
+
+static void cross(const double a[3], const double b[3], double c[3])
+{
+	c[0] = a[1] * b[2] - a[2] * b[1];
+	c[1] = a[2] * b[0] - a[0] * b[2];
+	c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/*
+ * Nadir pointing with yaw steering: body +z to nadir, +x along the ground
+ * track (the orbital velocity less the Earth's rotation under it), the
+ * yaw angle psi = atan2(w_E sin i cos u, n - w_E cos i).
+ */
+static void nadir_yaw_q(const struct orbit *o, double ts, const double r[3],
+			const double v[3], double q[4])
+{
+	double m[3][3], x0[3], y0[3], h[3], u = o->n_rad_s * ts, psi;
+	int k;
+
+	psi = atan2(OMEGA_EARTH * sin(o->incl_rad) * cos(u),
+		    o->n_rad_s - OMEGA_EARTH * cos(o->incl_rad));
+	cross(r, v, h);
+	for (k = 0; k < 3; k++) {
+		m[2][k] = -r[k];
+		y0[k] = -h[k];
+	}
+	unit(m[2]);
+	unit(y0);
+	cross(y0, m[2], x0);
+	for (k = 0; k < 3; k++) {
+		m[0][k] = cos(psi) * x0[k] + sin(psi) * y0[k];
+		m[1][k] = -sin(psi) * x0[k] + cos(psi) * y0[k];
+	}
+	stray_dcm_q(m, q);
+}
+
+int mission_write_demo(const struct mission_args *a, struct stray_error *err)
+{
+	struct stray_file_out fo, fa;
+	struct orbit orb;
+	char date[40];
+	double t0, (*r)[3], (*v)[3], (*q)[4], *t;
+	float sun[3];
+	size_t n = (size_t)(a->hours * 3600.0 / a->gen_step_s) + 1, i;
+	int rc;
+
+	snprintf(date, sizeof(date), "%04d-%02d-%02dT00:00:00", a->year,
+		 a->month, a->day);
+	if (stray_ccsds_epoch(date, STRAY_TS_UTC, &t0) != 0)
+		return stray_error_at(err, STRAY_EINVAL, NULL, 0, "epoch",
+				      "not a calendar date");
+	t = malloc(n * sizeof(*t));
+	r = malloc(n * sizeof(*r));
+	v = malloc(n * sizeof(*v));
+	q = malloc(n * sizeof(*q));
+	if (!t || !r || !v || !q) {
+		free(t), free(r), free(v), free(q);
+		return stray_error_set(err, STRAY_ENOMEM, "records", NULL);
+	}
+	fdrfw_sun_dir((int32_t)lround(t0), sun);
+	orbit_sso(&orb, 550.0, 22.5, atan2(sun[1], sun[0]));
+	for (i = 0; i < n; i++) {
+		double ts = (double)i * a->gen_step_s;
+
+		t[i] = t0 + ts;
+		orbit_state(&orb, ts, r[i], v[i]);
+		nadir_yaw_q(&orb, ts, r[i], v[i], q[i]);
+	}
+	rc = stray_file_open_atomic(&fo, a->write_oem, err);
+	if (rc == STRAY_OK) {
+		rc = stray_oem_write(fo.f, "STRAY-DEMO", STRAY_TS_UTC, t,
+				     (const double (*)[3])r,
+				     (const double (*)[3])v, n,
+				     STRAY_INTERP_HERMITE, 7);
+		rc = rc == STRAY_OK ? stray_file_commit(&fo, err) :
+		     (stray_file_abort(&fo), rc);
+	}
+	if (rc == STRAY_OK && (rc = stray_file_open_atomic(&fa, a->write_aem,
+							    err)) == STRAY_OK) {
+		rc = stray_aem_write(fa.f, "STRAY-DEMO", STRAY_TS_UTC, t,
+				     (const double (*)[4])q, n);
+		rc = rc == STRAY_OK ? stray_file_commit(&fa, err) :
+		     (stray_file_abort(&fa), rc);
+	}
+	free(t), free(r), free(v), free(q);
+	return rc;
+}
+
+static int vec3(const cJSON *o, const char *key, double out[3])
+{
+	const cJSON *arr = cJSON_GetObjectItemCaseSensitive(o, key);
+	int k;
+
+	if (!cJSON_IsArray(arr) || cJSON_GetArraySize(arr) != 3)
+		return 0;
+	for (k = 0; k < 3; k++) {
+		const cJSON *x = cJSON_GetArrayItem(arr, k);
+
+		if (!cJSON_IsNumber(x) || !isfinite(x->valuedouble))
+			return 0;
+		out[k] = x->valuedouble;
+	}
+	return sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2]) > 1e-9;
+}
+
+static int load_table(const char *path, struct fdrfw_table *t,
+		      struct stray_error *err)
+{
+	char *buf;
+	size_t len;
+	int rc = stray_file_read(path, &buf, &len, err);
+
+	if (rc != STRAY_OK)
+		return rc;
+	if (fdrfw_table_parse((const uint8_t *)buf, len, t) != FDRFW_OK ||
+	    fdrfw_table_check(t) != FDRFW_OK)
+		rc = stray_error_at(err, STRAY_EPARSE, path, 0, "table",
+			"not a valid flight table (size, magic, CRC or range)");
+	free(buf);
+	return rc;
+}
+
+/* The head's frame in the body: +z the boresight, +y the image's up. */
+static int head_frame(const double bore[3], const double *up_in,
+		      double m[3][3])
+{
+	double z[3] = { bore[0], bore[1], bore[2] }, up[3], y[3], d;
+	int k;
+
+	unit(z);
+	if (up_in) {
+		memcpy(up, up_in, sizeof(up));
+	} else {	/* the body axis least along the boresight */
+		k = fabs(z[0]) < fabs(z[1]) ? (fabs(z[0]) < fabs(z[2]) ? 0 : 2) :
+		    (fabs(z[1]) < fabs(z[2]) ? 1 : 2);
+		up[0] = up[1] = up[2] = 0.0;
+		up[k] = 1.0;
+	}
+	d = up[0] * z[0] + up[1] * z[1] + up[2] * z[2];
+	for (k = 0; k < 3; k++)
+		y[k] = up[k] - d * z[k];
+	if (sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]) < 1e-6)
+		return 0;
+	unit(y);
+	memcpy(m[1], y, sizeof(y));
+	memcpy(m[2], z, sizeof(z));
+	cross(y, z, m[0]);
+	return 1;
+}
+
+static int head_fail(struct stray_error *err, const char *file,
+		     const char *field, const char *why, const char *name)
+{
+	stray_error_at(err, STRAY_EPARSE, file, 0, field, why);
+	stray_error_text(err, name);
+	return STRAY_EPARSE;
+}
+
+static int load_heads(const char *path, struct mission *m,
+		      struct stray_error *err)
+{
+	char *buf, tpath[4096];
+	size_t len, dirlen;
+	const char *slash = strrchr(path, '/');
+	cJSON *root, *arr, *h;
+	int rc = stray_file_read(path, &buf, &len, err), i = 0;
+
+	if (rc != STRAY_OK)
+		return rc;
+	root = cJSON_ParseWithLength(buf, len);
+	free(buf);
+	arr = cJSON_GetObjectItemCaseSensitive(root, "heads");
+	if (!root || !cJSON_IsArray(arr) || cJSON_GetArraySize(arr) < 1 ||
+	    cJSON_GetArraySize(arr) > MISSION_HEADS_MAX) {
+		cJSON_Delete(root);
+		return head_fail(err, path, "heads",
+				 "not a JSON object with an array of 1..8 heads", "");
+	}
+	dirlen = slash ? (size_t)(slash - path) + 1 : 0;
+	cJSON_ArrayForEach(h, arr) {
+		struct mission_head *hd = &m->head[i];
+		const cJSON *name = cJSON_GetObjectItemCaseSensitive(h, "name");
+		const cJSON *tab = cJSON_GetObjectItemCaseSensitive(h, "table");
+		double bore[3], up[3];
+		int has_up = cJSON_GetObjectItemCaseSensitive(h, "up_body") != NULL;
+		int j;
+
+		if (!cJSON_IsString(name) || !name->valuestring[0] ||
+		    strlen(name->valuestring) >= sizeof(hd->name) ||
+		    strspn(name->valuestring, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-") !=
+		    strlen(name->valuestring))
+			rc = head_fail(err, path, "name", "not a name of 1..31 letters, digits, _ or -", "");
+		else if (!vec3(h, "boresight_body", bore))
+			rc = head_fail(err, path, "boresight_body", "not a non-zero [x, y, z]", name->valuestring);
+		else if (has_up && !vec3(h, "up_body", up))
+			rc = head_fail(err, path, "up_body", "not a non-zero [x, y, z]", name->valuestring);
+		else if (!head_frame(bore, has_up ? up : NULL, hd->m_bs))
+			rc = head_fail(err, path, "up_body", "along the boresight", name->valuestring);
+		else if (!cJSON_IsString(tab) || !tab->valuestring[0])
+			rc = head_fail(err, path, "table", "not a file name", name->valuestring);
+		if (rc != STRAY_OK)
+			break;
+		for (j = 0; j < i; j++)
+			if (strcmp(m->head[j].name, name->valuestring) == 0)
+				rc = head_fail(err, path, "name", "given twice", name->valuestring);
+		if (rc != STRAY_OK)
+			break;
+		snprintf(hd->name, sizeof(hd->name), "%s", name->valuestring);
+		snprintf(tpath, sizeof(tpath), "%.*s%s",
+			 tab->valuestring[0] == '/' ? 0 : (int)dirlen, path,
+			 tab->valuestring);
+		if ((rc = load_table(tpath, &hd->table, err)) != STRAY_OK)
+			break;
+		i++;
+	}
+	m->n_heads = (size_t)i;
+	cJSON_Delete(root);
+	return rc;
+}
+
+int mission_load(const struct mission_args *a, struct mission *m,
+		 struct stray_error *err)
+{
+	double t1;
+	size_t h;
+	int rc;
+
+	if ((rc = stray_oem_read(a->oem, &m->oem, err)) != STRAY_OK ||
+	    (rc = stray_aem_read(a->aem, &m->aem, err)) != STRAY_OK ||
+	    (rc = load_heads(a->heads, m, err)) != STRAY_OK)
+		return rc;
+	m->t0 = fmax(m->oem.t[0], m->aem.t[0]);
+	t1 = fmin(m->oem.t[m->oem.n - 1], m->aem.t[m->aem.n - 1]);
+	t1 = fmin(t1, m->t0 + a->hours * 3600.0);
+	if (!(t1 > m->t0))
+		return stray_error_at(err, STRAY_EINVAL, a->aem, 0, "START_TIME",
+				      "the OEM and AEM spans do not overlap");
+	m->step_s = a->step_s;
+	m->n = (size_t)floor((t1 - m->t0) / a->step_s + 1e-9) + 1;
+	m->any_mask = calloc(m->n, 1);
+	m->albedo = calloc(m->n, sizeof(float));
+	if (!m->any_mask || !m->albedo)
+		return stray_error_set(err, STRAY_ENOMEM, "epochs", NULL);
+	m->n_sky = m->n < MISSION_SKY_MAX ? m->n : MISSION_SKY_MAX;
+	for (h = 0; h < m->n_heads; h++) {
+		struct mission_head *hd = &m->head[h];
+		int b, c;
+
+		hd->mask = calloc(m->n, 1);
+		hd->stars = calloc(m->n, sizeof(float));
+		if (!hd->mask || !hd->stars)
+			return stray_error_set(err, STRAY_ENOMEM, "epochs", NULL);
+		for (b = 0; b < 3; b++)
+			for (c = 0; c < 2; c++)
+				if (!(hd->sky[b][c] = calloc(m->n_sky, sizeof(double))))
+					return stray_error_set(err, STRAY_ENOMEM, "sky", NULL);
+		if (fdrfw_init(&hd->ctx, &hd->table) != FDRFW_OK)
+			return stray_error_at(err, STRAY_EINVAL, a->heads, 0,
+					      "table", "the flight module refuses it");
+	}
+	return STRAY_OK;
+}
+
+void mission_free(struct mission *m)
+{
+	size_t h;
+	int b, c;
+
+	stray_oem_free(&m->oem);
+	stray_aem_free(&m->aem);
+	for (h = 0; h < MISSION_HEADS_MAX; h++) {
+		free(m->head[h].mask);
+		free(m->head[h].stars);
+		for (b = 0; b < 3; b++)
+			for (c = 0; c < 2; c++)
+				free(m->head[h].sky[b][c]);
+	}
+	free(m->any_mask);
+	free(m->albedo);
+}
+
+void mission_fw_q(const double m[3][3], float q[4])
+{
+	double c[4];
+
+	/* M(q) of 504.0 is R(q)^T of the module's Hamilton R: conjugate */
+	stray_dcm_q(m, c);
+	q[0] = (float)c[0];
+	q[1] = (float)-c[1];
+	q[2] = (float)-c[2];
+	q[3] = (float)-c[3];
+}
+
+double mission_cap_albedo(const float pos_km[3], const float sun[3])
+{
+	struct fdrfw_earth_cap cap;
+	double sw = 0.0, swa = 0.0, dec = asin(fmax(-1.0, fmin(1.0, sun[2])));
+	double r2 = 0.0, rr = (double)FDRFW_EARTH_RADIUS_KM;
+	unsigned k;
+	int i;
+
+	if (!fdrfw_earth_cap(pos_km, sun, &cap))
+		return 0.3;
+	for (i = 0; i < 3; i++)
+		r2 += (double)pos_km[i] * pos_km[i];
+	for (k = 0; k < FDRFW_EARTH_NODES; k++) {
+		struct fdrfw_earth_node nd;
+		double pd = 0.0, d, p[3], w;
+
+		fdrfw_earth_node(&cap, k, &nd);
+		if (!(nd.cos_sun > 0.0f))
+			continue;
+		for (i = 0; i < 3; i++)
+			pd += (double)pos_km[i] * nd.dir[i];
+		/* the surface point along the node's direction */
+		d = -pd - sqrt(fmax(0.0, pd * pd - (r2 - rr * rr)));
+		for (i = 0; i < 3; i++)
+			p[i] = pos_km[i] + d * nd.dir[i];
+		w = (double)nd.cos_sun * nd.omega_sr;
+		sw += w;
+		swa += w * stray_albedo_zonal(asin(fmax(-1.0, fmin(1.0,
+				p[2] / sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2])))), dec);
+	}
+	return sw > 0.0 ? swa / sw : 0.3;
+}
+
+/* Direction d (inertial) in the head's frame, as a sky-plot point:
+ * azimuthal equidistant about the boresight [deg]. */
+static void sky_point(const double mis[3][3], const double d[3], double *x,
+		      double *y)
+{
+	double s[3], th, ph, n;
+	int i;
+
+	for (i = 0; i < 3; i++)
+		s[i] = mis[i][0] * d[0] + mis[i][1] * d[1] + mis[i][2] * d[2];
+	n = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+	th = acos(fmax(-1.0, fmin(1.0, s[2] / n))) * RAD2DEG;
+	ph = atan2(s[1], s[0]);
+	*x = th * cos(ph);
+	*y = th * sin(ph);
+}
+
+static void sky_sample(struct mission_head *hd, size_t j, const double mis[3][3],
+		       const double r[3], const float sun[3], int32_t t)
+{
+	float mo[3];
+	double s[3], mm[3], nad[3], b[3], e[3], rn, rho, ang, c;
+	int i;
+
+	fdrfw_moon_pos_km(t, mo);
+	rn = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+	for (i = 0; i < 3; i++) {
+		s[i] = sun[i];
+		mm[i] = mo[i] - r[i];
+		nad[i] = -r[i] / rn;
+		b[i] = mis[2][i];
+	}
+	sky_point(mis, s, &hd->sky[0][0][j], &hd->sky[0][1][j]);
+	sky_point(mis, mm, &hd->sky[1][0][j], &hd->sky[1][1][j]);
+	/* the Earth's limb nearest the boresight: nadir turned by rho */
+	rho = asin(FDRFW_EARTH_RADIUS_KM / rn);
+	c = b[0] * nad[0] + b[1] * nad[1] + b[2] * nad[2];
+	ang = acos(fmax(-1.0, fmin(1.0, c)));
+	for (i = 0; i < 3; i++)
+		e[i] = ang > 1e-9 ? (sin(ang - rho) * nad[i] +
+				      sin(rho) * b[i]) / sin(ang) : nad[i];
+	sky_point(mis, e, &hd->sky[2][0][j], &hd->sky[2][1][j]);
+}
+
+static FILE *csv_open(const struct mission_args *a, const struct mission *m,
+		      struct stray_file_out *out, struct stray_error *err)
+{
+	size_t h;
+
+	if (!a->csv)
+		return NULL;
+	if (stray_file_open_atomic(out, a->csv, err) != STRAY_OK)
+		return NULL;
+	fprintf(out->f, "# stray availability: flight module per head along %s / %s\nt_s,albedo",
+		a->oem, a->aem);
+	for (h = 0; h < m->n_heads; h++)
+		fprintf(out->f, ",%s_flags,%s_sun_deg,%s_false_stars",
+			m->head[h].name, m->head[h].name, m->head[h].name);
+	fputs(",any_available\n", out->f);
+	return out->f;
+}
+
+/* Epochs are taken in blocks: what every head shares (orbit, attitude,
+ * Sun, albedo) is made for the block in parallel over epochs, then each
+ * head flies the block in order (its flags latch from frame to frame),
+ * the heads in parallel. */
+#define BLOCK 4096
+
+struct block {
+	double r[BLOCK][3], mib[BLOCK][3][3];
+	float sun[BLOCK][3];
+	int32_t t_tt[BLOCK];
+	int bad[BLOCK];
+	uint32_t flags[MISSION_HEADS_MAX][BLOCK];
+	float sun_deg[MISSION_HEADS_MAX][BLOCK];
+};
+
+/* The albedo is made every ALBEDO_S seconds of the span (the ground
+ * track moves ~450 km in a minute) and held between. */
+#define ALBEDO_S 60.0
+
+static void shared_inputs(struct mission *m, struct block *b, size_t i0,
+			  size_t nb)
+{
+	size_t every = m->step_s >= ALBEDO_S ? 1 : (size_t)(ALBEDO_S / m->step_s);
+	long j;
+
+#pragma omp parallel for schedule(static)
+	for (j = 0; j < (long)nb; j++) {
+		double t = m->t0 + (double)(i0 + (size_t)j) * m->step_s, v[3], q[4];
+		float pos[3];
+		int k;
+
+		b->bad[j] = stray_oem_state(&m->oem, t, b->r[j], v) != STRAY_OK ||
+			    stray_aem_attitude(&m->aem, t, q) != STRAY_OK;
+		if (b->bad[j])
+			continue;
+		b->t_tt[j] = (int32_t)lround(t);
+		for (k = 0; k < 3; k++)
+			pos[k] = (float)b->r[j][k];
+		fdrfw_sun_dir(b->t_tt[j], b->sun[j]);
+		if ((i0 + (size_t)j) % every == 0)
+			m->albedo[i0 + (size_t)j] =
+				(float)mission_cap_albedo(pos, b->sun[j]);
+		stray_q_dcm(q, b->mib[j]);
+	}
+	for (j = 0; j < (long)nb; j++) {
+		size_t i = i0 + (size_t)j;
+
+		m->albedo[i] = m->albedo[i - i % every];
+	}
+}
+
+static void fly_head(struct mission *m, struct block *b, size_t h,
+		     size_t i0, size_t nb, size_t sky_every)
+{
+	struct mission_head *hd = &m->head[h];
+	size_t j;
+
+	for (j = 0; j < nb; j++) {
+		size_t i = i0 + j, s = i / sky_every;
+		struct fdrfw_input in;
+		struct fdrfw_output o;
+		double mis[3][3];
+		int k, l;
+
+		memset(&in, 0, sizeof(in));
+		for (k = 0; k < 3; k++) {
+			in.pos_km[k] = (float)b->r[j][k];
+			for (l = 0; l < 3; l++)
+				mis[k][l] = hd->m_bs[k][0] * b->mib[j][0][l] +
+					    hd->m_bs[k][1] * b->mib[j][1][l] +
+					    hd->m_bs[k][2] * b->mib[j][2][l];
+		}
+		mission_fw_q(mis, in.q);
+		in.t_tt_s = b->t_tt[j];
+		in.t_exp_s = hd->table.t_exp_nominal_s;
+		/* the ground feeds the regional albedo to the Earth term */
+		hd->table.earth_albedo = m->albedo[i];
+		(void)fdrfw_frame(&hd->ctx, &in, &o);
+		hd->mask[i] = (uint8_t)(o.flags & STRAY_AVAIL_BLIND);
+		hd->stars[i] = o.false_stars_total;
+		b->flags[h][j] = o.flags;
+		b->sun_deg[h][j] = o.theta_deg[FDRFW_SUN];
+		if (i % sky_every == 0 && s < m->n_sky)
+			sky_sample(hd, s, mis, b->r[j], b->sun[j], in.t_tt_s);
+	}
+}
+
+int mission_fly(const struct mission_args *a, struct mission *m,
+		struct stray_error *err)
+{
+	struct stray_file_out out;
+	FILE *csv = csv_open(a, m, &out, err);
+	size_t i0, h, i, sky_every = (m->n + m->n_sky - 1) / m->n_sky;
+	struct block *b = malloc(sizeof(*b));
+
+	if ((a->csv && !csv) || !b) {
+		free(b);
+		if (csv)
+			stray_file_abort(&out);
+		return b ? STRAY_EIO : stray_error_set(err, STRAY_ENOMEM, "block", NULL);
+	}
+	m->n_sky = (m->n + sky_every - 1) / sky_every;
+	for (i0 = 0; i0 < m->n; i0 += BLOCK) {
+		size_t nb = m->n - i0 < BLOCK ? m->n - i0 : BLOCK, j;
+		long hh;
+
+		shared_inputs(m, b, i0, nb);
+		for (j = 0; j < nb; j++)
+			if (b->bad[j]) {
+				free(b);
+				if (csv)
+					stray_file_abort(&out);
+				return stray_error_at(err, STRAY_ERANGE, a->oem, 0,
+						      "epoch", "outside the ephemeris");
+			}
+#pragma omp parallel for schedule(dynamic, 1)
+		for (hh = 0; hh < (long)m->n_heads; hh++)
+			fly_head(m, b, (size_t)hh, i0, nb, sky_every);
+		for (j = 0; j < nb; j++) {
+			uint8_t all = STRAY_AVAIL_BLIND;
+
+			for (h = 0; h < m->n_heads; h++)
+				all &= m->head[h].mask[i0 + j] ? STRAY_AVAIL_BLIND : 0;
+			m->any_mask[i0 + j] = all;
+			if (!csv)
+				continue;
+			fprintf(csv, "%.3f,%.4f", (double)(i0 + j) * m->step_s,
+				(double)m->albedo[i0 + j]);
+			for (h = 0; h < m->n_heads; h++)
+				fprintf(csv, ",%u,%.3f,%.4g", (unsigned)b->flags[h][j],
+					(double)b->sun_deg[h][j],
+					(double)m->head[h].stars[i0 + j]);
+			fprintf(csv, ",%d\n", all == 0);
+		}
+	}
+	free(b);
+	for (h = 0; h < m->n_heads; h++) {
+		struct mission_head *hd = &m->head[h];
+		double sum = 0.0, mx = 0.0;
+
+		stray_avail_summarise(hd->mask, m->n, m->step_s, &hd->st);
+		for (i = 0; i < m->n; i++)
+			if (isfinite(hd->stars[i])) {
+				sum += hd->stars[i];
+				mx = fmax(mx, hd->stars[i]);
+			}
+		hd->stars_mean = sum / (double)m->n;
+		hd->stars_max = mx;
+	}
+	stray_avail_summarise(m->any_mask, m->n, m->step_s, &m->any);
+	return csv ? stray_file_commit(&out, err) : STRAY_OK;
+}

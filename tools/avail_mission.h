@@ -1,0 +1,69 @@
+/*
+ * avail_mission.h - the pieces of `stray availability`: the demo mission
+ * written as OEM/AEM, the heads file, the flight module flown per head,
+ * the albedo fed to it, the statistics and the plots.
+ */
+#ifndef STRAY_TOOLS_AVAIL_MISSION_H
+#define STRAY_TOOLS_AVAIL_MISSION_H
+
+#include <stdint.h>
+
+#include "fdrfw/fdrfw.h"
+#include "stray/aem.h"
+#include "stray/avail.h"
+#include "stray/oem.h"
+
+#define MISSION_HEADS_MAX 8
+#define MISSION_SKY_MAX 3000	/* points per path in a sky plot */
+
+struct mission_args {
+	const char *oem, *aem, *heads, *csv, *plot;
+	const char *write_oem, *write_aem;
+	double step_s, hours, gen_step_s;
+	int hours_given;
+	int year, month, day;
+};
+
+struct mission_head {
+	char name[32];
+	double m_bs[3][3];		/* body -> head (rows: head axes) */
+	struct fdrfw_table table;	/* its flight table; albedo fed per epoch */
+	struct fdrfw_ctx ctx;
+	uint8_t *mask;			/* STRAY_AVAIL_* per epoch */
+	float *stars;			/* predicted false stars per frame */
+	double *sky[3][2];		/* Sun, Moon, Earth limb: x, y [deg] */
+	struct stray_avail_stats st;
+	double stars_mean, stars_max;
+};
+
+struct mission {
+	struct stray_oem oem;
+	struct stray_aem aem;
+	size_t n_heads, n, n_sky;
+	struct mission_head head[MISSION_HEADS_MAX];
+	double t0, step_s;		/* TT s since J2000 of the first frame */
+	uint8_t *any_mask;		/* blind only where every head is */
+	float *albedo;			/* fed to the Earth term, per epoch */
+	struct stray_avail_stats any;
+};
+
+int mission_write_demo(const struct mission_args *a, struct stray_error *err);
+int mission_load(const struct mission_args *a, struct mission *m,
+		 struct stray_error *err);
+int mission_fly(const struct mission_args *a, struct mission *m,
+		struct stray_error *err);
+int mission_plot(const struct mission_args *a, const struct mission *m,
+		 struct stray_error *err);
+int mission_summary(const struct mission_args *a, const struct mission *m);
+void mission_free(struct mission *m);
+
+/* The flight module's attitude quaternion (w, x, y, z), Hamilton,
+ * v_s = R(q) v_i, of the inertial -> head matrix m (rows: head axes). */
+void mission_fw_q(const double m[3][3], float q[4]);
+
+/* Effective albedo of the sunlit cap seen from pos_km with the Sun along
+ * sun (unit): the zonal albedo weighted as the module weights the cap's
+ * light (cos of incidence times solid angle); 0.3 on the night side. */
+double mission_cap_albedo(const float pos_km[3], const float sun[3]);
+
+#endif /* STRAY_TOOLS_AVAIL_MISSION_H */

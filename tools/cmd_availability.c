@@ -1,0 +1,174 @@
+/*
+ * cmd_availability.c - `stray availability`: tracker availability over a
+ * mission.  The orbit and attitude come from CCSDS OEM/AEM files (the
+ * files GMAT, STK, Orekit or Basilisk write); every head is assessed by
+ * the flight module (firmware_fdr, the code that flies) at every epoch,
+ * with the sunlit Earth's albedo by latitude and season fed to its Earth
+ * term on the ground side; statistics per head and for "any head".
+ */
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "avail_mission.h"
+#include "cli.h"
+#include "commands.h"
+#include "stray/errfmt.h"
+
+static const char usage[] =
+	"usage: stray availability --oem O.oem --aem A.aem --heads H.json\n"
+	"                          [--step-s S] [--hours H] [--out F.csv]\n"
+	"                          [--plot PREFIX] [--json]\n"
+	"       stray availability --write-oem O.oem --write-aem A.aem\n"
+	"                          [--epoch YYYY-MM-DD] [--hours H] [--gen-step-s S]\n"
+	"                          [--heads H.json ...]\n"
+	"\n"
+	"Fly the flight module of every head along the orbit of an OEM (CCSDS\n"
+	"502.0) and the attitude of an AEM (CCSDS 504.0), both in KVN text,\n"
+	"interpolated as their headers say, one frame every S seconds over the\n"
+	"span both cover; the Earth's albedo by latitude and season is fed to\n"
+	"the module's Earth term.  Reports per head and for \"any head\" the\n"
+	"fraction of time available and excluded by each body, the outages\n"
+	"and the false stars per frame (docs/availability.md).\n"
+	"\n"
+	"  --oem F, --aem F     orbit and attitude (KVN)\n"
+	"  --heads H.json       {\"heads\": [{\"name\": \"A\", \"boresight_body\": [x,y,z],\n"
+	"                       \"up_body\": [x,y,z], \"table\": \"A.bin\"}, ...]}; tables\n"
+	"                       from stray firmware-table, relative to H.json\n"
+	"  --step-s S           one frame every S seconds (10)\n"
+	"  --hours H            only the first H hours of the span\n"
+	"  --out F.csv          time series, one row per frame\n"
+	"  --plot PREFIX        PREFIX_timeline.png, PREFIX_fdr.png and\n"
+	"                       PREFIX_sky_<head>.png\n"
+	"  --json               machine-readable summary\n"
+	"  --write-oem F, --write-aem F\n"
+	"                       write the demo mission: a 550 km sun-synchronous\n"
+	"                       orbit (LTAN 22:30), nadir pointing with yaw\n"
+	"                       steering, from 00:00 UTC of --epoch (2026-06-21)\n"
+	"                       for --hours (24) every --gen-step-s (60) s; with\n"
+	"                       --heads they are then read back and flown\n";
+
+static int parse_date(const char *text, struct mission_args *a)
+{
+	int n = 0;
+
+	return sscanf(text, "%4d-%2d-%2d%n", &a->year, &a->month, &a->day,
+		      &n) == 3 && text[n] == '\0' && a->year >= 1972 &&
+	       a->year <= 2065 && a->month >= 1 && a->month <= 12 &&
+	       a->day >= 1 && a->day <= 31;
+}
+
+static int parse_args(int argc, char **argv, struct mission_args *a)
+{
+	static const struct option opts[] = {
+		{ "oem", required_argument, NULL, 'o' },
+		{ "aem", required_argument, NULL, 'a' },
+		{ "heads", required_argument, NULL, 'H' },
+		{ "step-s", required_argument, NULL, 's' },
+		{ "hours", required_argument, NULL, 'h' + 256 },
+		{ "out", required_argument, NULL, 'c' },
+		{ "plot", required_argument, NULL, 'p' },
+		{ "write-oem", required_argument, NULL, 'O' },
+		{ "write-aem", required_argument, NULL, 'A' },
+		{ "epoch", required_argument, NULL, 'e' },
+		{ "gen-step-s", required_argument, NULL, 'g' },
+		{ "json", no_argument, &cli.json, 1 },
+		{ "help", no_argument, NULL, 'h' },
+		{ NULL, 0, NULL, 0 }
+	};
+	int opt, rc = CLI_OK;
+	const char *cmd = "availability";
+
+	while (rc == CLI_OK &&
+	       (opt = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+		switch (opt) {
+		case 0: break;
+		case 'h': fputs(usage, stdout); return -1;
+		case 'o': a->oem = optarg; break;
+		case 'a': a->aem = optarg; break;
+		case 'H': a->heads = optarg; break;
+		case 'c': a->csv = optarg; break;
+		case 'p': a->plot = optarg; break;
+		case 'O': a->write_oem = optarg; break;
+		case 'A': a->write_aem = optarg; break;
+		case 's': rc = cli_parse_double(cmd, "step-s", optarg, &a->step_s); break;
+		case 'h' + 256:
+			a->hours_given = 1;
+			rc = cli_parse_double(cmd, "hours", optarg, &a->hours);
+			break;
+		case 'g': rc = cli_parse_double(cmd, "gen-step-s", optarg, &a->gen_step_s); break;
+		case 'e':
+			if (!parse_date(optarg, a))
+				return cli_usage_error(cmd, "option '--epoch': '%s' is not a date YYYY-MM-DD in 1972..2065", optarg);
+			break;
+		default:
+			return cli_usage_error(cmd, "unknown option '%s'", argv[optind - 1]);
+		}
+	}
+	if (rc != CLI_OK)
+		return rc;
+	if (!!a->write_oem != !!a->write_aem)
+		return cli_usage_error(cmd, "--write-oem and --write-aem go together");
+	if (a->write_oem) {
+		a->oem = a->oem ? a->oem : a->write_oem;
+		a->aem = a->aem ? a->aem : a->write_aem;
+	}
+	if (!a->write_oem && (!a->oem || !a->aem || !a->heads))
+		return cli_usage_error(cmd, "--oem, --aem and --heads are required");
+	if (!(a->step_s >= 0.1 && a->step_s <= 86400.0))
+		return cli_usage_error(cmd, "option '--step-s': %g is outside 0.1..86400", a->step_s);
+	if (!(a->gen_step_s >= 1.0 && a->gen_step_s <= 3600.0))
+		return cli_usage_error(cmd, "option '--gen-step-s': %g is outside 1..3600", a->gen_step_s);
+	if (!(a->hours > 0.0 && a->hours <= 24.0 * 366 * 2))
+		return cli_usage_error(cmd, "option '--hours': %g is outside (0, 17568]", a->hours);
+	if (a->write_oem && a->hours_given &&
+	    a->hours * 3600.0 / a->gen_step_s > 2e6)
+		return cli_usage_error(cmd, "--hours / --gen-step-s: more than 2e6 records to write");
+	return CLI_OK;
+}
+
+int cmd_availability(int argc, char **argv)
+{
+	struct mission_args a = { 0 };
+	struct mission m;
+	struct stray_error err;
+	int rc;
+
+	a.step_s = 10.0;
+	a.gen_step_s = 60.0;
+	a.hours = 24.0 * 366 * 2;
+	a.year = 2026;
+	a.month = 6;
+	a.day = 21;
+	rc = parse_args(argc, argv, &a);
+	if (rc != CLI_OK)
+		return rc < 0 ? CLI_OK : rc;
+	stray_error_clear(&err);
+	if (a.write_oem) {
+		if (!a.hours_given)
+			a.hours = 24.0;	/* a day of the demo mission */
+		if (mission_write_demo(&a, &err) != STRAY_OK)
+			return cli_fail("availability", &err);
+		if (!a.heads) {
+			if (!cli.json)
+				printf("stray availability: wrote %s and %s\n",
+				       a.write_oem, a.write_aem);
+			return CLI_OK;
+		}
+	}
+	memset(&m, 0, sizeof(m));
+	rc = mission_load(&a, &m, &err);
+	if (rc == STRAY_OK)
+		rc = mission_fly(&a, &m, &err);
+	if (rc == STRAY_OK && a.plot)
+		rc = mission_plot(&a, &m, &err);
+	if (rc != STRAY_OK) {
+		mission_free(&m);
+		return cli_fail("availability", &err);
+	}
+	rc = mission_summary(&a, &m);
+	mission_free(&m);
+	return rc;
+}
