@@ -128,7 +128,7 @@ static int timeline(const struct mission_args *a, const struct mission *m,
 	{
 		struct plot_spec p = { path, "Availability per head (high: available, low: blind)",
 			"time [h]", "head (top first); any head at the bottom", 0, 0,
-			0.0, NAN, -0.2, (double)ns, s, ns };
+			0.0, NAN, -0.2, (double)ns, s, ns, 0 };
 
 		snprintf(path, sizeof(path), "%s_timeline.png", a->plot);
 		if ((rc = plot_render(&p, err)) != STRAY_OK)
@@ -140,7 +140,7 @@ static int timeline(const struct mission_args *a, const struct mission *m,
 	{
 		struct plot_spec p = { path, "Predicted false stars per frame (largest in each bin)",
 			"time [h]", "false stars per frame", 0, 1, 0.0, NAN,
-			1e-6, 1e6, s, m->n_heads };
+			1e-6, 1e6, s, m->n_heads, 0 };
 
 		snprintf(path, sizeof(path), "%s_fdr.png", a->plot);
 		rc = plot_render(&p, err);
@@ -177,7 +177,7 @@ static int sky(const struct mission_args *a, const struct mission *m,
 		char title[128];
 		struct plot_spec p = { path, title,
 			"off-axis angle x [deg] (azimuthal equidistant)",
-			"off-axis angle y [deg]", 0, 0, -180.0, 180.0, -180.0, 180.0, s, 5 };
+			"off-axis angle y [deg]", 0, 0, -180.0, 180.0, -180.0, 180.0, s, 5, 0 };
 
 		snprintf(title, sizeof(title), "Sky of head %s: paths in its frame", hd->name);
 		snprintf(path, sizeof(path), "%s_sky_%s.png", a->plot, hd->name);
