@@ -95,33 +95,51 @@ static void dump_vertex(struct path_state *ps, struct vec3 p, int group)
 	}
 }
 
+/* Angles per fan of shadow rays: candidates are gathered, traced as
+ * packets, then tallied in angle order (the same sums, the same bits). */
+#define FAN 64
+
 /* Direct light: the detector point connected to each source angle. */
 static void connect_direct(struct worker_ctx *w, struct path_state *ps,
 			   struct vec3 x)
 {
 	const struct tracer_scene *s = w->s;
-	struct vec3 o = tracer_offset_origin(x, s->det.normal);
-	size_t j;
+	struct vec3 o = tracer_offset_origin(x, s->det.normal), dirs[FAN];
+	double cs[FAN];
+	size_t jj[FAN], j = 0, n, k;
+	unsigned char occ[FAN];
 
-	for (j = 0; j < w->o->n_theta; j++) {
-		struct vec3 d = w->dir[j];
-		double c = v3_dot(d, s->det.normal);
+	while (j < w->o->n_theta) {
+		/* cheap culling first: no ray for these */
+		for (n = 0; n < FAN && j < w->o->n_theta; j++) {
+			struct vec3 d = w->dir[j];
+			double c = v3_dot(d, s->det.normal);
 
-		if (c <= 0.0 || !tracer_detector_accepts(&s->det, d) ||
-		    !tracer_beam_covers(&s->beam, d, x))
-			continue;
-		ps->casts++;
-		ps->connections++;
-		if (tracer_scene_occluded(s, o, d, INFINITY))
-			continue;
-		c *= tracer_lens_transmission(w->o->lens,
-					      acos(fmin(c, 1.0)) * 180.0 / M_PI);
-		ps->acc[j * TRACER_ORDERS] += c;
-		add_to_map(w, ps, j, c);
-		if (ps->focal && j == w->o->focal->theta_index)
-			/* direct light arrives from the source */
-			add_to_focal(w, ps, j, c, tracer_focal_cell(
-				w->o->focal, &w->focal_frame, d));
+			if (c <= 0.0 || !tracer_detector_accepts(&s->det, d) ||
+			    !tracer_beam_covers(&s->beam, d, x))
+				continue;
+			jj[n] = j;
+			cs[n] = c;
+			dirs[n++] = d;
+		}
+		ps->casts += n;
+		ps->connections += n;
+		tracer_scene_occluded_fan(s, o, dirs, n, occ);
+		for (k = 0; k < n; k++) {
+			size_t jk = jj[k];
+			double c = cs[k];
+
+			if (occ[k])
+				continue;
+			c *= tracer_lens_transmission(w->o->lens,
+				acos(fmin(c, 1.0)) * 180.0 / M_PI);
+			ps->acc[jk * TRACER_ORDERS] += c;
+			add_to_map(w, ps, jk, c);
+			if (ps->focal && jk == w->o->focal->theta_index)
+				/* direct light arrives from the source */
+				add_to_focal(w, ps, jk, c, tracer_focal_cell(
+					w->o->focal, &w->focal_frame, dirs[k]));
+		}
 	}
 }
 
@@ -136,33 +154,48 @@ static void connect_vertex(struct worker_ctx *w, struct path_state *ps,
 			   double T, int depth)
 {
 	const struct tracer_scene *s = w->s;
-	struct vec3 o = tracer_offset_origin(h->p, h->ng);
+	struct vec3 o = tracer_offset_origin(h->p, h->ng), dirs[FAN];
 	int order = depth < TRACER_ORDERS - 1 ? depth : TRACER_ORDERS - 1;
-	size_t j;
+	double cs[FAN];
+	size_t jj[FAN], j = 0, n, k;
+	unsigned char occ[FAN];
 
-	for (j = 0; j < w->o->n_theta; j++) {
-		struct vec3 d = w->dir[j];
-		double cos_d = v3_dot(d, h->ng), fv, c;
+	while (j < w->o->n_theta) {
+		/* cheap culling first: below the surface, outside the
+		 * aperture seen from the vertex, or a zero BRDF: no ray */
+		for (n = 0; n < FAN && j < w->o->n_theta; j++) {
+			struct vec3 d = w->dir[j];
+			double cos_d = v3_dot(d, h->ng), fv;
 
-		if (cos_d <= 0.0 || !tracer_beam_covers(&s->beam, d, h->p))
-			continue;
-		fv = mat->ops->eval(mat, wo, frame_to_local(f, d));
-		if (fv <= 0.0)
-			continue;
-		ps->casts++;
-		ps->connections++;
-		if (tracer_scene_occluded(s, o, d, INFINITY))
-			continue;
-		c = T * fv * cos_d;
-		ps->acc[j * TRACER_ORDERS + order] += c;
-		add_to_map(w, ps, j, c);
-		add_to_focal(w, ps, j, c, ps->focal_cell);
-		if (ps->path_c) {
-			if (ps->path_c[j] == 0.0)
-				ps->touched[ps->n_touched++] = j;
-			ps->path_c[j] += c;
+			if (cos_d <= 0.0 ||
+			    !tracer_beam_covers(&s->beam, d, h->p))
+				continue;
+			fv = mat->ops->eval(mat, wo, frame_to_local(f, d));
+			if (fv <= 0.0)
+				continue;
+			jj[n] = j;
+			cs[n] = T * fv * cos_d;
+			dirs[n++] = d;
 		}
-		record(ps, (uint32_t)j, depth, c);
+		ps->casts += n;
+		ps->connections += n;
+		tracer_scene_occluded_fan(s, o, dirs, n, occ);
+		for (k = 0; k < n; k++) {
+			size_t jk = jj[k];
+			double c = cs[k];
+
+			if (occ[k])
+				continue;
+			ps->acc[jk * TRACER_ORDERS + order] += c;
+			add_to_map(w, ps, jk, c);
+			add_to_focal(w, ps, jk, c, ps->focal_cell);
+			if (ps->path_c) {
+				if (ps->path_c[jk] == 0.0)
+					ps->touched[ps->n_touched++] = jk;
+				ps->path_c[jk] += c;
+			}
+			record(ps, (uint32_t)jk, depth, c);
+		}
 	}
 }
 

@@ -168,6 +168,54 @@ bool tracer_scene_occluded(const struct tracer_scene *s, struct vec3 o,
 	return r.tfar == -INFINITY;	/* Embree marks a hit with -inf */
 }
 
+/*
+ * Shadow rays sharing one origin, in packets of 16 (the next-event
+ * connections of one vertex to every angle of the sweep: the most coherent
+ * rays the tracer casts).  The same float ray as tracer_scene_occluded,
+ * lane by lane; Embree's packet kernels decide hit or miss per ray.
+ */
+void tracer_scene_occluded_fan(const struct tracer_scene *s, struct vec3 o,
+			       const struct vec3 *d, size_t n,
+			       unsigned char *occluded)
+{
+	struct RTCIntersectContext ctx;
+	size_t k0;
+
+	rtcInitIntersectContext(&ctx);
+	ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+	for (k0 = 0; k0 < n; k0 += 16) {
+		struct RTCRay16 r;
+		int valid[16];
+		size_t k, m = n - k0 < 16 ? n - k0 : 16;
+
+		if (m == 1) {
+			occluded[k0] = tracer_scene_occluded(s, o, d[k0],
+							     INFINITY);
+			break;
+		}
+		for (k = 0; k < 16; k++) {
+			struct vec3 dk = d[k0 + (k < m ? k : 0)];
+
+			valid[k] = k < m ? -1 : 0;
+			r.org_x[k] = (float)o.x;
+			r.org_y[k] = (float)o.y;
+			r.org_z[k] = (float)o.z;
+			r.dir_x[k] = (float)dk.x;
+			r.dir_y[k] = (float)dk.y;
+			r.dir_z[k] = (float)dk.z;
+			r.tnear[k] = 0.0f;
+			r.tfar[k] = INFINITY;
+			r.time[k] = 0.0f;
+			r.mask[k] = 0xFFFFFFFFu;
+			r.id[k] = 0;
+			r.flags[k] = 0;
+		}
+		rtcOccluded16(valid, s->rt->scene, &ctx, &r);
+		for (k = 0; k < m; k++)
+			occluded[k0 + k] = r.tfar[k] == -INFINITY;
+	}
+}
+
 struct vec3 tracer_offset_origin(struct vec3 p, struct vec3 n)
 {
 	double m = fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z)));
