@@ -95,9 +95,47 @@ static void dump_vertex(struct path_state *ps, struct vec3 p, int group)
 	}
 }
 
-/* Angles per fan of shadow rays: candidates are gathered, traced as
- * packets, then tallied in angle order (the same sums, the same bits). */
-#define FAN 64
+/*
+ * The shadow rays of one point (the detector point or a scatter vertex) to
+ * the angles of the sweep: the angles are screened a block at a time by a
+ * loop the compiler vectorises, the survivors get the exact tests in angle
+ * order, and the candidates are traced as packets (tracer_scene_occluded_fan)
+ * and tallied in angle order: the same rays, the same sums, the same bits.
+ */
+#define BLOCK 64		/* angles screened at once */
+#define FAN (2 * BLOCK)		/* candidates gathered before tracing */
+
+/*
+ * keep[k] = 0 only where angle j0 + k surely fails the exact tests: the
+ * source is behind the aperture (beam_ok), or, with n given, below the
+ * surface, or the line through p along it passes the aperture's centre
+ * c further than its radius R (necessary for tracer_beam_covers: the
+ * distance of c from the line bounds |q| from below), with a margin far
+ * above rounding so no angle the exact test takes is dropped.
+ */
+static void screen(const struct worker_ctx *w, const unsigned char *ok,
+		   size_t j0, size_t m, struct vec3 p, const struct vec3 *n,
+		   unsigned char *keep)
+{
+	const struct tracer_beam *b = &w->s->beam;
+	const double *dx = w->dir_x + j0, *dy = w->dir_y + j0,
+		     *dz = w->dir_z + j0;
+	const unsigned char *okj = ok + j0;
+	struct vec3 v = v3_sub(b->center, p);
+	double l2 = v3_dot(v, v), r2;
+	double nx = n ? n->x : 0.0, ny = n ? n->y : 0.0, nz = n ? n->z : 0.0;
+	double nmin = n ? -1e-9 : -1.0;
+	size_t k;
+
+	r2 = b->radius_mm * b->radius_mm * (1.0 + 1e-6) + 1e-9 * l2 + 1e-9;
+	for (k = 0; k < m; k++) {
+		double a = dx[k] * v.x + dy[k] * v.y + dz[k] * v.z;
+		double cn = dx[k] * nx + dy[k] * ny + dz[k] * nz;
+
+		keep[k] = (unsigned char)(okj[k] & (l2 - a * a <= r2) &
+					  (cn > nmin));
+	}
+}
 
 /* Direct light: the detector point connected to each source angle. */
 static void connect_direct(struct worker_ctx *w, struct path_state *ps,
@@ -106,22 +144,26 @@ static void connect_direct(struct worker_ctx *w, struct path_state *ps,
 	const struct tracer_scene *s = w->s;
 	struct vec3 o = tracer_offset_origin(x, s->det.normal), dirs[FAN];
 	double cs[FAN];
-	size_t jj[FAN], j = 0, n, k;
-	unsigned char occ[FAN];
+	size_t jj[FAN], j0, n = 0, k, nt = w->o->n_theta;
+	unsigned char occ[FAN], keep[BLOCK];
 
-	while (j < w->o->n_theta) {
+	for (j0 = 0; j0 < nt; j0 += BLOCK) {
+		size_t m = nt - j0 < BLOCK ? nt - j0 : BLOCK;
+
 		/* cheap culling first: no ray for these */
-		for (n = 0; n < FAN && j < w->o->n_theta; j++) {
+		screen(w, w->direct_ok, j0, m, x, NULL, keep);
+		for (k = 0; k < m; k++) {
+			size_t j = j0 + k;
 			struct vec3 d = w->dir[j];
-			double c = v3_dot(d, s->det.normal);
 
-			if (c <= 0.0 || !tracer_detector_accepts(&s->det, d) ||
-			    !tracer_beam_covers(&s->beam, d, x))
+			if (!keep[k] || !tracer_beam_covers(&s->beam, d, x))
 				continue;
 			jj[n] = j;
-			cs[n] = c;
+			cs[n] = v3_dot(d, s->det.normal);
 			dirs[n++] = d;
 		}
+		if (n < BLOCK && j0 + m < nt)
+			continue;
 		ps->casts += n;
 		ps->connections += n;
 		tracer_scene_occluded_fan(s, o, dirs, n, occ);
@@ -140,6 +182,7 @@ static void connect_direct(struct worker_ctx *w, struct path_state *ps,
 				add_to_focal(w, ps, jk, c, tracer_focal_cell(
 					w->o->focal, &w->focal_frame, dirs[k]));
 		}
+		n = 0;
 	}
 }
 
@@ -157,16 +200,23 @@ static void connect_vertex(struct worker_ctx *w, struct path_state *ps,
 	struct vec3 o = tracer_offset_origin(h->p, h->ng), dirs[FAN];
 	int order = depth < TRACER_ORDERS - 1 ? depth : TRACER_ORDERS - 1;
 	double cs[FAN];
-	size_t jj[FAN], j = 0, n, k;
-	unsigned char occ[FAN];
+	size_t jj[FAN], j0, n = 0, k, nt = w->o->n_theta;
+	unsigned char occ[FAN], keep[BLOCK];
 
-	while (j < w->o->n_theta) {
+	for (j0 = 0; j0 < nt; j0 += BLOCK) {
+		size_t m = nt - j0 < BLOCK ? nt - j0 : BLOCK;
+
 		/* cheap culling first: below the surface, outside the
 		 * aperture seen from the vertex, or a zero BRDF: no ray */
-		for (n = 0; n < FAN && j < w->o->n_theta; j++) {
+		screen(w, w->beam_ok, j0, m, h->p, &h->ng, keep);
+		for (k = 0; k < m; k++) {
+			size_t j = j0 + k;
 			struct vec3 d = w->dir[j];
-			double cos_d = v3_dot(d, h->ng), fv;
+			double cos_d, fv;
 
+			if (!keep[k])
+				continue;
+			cos_d = v3_dot(d, h->ng);
 			if (cos_d <= 0.0 ||
 			    !tracer_beam_covers(&s->beam, d, h->p))
 				continue;
@@ -177,6 +227,8 @@ static void connect_vertex(struct worker_ctx *w, struct path_state *ps,
 			cs[n] = T * fv * cos_d;
 			dirs[n++] = d;
 		}
+		if (n < BLOCK && j0 + m < nt)
+			continue;
 		ps->casts += n;
 		ps->connections += n;
 		tracer_scene_occluded_fan(s, o, dirs, n, occ);
@@ -196,6 +248,7 @@ static void connect_vertex(struct worker_ctx *w, struct path_state *ps,
 			}
 			record(ps, (uint32_t)jk, depth, c);
 		}
+		n = 0;
 	}
 }
 
