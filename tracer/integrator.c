@@ -113,27 +113,26 @@ static void dump_vertex(struct path_state *ps, struct vec3 p, int group)
  * distance of c from the line bounds |q| from below), with a margin far
  * above rounding so no angle the exact test takes is dropped.
  */
-static void screen(const struct worker_ctx *w, const unsigned char *ok,
+static void screen(const struct worker_ctx *w, const double *ok,
 		   size_t j0, size_t m, struct vec3 p, const struct vec3 *n,
-		   unsigned char *keep)
+		   double *keep)
 {
 	const struct tracer_beam *b = &w->s->beam;
-	const double *dx = w->dir_x + j0, *dy = w->dir_y + j0,
-		     *dz = w->dir_z + j0;
-	const unsigned char *okj = ok + j0;
+	const double *restrict dx = w->dir_x + j0, *restrict dy = w->dir_y + j0,
+		     *restrict dz = w->dir_z + j0, *restrict okj = ok + j0;
 	struct vec3 v = v3_sub(b->center, p);
 	double l2 = v3_dot(v, v), r2;
 	double nx = n ? n->x : 0.0, ny = n ? n->y : 0.0, nz = n ? n->z : 0.0;
-	double nmin = n ? -1e-9 : -1.0;
+	double nmin = n ? -1e-9 : -1.0, *restrict kp = keep;
 	size_t k;
 
 	r2 = b->radius_mm * b->radius_mm * (1.0 + 1e-6) + 1e-9 * l2 + 1e-9;
 	for (k = 0; k < m; k++) {
 		double a = dx[k] * v.x + dy[k] * v.y + dz[k] * v.z;
-		double cn = dx[k] * nx + dy[k] * ny + dz[k] * nz;
+		double cn = dx[k] * nx + dy[k] * ny + dz[k] * nz, okk = okj[k];
 
-		keep[k] = (unsigned char)(okj[k] & (l2 - a * a <= r2) &
-					  (cn > nmin));
+		/* branch-free, so the loop vectorises */
+		kp[k] = (l2 - a * a <= r2) & (cn > nmin) ? okk : 0.0;
 	}
 }
 
@@ -145,7 +144,8 @@ static void connect_direct(struct worker_ctx *w, struct path_state *ps,
 	struct vec3 o = tracer_offset_origin(x, s->det.normal), dirs[FAN];
 	double cs[FAN];
 	size_t jj[FAN], j0, n = 0, k, nt = w->o->n_theta;
-	unsigned char occ[FAN], keep[BLOCK];
+	unsigned char occ[FAN];
+	double keep[BLOCK];
 
 	for (j0 = 0; j0 < nt; j0 += BLOCK) {
 		size_t m = nt - j0 < BLOCK ? nt - j0 : BLOCK;
@@ -156,7 +156,7 @@ static void connect_direct(struct worker_ctx *w, struct path_state *ps,
 			size_t j = j0 + k;
 			struct vec3 d = w->dir[j];
 
-			if (!keep[k] || !tracer_beam_covers(&s->beam, d, x))
+			if (keep[k] == 0.0 || !tracer_beam_covers(&s->beam, d, x))
 				continue;
 			jj[n] = j;
 			cs[n] = v3_dot(d, s->det.normal);
@@ -201,7 +201,8 @@ static void connect_vertex(struct worker_ctx *w, struct path_state *ps,
 	int order = depth < TRACER_ORDERS - 1 ? depth : TRACER_ORDERS - 1;
 	double cs[FAN];
 	size_t jj[FAN], j0, n = 0, k, nt = w->o->n_theta;
-	unsigned char occ[FAN], keep[BLOCK];
+	unsigned char occ[FAN];
+	double keep[BLOCK];
 
 	for (j0 = 0; j0 < nt; j0 += BLOCK) {
 		size_t m = nt - j0 < BLOCK ? nt - j0 : BLOCK;
@@ -214,7 +215,7 @@ static void connect_vertex(struct worker_ctx *w, struct path_state *ps,
 			struct vec3 d = w->dir[j];
 			double cos_d, fv;
 
-			if (!keep[k])
+			if (keep[k] == 0.0)
 				continue;
 			cos_d = v3_dot(d, h->ng);
 			if (cos_d <= 0.0 ||

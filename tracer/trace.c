@@ -221,7 +221,7 @@ static int run_pass(const struct tracer_scene *s,
 	if (!rc)
 		rc = alloc_extras(s, o, res, &w.batch_maps);
 	w.dir = malloc(o->n_theta * sizeof(*w.dir));
-	w.dir_x = malloc(3 * o->n_theta * sizeof(*w.dir_x) + 2 * o->n_theta);
+	w.dir_x = malloc(5 * o->n_theta * sizeof(*w.dir_x));
 	w.batch_tables = calloc((size_t)o->n_batches, sizeof(*w.batch_tables));
 	if (rc || !w.dir || !w.dir_x || !w.batch_tables) {
 		rc = stray_error_set(err, STRAY_ENOMEM, "trace",
@@ -230,7 +230,7 @@ static int run_pass(const struct tracer_scene *s,
 	}
 	w.dir_y = w.dir_x + o->n_theta;
 	w.dir_z = w.dir_y + o->n_theta;
-	w.beam_ok = (unsigned char *)(w.dir_z + o->n_theta);
+	w.beam_ok = w.dir_z + o->n_theta;
 	w.direct_ok = w.beam_ok + o->n_theta;
 	for (j = 0; j < o->n_theta; j++) {
 		struct vec3 d = tracer_source_dir(o->theta_deg[j]);
@@ -242,7 +242,7 @@ static int run_pass(const struct tracer_scene *s,
 		/* what tracer_beam_covers and the direct term test first,
 		 * independent of the point */
 		w.beam_ok[j] = v3_dot(d, s->beam.normal) > 0.0;
-		w.direct_ok[j] = w.beam_ok[j] &&
+		w.direct_ok[j] = w.beam_ok[j] > 0.0 &&
 				 v3_dot(d, s->det.normal) > 0.0 &&
 				 tracer_detector_accepts(&s->det, d);
 	}
