@@ -423,7 +423,7 @@ int main(int argc, char **argv)
 		printf("raw rtcOccluded1, incoherent, 1 thread: %.3g rays/s\n"
 		       "shadow rays (%ld connections of %d path vertices to the "
 		       "127 angles, culled), 1 thread:\n"
-		       "  packets of 16: %.3g rays/s = %.2f x the raw "
+		       "  packets (rtcOccluded4/8/16): %.3g rays/s = %.2f x the raw "
 		       "single-ray occlusion rate (target >= 1.5)\n"
 		       "  the same rays one by one: %.3g rays/s = %.2f x\n",
 		       occ1, nr, FAN_VERTS, fan, fan / occ1, same,
