@@ -173,8 +173,9 @@ static void connect_direct(struct worker_ctx *w, struct path_state *ps,
 
 			if (occ[k])
 				continue;
-			c *= tracer_lens_transmission(w->o->lens,
-				acos(fmin(c, 1.0)) * 180.0 / M_PI);
+			if (w->o->lens)	/* else 1: no acos per ray */
+				c *= tracer_lens_transmission(w->o->lens,
+					acos(fmin(c, 1.0)) * 180.0 / M_PI);
 			ps->acc[jk * TRACER_ORDERS] += c;
 			add_to_map(w, ps, jk, c);
 			if (ps->focal && jk == w->o->focal->theta_index)
@@ -316,6 +317,8 @@ static double start_path(struct worker_ctx *w, struct path_state *ps,
 		ps->focal_cell = tracer_focal_cell(w->o->focal,
 						   &w->focal_frame, *dir);
 	*o = tracer_offset_origin(x, s->det.normal);
+	if (!w->o->lens)	/* transmission 1 */
+		return g * proj;
 	c = fmin(1.0, v3_dot(*dir, s->det.normal));
 	return g * proj * tracer_lens_transmission(w->o->lens,
 						   acos(c) * 180.0 / M_PI);
