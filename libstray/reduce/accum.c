@@ -86,6 +86,10 @@ static inline void welford_usual(float *restrict mean, float *restrict m2,
  * arithmetic pixel by pixel, without branches, four columns (one Bayer
  * period) a step, so the loop vectorises.
  */
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+/* wider vectors where the CPU has AVX2 (chosen at load time) */
+__attribute__((target_clones("avx2", "default")))
+#endif
 static void welford_usual_row(float *restrict mean, float *restrict m2,
 			      uint16_t *restrict nn,
 			      const uint16_t *restrict row, size_t n_cols,
