@@ -67,6 +67,102 @@ static double raw_casts_per_s(const struct tracer_scene *s, long n)
 	return n / (now_s() - t0);
 }
 
+/* Raw incoherent occlusion rays (rtcOccluded1), same origins/directions. */
+static double raw_occluded_per_s(const struct tracer_scene *s, long n)
+{
+	struct tracer_rng r;
+	double t0 = now_s();
+	long i, hits = 0;
+
+	tracer_rng_init(&r, 3, 0);
+	for (i = 0; i < n; i++) {
+		double rr = 19.0 * sqrt(tracer_rng_uniform(&r));
+		double ph = 2.0 * M_PI * tracer_rng_uniform(&r);
+		double z = -39.0 * tracer_rng_uniform(&r);
+		double cz = 2.0 * tracer_rng_uniform(&r) - 1.0;
+		double p2 = 2.0 * M_PI * tracer_rng_uniform(&r);
+		double sz = sqrt(1.0 - cz * cz);
+
+		hits += tracer_scene_occluded(s, v3(rr * cos(ph), rr * sin(ph), z),
+					      v3(sz * cos(p2), sz * sin(p2), cz),
+					      INFINITY);
+	}
+	if (hits < 0)
+		puts("");
+	return n / (now_s() - t0);
+}
+
+/*
+ * The tracer's shadow rays: scatter vertices of real paths (first hits of
+ * random rays from the detector side), each connected to every angle of
+ * the default sweep after the integrator's culling (source above the
+ * surface, aperture covers the vertex), as fans (packets) and, the same
+ * rays, one by one.  Shadow rays/s on one thread; *same = one by one.
+ */
+#define FAN_VERTS 20000
+static double fan_per_s(const struct tracer_scene *s, double *same,
+			long *n_rays)
+{
+	struct vec3 *dir, *fan, *org;
+	unsigned char *occ;
+	struct tracer_rng r;
+	double *th, t0, t_fan, t_one;
+	size_t n, nv = 0, k, j, *cnt;
+	long rays = 0, agree = 0;
+
+	*same = 0.0;
+	*n_rays = 0;
+	if (tracer_angles_parse(TRACER_ANGLES_DEFAULT, &th, &n, NULL))
+		return 0.0;
+	dir = malloc(n * sizeof(*dir));
+	fan = malloc((size_t)FAN_VERTS * n * sizeof(*fan));
+	org = malloc(FAN_VERTS * sizeof(*org));
+	occ = malloc(n);
+	cnt = calloc(FAN_VERTS, sizeof(*cnt));
+	for (j = 0; j < n; j++) {
+		dir[j] = tracer_source_dir(th[j]);
+	}
+	tracer_rng_init(&r, 5, 0);
+	while (nv < FAN_VERTS) {
+		struct tracer_hit h;
+		double u = tracer_rng_uniform(&r), v = tracer_rng_uniform(&r);
+		double ct = sqrt(1.0 - u), st = sqrt(u), ph = 2.0 * M_PI * v;
+		struct vec3 x = tracer_detector_sample_point(&s->det,
+			tracer_rng_uniform(&r), tracer_rng_uniform(&r));
+		struct vec3 d = v3(st * cos(ph), st * sin(ph), ct);
+
+		if (!tracer_scene_intersect(s, tracer_offset_origin(x,
+				s->det.normal), d, &h))
+			continue;
+		org[nv] = tracer_offset_origin(h.p, h.ng);
+		for (j = 0; j < n; j++)
+			if (v3_dot(dir[j], h.ng) > 0.0 &&
+			    tracer_beam_covers(&s->beam, dir[j], h.p))
+				fan[nv * n + cnt[nv]++] = dir[j];
+		rays += (long)cnt[nv];
+		nv++;
+	}
+	t0 = now_s();
+	for (k = 0; k < nv; k++) {
+		tracer_scene_occluded_fan(s, org[k], fan + k * n, cnt[k], occ);
+		for (j = 0; j < cnt[k]; j++)
+			agree += occ[j];
+	}
+	t_fan = now_s() - t0;
+	t0 = now_s();
+	for (k = 0; k < nv; k++)
+		for (j = 0; j < cnt[k]; j++)
+			agree -= tracer_scene_occluded(s, org[k],
+						       fan[k * n + j], INFINITY);
+	t_one = now_s() - t0;
+	if (agree != 0)
+		printf("  fan and single rays DISAGREE (%ld)\n", agree);
+	free(dir), free(fan), free(org), free(occ), free(cnt), free(th);
+	*same = rays / t_one;
+	*n_rays = rays;
+	return rays / t_fan;
+}
+
 static double worst_rel_sigma(const struct tracer_result *r, double *at)
 {
 	double worst = 0.0, a, sg;
@@ -318,6 +414,21 @@ int main(int argc, char **argv)
 	}
 	raw1 = raw_casts_per_s(&s, 2000000);
 	printf("raw rtcIntersect1, incoherent, 1 thread: %.3g casts/s\n", raw1);
+	{
+		double occ1 = raw_occluded_per_s(&s, 2000000), same, fan;
+		long nr;
+
+		fan = fan_per_s(&s, &same, &nr);
+		occ1 = 0.5 * (occ1 + raw_occluded_per_s(&s, 2000000));
+		printf("raw rtcOccluded1, incoherent, 1 thread: %.3g rays/s\n"
+		       "shadow rays (%ld connections of %d path vertices to the "
+		       "127 angles, culled), 1 thread:\n"
+		       "  packets (rtcOccluded4/8/16): %.3g rays/s = %.2f x the raw "
+		       "single-ray occlusion rate (target >= 1.5)\n"
+		       "  the same rays one by one: %.3g rays/s = %.2f x\n",
+		       occ1, nr, FAN_VERTS, fan, fan / occ1, same,
+		       same / occ1);
+	}
 	rc = bench_curve(&s, 2, raw1);
 	if (!rc)
 		rc = race_mitsuba(&s, 2);

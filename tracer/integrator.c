@@ -95,33 +95,99 @@ static void dump_vertex(struct path_state *ps, struct vec3 p, int group)
 	}
 }
 
+/*
+ * The shadow rays of one point (the detector point or a scatter vertex) to
+ * the angles of the sweep: the angles are screened a block at a time by a
+ * loop the compiler vectorises, the survivors get the exact tests in angle
+ * order, and the candidates are traced as packets (tracer_scene_occluded_fan)
+ * and tallied in angle order: the same rays, the same sums, the same bits.
+ */
+#define BLOCK 64		/* angles screened at once */
+#define FAN (2 * BLOCK)		/* candidates gathered before tracing */
+
+/*
+ * keep[k] = 0 only where angle j0 + k surely fails the exact tests: the
+ * source is behind the aperture (beam_ok), or, with n given, below the
+ * surface, or the line through p along it passes the aperture's centre
+ * c further than its radius R (necessary for tracer_beam_covers: the
+ * distance of c from the line bounds |q| from below), with a margin far
+ * above rounding so no angle the exact test takes is dropped.
+ */
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+/* 4 doubles a lane where the CPU has AVX2 (chosen at load time) */
+__attribute__((target_clones("avx2", "default")))
+#endif
+static void screen(const struct worker_ctx *w, const double *ok,
+		   size_t j0, size_t m, struct vec3 p, const struct vec3 *n,
+		   double *keep)
+{
+	const struct tracer_beam *b = &w->s->beam;
+	const double *restrict dx = w->dir_x + j0, *restrict dy = w->dir_y + j0,
+		     *restrict dz = w->dir_z + j0, *restrict okj = ok + j0;
+	struct vec3 v = v3_sub(b->center, p);
+	double l2 = v3_dot(v, v), r2;
+	double nx = n ? n->x : 0.0, ny = n ? n->y : 0.0, nz = n ? n->z : 0.0;
+	double nmin = n ? -1e-9 : -1.0, *restrict kp = keep;
+	size_t k;
+
+	r2 = b->radius_mm * b->radius_mm * (1.0 + 1e-6) + 1e-9 * l2 + 1e-9;
+	for (k = 0; k < m; k++) {
+		double a = dx[k] * v.x + dy[k] * v.y + dz[k] * v.z;
+		double cn = dx[k] * nx + dy[k] * ny + dz[k] * nz, okk = okj[k];
+
+		/* branch-free, so the loop vectorises */
+		kp[k] = (l2 - a * a <= r2) & (cn > nmin) ? okk : 0.0;
+	}
+}
+
 /* Direct light: the detector point connected to each source angle. */
 static void connect_direct(struct worker_ctx *w, struct path_state *ps,
 			   struct vec3 x)
 {
 	const struct tracer_scene *s = w->s;
-	struct vec3 o = tracer_offset_origin(x, s->det.normal);
-	size_t j;
+	struct vec3 o = tracer_offset_origin(x, s->det.normal), dirs[FAN];
+	double cs[FAN];
+	size_t jj[FAN], j0, n = 0, k, nt = w->o->n_theta;
+	unsigned char occ[FAN];
+	double keep[BLOCK];
 
-	for (j = 0; j < w->o->n_theta; j++) {
-		struct vec3 d = w->dir[j];
-		double c = v3_dot(d, s->det.normal);
+	for (j0 = 0; j0 < nt; j0 += BLOCK) {
+		size_t m = nt - j0 < BLOCK ? nt - j0 : BLOCK;
 
-		if (c <= 0.0 || !tracer_detector_accepts(&s->det, d) ||
-		    !tracer_beam_covers(&s->beam, d, x))
+		/* cheap culling first: no ray for these */
+		screen(w, w->direct_ok, j0, m, x, NULL, keep);
+		for (k = 0; k < m; k++) {
+			size_t j = j0 + k;
+			struct vec3 d = w->dir[j];
+
+			if (keep[k] == 0.0 || !tracer_beam_covers(&s->beam, d, x))
+				continue;
+			jj[n] = j;
+			cs[n] = v3_dot(d, s->det.normal);
+			dirs[n++] = d;
+		}
+		if (n < BLOCK && j0 + m < nt)
 			continue;
-		ps->casts++;
-		ps->connections++;
-		if (tracer_scene_occluded(s, o, d, INFINITY))
-			continue;
-		c *= tracer_lens_transmission(w->o->lens,
-					      acos(fmin(c, 1.0)) * 180.0 / M_PI);
-		ps->acc[j * TRACER_ORDERS] += c;
-		add_to_map(w, ps, j, c);
-		if (ps->focal && j == w->o->focal->theta_index)
-			/* direct light arrives from the source */
-			add_to_focal(w, ps, j, c, tracer_focal_cell(
-				w->o->focal, &w->focal_frame, d));
+		ps->casts += n;
+		ps->connections += n;
+		tracer_scene_occluded_fan(s, o, dirs, n, occ);
+		for (k = 0; k < n; k++) {
+			size_t jk = jj[k];
+			double c = cs[k];
+
+			if (occ[k])
+				continue;
+			if (w->o->lens)	/* else 1: no acos per ray */
+				c *= tracer_lens_transmission(w->o->lens,
+					acos(fmin(c, 1.0)) * 180.0 / M_PI);
+			ps->acc[jk * TRACER_ORDERS] += c;
+			add_to_map(w, ps, jk, c);
+			if (ps->focal && jk == w->o->focal->theta_index)
+				/* direct light arrives from the source */
+				add_to_focal(w, ps, jk, c, tracer_focal_cell(
+					w->o->focal, &w->focal_frame, dirs[k]));
+		}
+		n = 0;
 	}
 }
 
@@ -136,33 +202,59 @@ static void connect_vertex(struct worker_ctx *w, struct path_state *ps,
 			   double T, int depth)
 {
 	const struct tracer_scene *s = w->s;
-	struct vec3 o = tracer_offset_origin(h->p, h->ng);
+	struct vec3 o = tracer_offset_origin(h->p, h->ng), dirs[FAN];
 	int order = depth < TRACER_ORDERS - 1 ? depth : TRACER_ORDERS - 1;
-	size_t j;
+	double cs[FAN];
+	size_t jj[FAN], j0, n = 0, k, nt = w->o->n_theta;
+	unsigned char occ[FAN];
+	double keep[BLOCK];
 
-	for (j = 0; j < w->o->n_theta; j++) {
-		struct vec3 d = w->dir[j];
-		double cos_d = v3_dot(d, h->ng), fv, c;
+	for (j0 = 0; j0 < nt; j0 += BLOCK) {
+		size_t m = nt - j0 < BLOCK ? nt - j0 : BLOCK;
 
-		if (cos_d <= 0.0 || !tracer_beam_covers(&s->beam, d, h->p))
-			continue;
-		fv = mat->ops->eval(mat, wo, frame_to_local(f, d));
-		if (fv <= 0.0)
-			continue;
-		ps->casts++;
-		ps->connections++;
-		if (tracer_scene_occluded(s, o, d, INFINITY))
-			continue;
-		c = T * fv * cos_d;
-		ps->acc[j * TRACER_ORDERS + order] += c;
-		add_to_map(w, ps, j, c);
-		add_to_focal(w, ps, j, c, ps->focal_cell);
-		if (ps->path_c) {
-			if (ps->path_c[j] == 0.0)
-				ps->touched[ps->n_touched++] = j;
-			ps->path_c[j] += c;
+		/* cheap culling first: below the surface, outside the
+		 * aperture seen from the vertex, or a zero BRDF: no ray */
+		screen(w, w->beam_ok, j0, m, h->p, &h->ng, keep);
+		for (k = 0; k < m; k++) {
+			size_t j = j0 + k;
+			struct vec3 d = w->dir[j];
+			double cos_d, fv;
+
+			if (keep[k] == 0.0)
+				continue;
+			cos_d = v3_dot(d, h->ng);
+			if (cos_d <= 0.0 ||
+			    !tracer_beam_covers(&s->beam, d, h->p))
+				continue;
+			fv = mat->ops->eval(mat, wo, frame_to_local(f, d));
+			if (fv <= 0.0)
+				continue;
+			jj[n] = j;
+			cs[n] = T * fv * cos_d;
+			dirs[n++] = d;
 		}
-		record(ps, (uint32_t)j, depth, c);
+		if (n < BLOCK && j0 + m < nt)
+			continue;
+		ps->casts += n;
+		ps->connections += n;
+		tracer_scene_occluded_fan(s, o, dirs, n, occ);
+		for (k = 0; k < n; k++) {
+			size_t jk = jj[k];
+			double c = cs[k];
+
+			if (occ[k])
+				continue;
+			ps->acc[jk * TRACER_ORDERS + order] += c;
+			add_to_map(w, ps, jk, c);
+			add_to_focal(w, ps, jk, c, ps->focal_cell);
+			if (ps->path_c) {
+				if (ps->path_c[jk] == 0.0)
+					ps->touched[ps->n_touched++] = jk;
+				ps->path_c[jk] += c;
+			}
+			record(ps, (uint32_t)jk, depth, c);
+		}
+		n = 0;
 	}
 }
 
@@ -229,6 +321,8 @@ static double start_path(struct worker_ctx *w, struct path_state *ps,
 		ps->focal_cell = tracer_focal_cell(w->o->focal,
 						   &w->focal_frame, *dir);
 	*o = tracer_offset_origin(x, s->det.normal);
+	if (!w->o->lens)	/* transmission 1 */
+		return g * proj;
 	c = fmin(1.0, v3_dot(*dir, s->det.normal));
 	return g * proj * tracer_lens_transmission(w->o->lens,
 						   acos(c) * 180.0 / M_PI);

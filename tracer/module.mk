@@ -7,6 +7,9 @@ TRACER_LIB := $(B)/lib/libtracer.a
 TRACER_LDLIBS := -lembree3 -lassimp -lcjson -lpthread
 
 $(TRACER_OBJ): EXTRA_CFLAGS += -Itracer/include -I/usr/include/cjson -D_DEFAULT_SOURCE
+# the angle screen of the next-event connections is written to vectorise
+# (no reassociation: the same bits as scalar code)
+$(B)/obj/tracer/integrator.o: EXTRA_CFLAGS += -ftree-vectorize
 $(B)/obj/tools/cmd_trace.o: EXTRA_CFLAGS += -Itracer/include
 $(B)/obj/tools/focal_map_io.o: \
 	EXTRA_CFLAGS += -Itracer/include -D_DEFAULT_SOURCE

@@ -221,14 +221,31 @@ static int run_pass(const struct tracer_scene *s,
 	if (!rc)
 		rc = alloc_extras(s, o, res, &w.batch_maps);
 	w.dir = malloc(o->n_theta * sizeof(*w.dir));
+	w.dir_x = malloc(5 * o->n_theta * sizeof(*w.dir_x));
 	w.batch_tables = calloc((size_t)o->n_batches, sizeof(*w.batch_tables));
-	if (rc || !w.dir || !w.batch_tables) {
+	if (rc || !w.dir || !w.dir_x || !w.batch_tables) {
 		rc = stray_error_set(err, STRAY_ENOMEM, "trace",
 				     "out of memory");
 		goto out_free;
 	}
-	for (j = 0; j < o->n_theta; j++)
-		w.dir[j] = tracer_source_dir(o->theta_deg[j]);
+	w.dir_y = w.dir_x + o->n_theta;
+	w.dir_z = w.dir_y + o->n_theta;
+	w.beam_ok = w.dir_z + o->n_theta;
+	w.direct_ok = w.beam_ok + o->n_theta;
+	for (j = 0; j < o->n_theta; j++) {
+		struct vec3 d = tracer_source_dir(o->theta_deg[j]);
+
+		w.dir[j] = d;
+		w.dir_x[j] = d.x;
+		w.dir_y[j] = d.y;
+		w.dir_z[j] = d.z;
+		/* what tracer_beam_covers and the direct term test first,
+		 * independent of the point */
+		w.beam_ok[j] = v3_dot(d, s->beam.normal) > 0.0;
+		w.direct_ok[j] = w.beam_ok[j] > 0.0 &&
+				 v3_dot(d, s->det.normal) > 0.0 &&
+				 tracer_detector_accepts(&s->det, d);
+	}
 	pthread_mutex_init(&w.lock, NULL);
 	run_workers(&w, o->threads);
 	pthread_mutex_destroy(&w.lock);
@@ -238,6 +255,7 @@ static int run_pass(const struct tracer_scene *s,
 				     "out of memory recording paths");
 out_free:
 	free(w.dir);
+	free(w.dir_x);
 	free(w.batch_tables);
 	free(w.batch_maps);
 	if (rc)

@@ -15,6 +15,9 @@ struct worker_ctx {
 	const struct tracer_trace_opts *o;
 	struct tracer_result *res;
 	struct vec3 *dir;		/* source direction per angle */
+	double *dir_x, *dir_y, *dir_z;	/* the same, one array a component */
+	double *beam_ok;		/* 1: the source is in front of the aperture */
+	double *direct_ok;		/* 1: ... and the detector accepts it */
 	struct tracer_path_table *batch_tables;
 	double *batch_maps;		/* [batch][pixel] */
 	struct frame focal_frame;	/* the pupil's frame (focal cells) */

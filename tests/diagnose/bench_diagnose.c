@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <sys/resource.h>
 
 #include <cJSON.h>
 
@@ -28,6 +29,11 @@ static double now_s(void)
 
 	clock_gettime(CLOCK_MONOTONIC, &ts);
 	return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+static double tv_s(struct timeval t)
+{
+	return t.tv_sec + 1e-6 * t.tv_usec;
 }
 
 /* One nominal trace of the angles with path recording, seconds. */
@@ -70,6 +76,7 @@ int main(void)
 			 "--rays", rays, "--threads", "2", "--json", NULL };
 	struct truth_config c;
 	cJSON *j, *it;
+	struct rusage ru0, ru1;
 	int i, fd = mkstemps(path, 4);
 
 	if (fd < 0)
@@ -84,9 +91,11 @@ int main(void)
 	if (truth_write(&c, path))
 		return 1;
 	t_trace = one_trace_s(theta);
+	getrusage(RUSAGE_CHILDREN, &ru0);
 	t_diag = now_s();
 	run_stray(&run, argv);
 	t_diag = now_s() - t_diag;
+	getrusage(RUSAGE_CHILDREN, &ru1);
 	unlink(path);
 	j = cJSON_Parse(run.out);
 	if (run.status || !j) {
@@ -98,6 +107,10 @@ int main(void)
 	       "wall = %.1f x one nominal trace (%.2f s); %g traces\n",
 	       N_ANGLES, RAYS, t_diag, t_diag / t_trace, t_trace,
 	       cJSON_GetObjectItem(j, "traces")->valuedouble);
+	/* on a shared machine the wall clock counts other processes too */
+	printf("  cpu of stray diagnose: %.1f s user + %.1f s system\n",
+	       tv_s(ru1.ru_utime) - tv_s(ru0.ru_utime),
+	       tv_s(ru1.ru_stime) - tv_s(ru0.ru_stime));
 	printf("  named:");
 	cJSON_ArrayForEach(it, cJSON_GetObjectItem(j, "causes"))
 		printf(" %s", cJSON_GetObjectItem(it, "name")->valuestring);

@@ -46,6 +46,12 @@ bool tracer_scene_intersect(const struct tracer_scene *s, struct vec3 o,
 bool tracer_scene_occluded(const struct tracer_scene *s, struct vec3 o,
 			   struct vec3 d, double tfar);
 
+/* occluded[k] = tracer_scene_occluded(s, o, d[k], INFINITY) for k < n,
+ * traced as packets (one origin, n directions). */
+void tracer_scene_occluded_fan(const struct tracer_scene *s, struct vec3 o,
+			       const struct vec3 *d, size_t n,
+			       unsigned char *occluded);
+
 /*
  * A ray origin just off a surface point p on the side of unit normal n,
  * by an epsilon scaled to the magnitude of p (float vertices carry a
