@@ -426,8 +426,13 @@ static int save_png(struct frames_state *st, struct stray_error *err)
 		st->expect[i] = (float)((st->dn[i] - STRAY_FRAMES_BIAS_DN) *
 					STRAY_FRAMES_GAIN_E_PER_DN);
 	if (image_cv_false_colour(st->a.png, st->expect, (size_t)st->rows,
-				  (size_t)st->cols, 1, 0, msg, sizeof(msg)))
-		return stray_error_at(err, STRAY_EIO, st->a.png, 0, 0, msg);
+				  (size_t)st->cols, 1, 0, msg, sizeof(msg))) {
+		/* the reason is kept by pointer: msg goes in the text */
+		stray_error_at(err, STRAY_EIO, st->a.png, 0, "--png",
+			       "cannot write");
+		stray_error_text(err, msg);
+		return STRAY_EIO;
+	}
 	return STRAY_OK;
 }
 
@@ -459,8 +464,12 @@ static int run_frames(struct frames_state *st, struct stray_error *err)
 		stray_frame_sample(&c, st->expect, seed + 1, st->dn);
 		if (frames_detect(st->dn, st->cols, st->rows, &st->dc,
 				  FRAMES_DET_THESIS | FRAMES_DET_THRESHOLD,
-				  st->out, st->tiles, msg, sizeof(msg)))
-			return stray_error_at(err, STRAY_EIO, "opencv", 0, 0, msg);
+				  st->out, st->tiles, msg, sizeof(msg))) {
+			stray_error_at(err, STRAY_EIO, NULL, 0, "opencv",
+				       "star detection failed");
+			stray_error_text(err, msg);
+			return STRAY_EIO;
+		}
 		for (t = 0; t < nt; t++)
 			st->ev[0].tile_sum[t] += st->tiles[t];
 		for (d = 0; d < 2; d++) {

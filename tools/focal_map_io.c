@@ -223,9 +223,12 @@ static int write_png(const struct focal_map_args *f, const float *img,
 	rc = image_cv_false_colour(f->png, up, ny, nx, 1, 648, msg,
 				   sizeof(msg));
 	free(up);
-	if (rc)
-		return stray_error_at(err, STRAY_EIO, f->png, 0,
-				      "--focal-map-png", msg);
+	if (rc) {
+		stray_error_at(err, STRAY_EIO, f->png, 0, "--focal-map-png",
+			       "cannot write");
+		stray_error_text(err, msg);
+		return STRAY_EIO;
+	}
 	return STRAY_OK;
 }
 

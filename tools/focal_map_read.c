@@ -82,7 +82,10 @@ static int open_map(const char *path, fitsfile **fp, long naxes[2],
 	if (fits_open_file(fp, path, READONLY, &st)) {
 		fits_get_errstatus(st, text);
 		fits_clear_errmsg();
-		return stray_error_at(err, STRAY_ENOTFOUND, path, 0, 0, text);
+		stray_error_at(err, STRAY_ENOTFOUND, path, 0, 0,
+			       "cannot open the focal map");
+		stray_error_text(err, text);
+		return STRAY_ENOTFOUND;
 	}
 	if (fits_get_img_dim(*fp, &nax, &st) || nax != 2 ||
 	    fits_get_img_size(*fp, 2, naxes, &st) || naxes[0] < 1 ||

@@ -209,7 +209,9 @@ void tracer_scene_occluded_fan(const struct tracer_scene *s, struct vec3 o,
 	ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
 	for (k0 = 0; k0 < n; k0 += 16) {
 		size_t m = n - k0 < 16 ? n - k0 : 16;
-		int valid[16];
+		/* Embree reads the mask as one vector: aligned like the
+		 * widest packet (64 bytes), or rtcOccluded16 faults */
+		RTC_ALIGN(64) int valid[16];
 
 		/* the narrowest packet that holds the rest */
 		if (m == 1) {
