@@ -1,0 +1,16 @@
+# tests/flightcheck: `stray flightcheck` (issue 18) on flight frames made
+# by the truth generator (truth.c, test side only) with a hidden scale.
+FLIGHTCHECK_OBJ := $(B)/obj/tools/flightcheck.o $(B)/obj/tools/flightcheck_run.o
+FLIGHTCHECK_TRUTH_OBJ := $(B)/obj/tests/flightcheck/truth.o
+$(B)/obj/tools/flightcheck_run.o: EXTRA_CFLAGS += -fopenmp
+$(B)/obj/tests/flightcheck/%.o: EXTRA_CFLAGS += -Itools -Itests \
+	-Itests/flightcheck -Ifirmware_fdr/include
+FLIGHTCHECK_TESTS := $(patsubst tests/flightcheck/%.c,$(B)/tests/flightcheck/%,\
+	$(wildcard tests/flightcheck/test_*.c))
+TESTS += $(FLIGHTCHECK_TESTS)
+$(B)/tests/flightcheck/%: $(B)/obj/tests/flightcheck/%.o $(FLIGHTCHECK_OBJ) \
+		$(FLIGHTCHECK_TRUTH_OBJ) $(STRAY_LIB) $(FDRFW_LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_BASE) -fopenmp -o $@ $< $(FLIGHTCHECK_OBJ) \
+		$(FLIGHTCHECK_TRUTH_OBJ) $(STRAY_LIB) $(FDRFW_LIB) -lcmocka \
+		$(STRAY_LDLIBS)
