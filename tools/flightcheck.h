@@ -18,7 +18,8 @@
 
 #define FC_TILE_PX 64		/* background tiles */
 #define FC_MAG_CAL 8.5		/* calibration stars: brighter than this */
-#define FC_APERTURE_PX 6.0	/* the star window's radius (r of n_pps) */
+#define FC_APERTURE_PX 6.0
+#define FC_BG_SYS_DN 0.05	/* background systematic floor, DN */	/* the star window's radius (r of n_pps) */
 
 struct fc_cfg {
 	int cols, rows;		/* frame size */

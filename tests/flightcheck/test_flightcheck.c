@@ -83,6 +83,12 @@ static void run(double scale, double floor, double point_err,
 		pts[i].model = stray_curve_alpha_at(&model, r->f[i].theta_deg);
 	fc_summarise(&cfg, r->f, r->n,
 		     stray_sensor_k_px(sn, STRAY_NORM_CONSISTENT), pts, &r->s);
+	if (getenv("FC_DEBUG"))
+		for (i = 0; i < r->n; i++)
+			printf("# %6.2f  ratio %.4f +- %.4f  bg %.2f+-%.3f noise %.2f ncal %d\n",
+			       pts[i].theta_deg, pts[i].alpha_px / pts[i].model / 5.4425,
+			       pts[i].sigma / pts[i].model / 5.4425, r->f[i].bg_dn,
+			       r->f[i].bg_sigma_dn, r->f[i].noise_dn, r->f[i].n_cal);
 	free(pts);
 	stray_aem_free(&aem);
 	{
