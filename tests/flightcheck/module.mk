@@ -14,3 +14,11 @@ $(B)/tests/flightcheck/%: $(B)/obj/tests/flightcheck/%.o $(FLIGHTCHECK_OBJ) \
 	$(CC) $(CFLAGS_BASE) -fopenmp -o $@ $< $(FLIGHTCHECK_OBJ) \
 		$(FLIGHTCHECK_TRUTH_OBJ) $(STRAY_LIB) $(FDRFW_LIB) -lcmocka \
 		$(STRAY_LDLIBS)
+# The generator as a program (demo, bench); not a test.
+FLIGHT_GEN := $(B)/tests/flightcheck/make_flight
+$(FLIGHT_GEN): $(B)/obj/tests/flightcheck/make_flight.o $(FLIGHTCHECK_TRUTH_OBJ) \
+		$(STRAY_LIB) $(FDRFW_LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_BASE) -o $@ $< $(FLIGHTCHECK_TRUTH_OBJ) $(STRAY_LIB) \
+		$(FDRFW_LIB) $(STRAY_LDLIBS)
+all: $(FLIGHT_GEN)
