@@ -30,9 +30,11 @@ int fc_work_alloc(struct fc_work *w, const struct fc_cfg *c)
 	w->pred = malloc(PRED_MAX * sizeof(*w->pred));
 	w->tile_med = malloc(nt * sizeof(*w->tile_med));
 	w->sample = malloc(FC_TILE_PX * FC_TILE_PX * sizeof(*w->sample));
+	w->hist = calloc(4096, sizeof(*w->hist));
 	w->mx = malloc(2 * PRED_MAX * sizeof(*w->mx));
 	w->my = w->mx ? w->mx + PRED_MAX : NULL;
-	if (!w->cat || !w->pred || !w->tile_med || !w->sample || !w->mx) {
+	if (!w->cat || !w->pred || !w->tile_med || !w->sample || !w->mx ||
+	    !w->hist) {
 		fc_work_free(w);
 		return -1;
 	}
@@ -46,6 +48,7 @@ void fc_work_free(struct fc_work *w)
 	free(w->tile_med);
 	free(w->sample);
 	free(w->mx);
+	free(w->hist);
 	memset(w, 0, sizeof(*w));
 }
 
@@ -63,34 +66,49 @@ double fc_sun_angle_deg(const double q_ib[4], double t_tt)
 	return acos(fmax(-1.0, fmin(1.0, d))) / DEG;
 }
 
-static int cmp_u16(const void *a, const void *b)
+/* Grouped median of 12-bit samples (interpolated inside the median's
+ * DN step, so a 2 e-/DN ADC does not quantise the background) and half
+ * the interquartile range, by counting (hist: 4096 zeroed bins, left
+ * zeroed). */
+static double grouped_median(const uint16_t *s, size_t n, uint32_t *hist,
+			     double *half_iqr)
 {
-	return (int)*(const uint16_t *)a - (int)*(const uint16_t *)b;
-}
+	size_t i, cum = 0, q1 = 0, q3 = 0;
+	unsigned lo = 4095, hi = 0, v, med = 0;
+	size_t below = 0, at = 1;
+	int got_med = 0, got_q1 = 0;
 
-/* Grouped median of integer samples (interpolated inside the median's
- * DN step, so a 2 e-/DN ADC does not quantise the background), and the
- * MAD as a noise estimate.  Sorts s. */
-static double grouped_median(uint16_t *s, size_t n, double *mad)
-{
-	size_t lo = 0, hi;
-	double med;
-
-	qsort(s, n, sizeof(*s), cmp_u16);
-	med = s[n / 2];
-	while (lo < n && s[lo] < s[n / 2])
-		lo++;
-	hi = lo;
-	while (hi < n && s[hi] == s[n / 2])
-		hi++;
-	med = med - 0.5 + (0.5 * n - lo) / (double)(hi - lo);
-	/* MAD from the sorted samples: the half-width holding half of them */
-	{
-		size_t a = n / 4, b = (3 * n) / 4;
-
-		*mad = 0.5 * (s[b] - s[a]);	/* IQR / 2 */
+	for (i = 0; i < n; i++) {
+		v = s[i] > 4095 ? 4095 : s[i];
+		hist[v]++;
+		if (v < lo)
+			lo = v;
+		if (v > hi)
+			hi = v;
 	}
-	return med;
+	for (v = lo; v <= hi; v++) {
+		size_t h = hist[v];
+
+		if (!got_q1 && cum + h > n / 4) {
+			q1 = v;
+			got_q1 = 1;
+		}
+		if (!got_med && cum + h > n / 2) {
+			med = v;
+			below = cum;
+			at = h;
+			got_med = 1;
+		}
+		if (cum + h > (3 * n) / 4) {
+			q3 = v;
+			break;
+		}
+		cum += h;
+	}
+	for (v = lo; v <= hi; v++)
+		hist[v] = 0;
+	*half_iqr = 0.5 * ((double)q3 - (double)q1);
+	return med - 0.5 + (0.5 * n - below) / (double)at;
 }
 
 /* Background: a grouped median per tile (stars, hot pixels and cosmic
@@ -118,7 +136,8 @@ static void background(const struct fc_cfg *c, struct fc_work *w,
 			for (y = y0; y < y1; y++)
 				for (x = x0 + (y & 1); x < x1; x += 2)
 					w->sample[n++] = dn[(size_t)y * c->cols + x];
-			w->tile_med[k] = (float)grouped_median(w->sample, n, &mad);
+			w->tile_med[k] = (float)grouped_median(w->sample, n, w->hist,
+								&mad);
 			tc[3 * k] = 0.5 * (x0 + x1) - 0.5 * c->cols;
 			tc[3 * k + 1] = 0.5 * (y0 + y1) - 0.5 * c->rows;
 			tc[3 * k + 2] = w->tile_med[k];

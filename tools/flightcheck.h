@@ -39,6 +39,7 @@ struct fc_work {
 	size_t pred_max;
 	float *tile_med;	/* per tile */
 	uint16_t *sample;	/* one tile's samples */
+	uint32_t *hist;		/* 4096 DN bins */
 	double *mx, *my;	/* matched centroids */
 };
 

@@ -22,3 +22,11 @@ $(FLIGHT_GEN): $(B)/obj/tests/flightcheck/make_flight.o $(FLIGHTCHECK_TRUTH_OBJ)
 	$(CC) $(CFLAGS_BASE) -o $@ $< $(FLIGHTCHECK_TRUTH_OBJ) $(STRAY_LIB) \
 		$(FDRFW_LIB) $(STRAY_LDLIBS)
 all: $(FLIGHT_GEN)
+# make bench: the per-frame step on full frames (target >= 10 frames/s).
+BENCHES += $(B)/bench/bench_flightcheck
+$(B)/obj/bench/bench_flightcheck.o: EXTRA_CFLAGS += -Itools -fopenmp
+$(B)/bench/bench_flightcheck: $(B)/obj/bench/bench_flightcheck.o \
+		$(B)/obj/tools/flightcheck.o $(STRAY_LIB) $(FDRFW_LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_BASE) -fopenmp -o $@ $< $(B)/obj/tools/flightcheck.o \
+		$(STRAY_LIB) $(FDRFW_LIB) $(STRAY_LDLIBS)
