@@ -1,7 +1,7 @@
 /*
- * make_flight.c - the truth generator as a program, for the demo and the
- * bench: make_flight DIR A.aem TRUTH.csv [scale] [frames] [window]
- * (window 0: full frames).  Prints nothing on success; the hidden truth
+ * make_flight.c - the truth generator as a program, for the demo:
+ * make_flight DIR A.aem TRUTH.csv [scale] [frames] [window] [lo hi]
+ * (window 0: full frames; lo, hi: the Sun offset angles swept, deg).  Prints nothing on success; the hidden truth
  * is in the frames' TALPHA/TSCALE keywords for people to check.
  */
 #include <stdio.h>
@@ -18,8 +18,8 @@ int main(int argc, char **argv)
 	struct stray_error err = { 0 };
 	char msg[512];
 
-	if (argc < 4 || argc > 7) {
-		fputs("usage: make_flight DIR A.aem TRUTH.csv [scale] [frames] [window]\n",
+	if (argc < 4 || argc > 9 || argc == 8) {
+		fputs("usage: make_flight DIR A.aem TRUTH.csv [scale] [frames] [window] [lo hi]\n",
 		      stderr);
 		return 2;
 	}
@@ -30,7 +30,12 @@ int main(int argc, char **argv)
 		t.n_frames = atoi(argv[5]);
 	if (argc > 6)
 		t.window = atoi(argv[6]);
-	if (!(t.scale > 0.0) || t.n_frames < 2 || t.n_frames > 600 || t.window < 0) {
+	if (argc > 8) {
+		t.theta_lo_deg = atof(argv[7]);
+		t.theta_hi_deg = atof(argv[8]);
+	}
+	if (!(t.scale > 0.0) || t.n_frames < 2 || t.n_frames > 600 || t.window < 0 ||
+	    !(t.theta_lo_deg >= 0.0 && t.theta_hi_deg <= 180.0)) {
 		fputs("make_flight: scale > 0, 2 <= frames <= 600, window >= 0\n", stderr);
 		return 2;
 	}
