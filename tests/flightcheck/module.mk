@@ -30,3 +30,7 @@ $(B)/bench/bench_flightcheck: $(B)/obj/bench/bench_flightcheck.o \
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_BASE) -fopenmp -o $@ $< $(B)/obj/tools/flightcheck.o \
 		$(STRAY_LIB) $(FDRFW_LIB) $(STRAY_LDLIBS)
+# The diagnosis test runs build/bin/stray (trace, flightcheck, diagnose).
+$(B)/obj/tests/flightcheck/test_flightcheck_diag.o: EXTRA_CFLAGS += \
+	-I/usr/include/cjson
+$(B)/tests/flightcheck/test_flightcheck_diag: $(STRAY_BIN)
