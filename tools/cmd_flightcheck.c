@@ -138,21 +138,22 @@ static int emit_json(const struct fc_args *a, const struct fc_frame *f,
 	cJSON *o = cJSON_CreateObject(), *fr = cJSON_CreateArray();
 	size_t i;
 
-	cJSON_AddStringToObject(o, "frames_dir", a->dir);
-	cJSON_AddNumberToObject(o, "frames", (double)n);
-	cJSON_AddStringToObject(o, "catalogue", "synthetic");
+	/* the verdict first (the report shows the first rows) */
+	cJSON_AddItemToObject(o, "scale_over_k_px", cli_json_number(s->scale_over_kpx));
+	cJSON_AddItemToObject(o, "scale_over_k_px_sigma",
+			      cli_json_number(s->scale_over_kpx_sigma));
+	cJSON_AddItemToObject(o, "shape_chi2_dof", cli_json_number(s->chi2_dof));
+	cJSON_AddItemToObject(o, "scale", cli_json_number(s->scale));
+	cJSON_AddItemToObject(o, "scale_sigma", cli_json_number(s->scale_sigma));
+	cJSON_AddItemToObject(o, "scale_sigma_stat", cli_json_number(s->scale_sigma_stat));
+	cJSON_AddItemToObject(o, "k_px_model", cli_json_number(s->k_px_model));
 	cJSON_AddItemToObject(o, "dn_per_e", cli_json_number(s->dn_per_e));
 	cJSON_AddItemToObject(o, "dn_per_e_sigma", cli_json_number(s->dn_per_e_sigma));
 	cJSON_AddNumberToObject(o, "calibration_stars", s->n_cal);
 	cJSON_AddItemToObject(o, "calibration_chi2_dof", cli_json_number(s->cal_chi2_dof));
-	cJSON_AddItemToObject(o, "scale", cli_json_number(s->scale));
-	cJSON_AddItemToObject(o, "scale_sigma", cli_json_number(s->scale_sigma));
-	cJSON_AddItemToObject(o, "scale_sigma_stat", cli_json_number(s->scale_sigma_stat));
-	cJSON_AddItemToObject(o, "shape_chi2_dof", cli_json_number(s->chi2_dof));
-	cJSON_AddItemToObject(o, "k_px_model", cli_json_number(s->k_px_model));
-	cJSON_AddItemToObject(o, "scale_over_k_px", cli_json_number(s->scale_over_kpx));
-	cJSON_AddItemToObject(o, "scale_over_k_px_sigma",
-			      cli_json_number(s->scale_over_kpx_sigma));
+	cJSON_AddNumberToObject(o, "frames", (double)n);
+	cJSON_AddStringToObject(o, "catalogue", "synthetic");
+	cJSON_AddStringToObject(o, "frames_dir", a->dir);
 	for (i = 0; i < n; i++) {
 		cJSON *e = cJSON_CreateObject();
 
