@@ -186,8 +186,10 @@ for c in fc_ref4 fc_ref4_r08; do
 	awk -F, '/^#/ || /^theta/ { next } $1 > 0 { printf "%s,%.10g\n", $1, 2e-3 * $2 }
 		BEGIN { print "theta_deg,alpha" }' "$out/$c.csv" > "$out/${c}_lens.csv"
 done
+fc_px=${DEMO_FRAMES:-0}	# >= 512 px: a 256 px window holds ~1 calibrator
+if [ "$fc_px" -gt 0 ] && [ "$fc_px" -lt 512 ]; then fc_px=512; fi
 "$build/tests/flightcheck/make_flight" "$out/flight_frames" "$out/flight.aem" \
-	"$out/fc_ref4_r08_lens.csv" 1.7 12 "${DEMO_FRAMES:-0}" 30 85
+	"$out/fc_ref4_r08_lens.csv" 1.7 12 "$fc_px" 30 85
 "$stray" flightcheck "$out/flight_frames" --aem "$out/flight.aem" \
 	--model "$out/fc_ref4_lens.csv" --out "$out/flight_curve.csv" \
 	--plot "$out/flightcheck.png" | tee "$out/flightcheck.txt"

@@ -83,6 +83,11 @@ static int write_curve(const char *path, const struct fc_point *p, size_t n,
 		rc = stray_curve_add_meta(&c, "scale_over_k_px", v, err);
 	if (!rc)
 		rc = stray_curve_add_meta(&c, "stars", "synthetic catalogue", err);
+	/* sigma is the background's; the star calibration is one factor
+	 * common to every point: add it to any fitted scale */
+	snprintf(v, sizeof(v), "%.4g", s->dn_per_e_sigma / s->dn_per_e);
+	if (!rc)
+		rc = stray_curve_add_meta(&c, "calibration_rel_sigma", v, err);
 	if (!rc)
 		rc = stray_curve_save(path, &c, err);
 	stray_curve_free(&c);
