@@ -128,7 +128,16 @@ static int plot(const char *path, const struct fc_point *p, size_t n,
 	sp.xlabel = "Sun offset angle [deg]";
 	sp.ylabel = "alpha_px";
 	sp.log_y = 1;
-	sp.x_min = sp.x_max = sp.y_min = sp.y_max = NAN;
+	sp.x_min = sp.x_max = NAN;
+	sp.y_min = INFINITY;
+	sp.y_max = 0.0;
+	for (i = 0; i < n; i++) {	/* both series in view */
+		sp.y_min = fmin(sp.y_min, fmin(lo[i], m[i] > 0.0 ? m[i] : INFINITY));
+		sp.y_max = fmax(sp.y_max, fmax(hi[i], m[i]));
+	}
+	sp.y_min = isfinite(sp.y_min) && sp.y_min > 0.0 ? sp.y_min / 1.5 : NAN;
+	sp.y_max = sp.y_max > 0.0 ? sp.y_max * 1.5 : NAN;
+	sp.legend_bottom = 1;
 	sp.series = sr;
 	sp.n_series = 2;
 	rc = plot_render(&sp, err);
