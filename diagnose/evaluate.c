@@ -4,7 +4,7 @@
  * Geometry (re-trace causes) is interpolated multilinearly in log alpha
  * between traced nodes of each active axis; the interior reflectance is
  * applied to each node by re-weighting its path table; the angle offset,
- * the floor and the leak post-process the curve.
+ * the floor, the leak and the scale post-process the curve.
  * Approximation (stated in the report): the angle offset's correction
  * alpha(theta + d) / alpha(theta) is taken from the nominal geometry's
  * fine grid (at the state's reflectance), not from each geometry node;
@@ -289,6 +289,7 @@ int diag_eval_model(struct diag_eval *e, const struct diag_state *s,
 
 		if (s->angle_offset_deg != 0.0)
 			a *= factor[i];
+		a *= pow(10.0, s->scale_log10);	/* cause_scale.c */
 		g = a;		/* the traced part carries the MC error */
 		a += s->floor;
 		if (isfinite(s->leak_log10))

@@ -96,6 +96,11 @@ static int earned_alone(const struct diag_result *r,
 
 static int usable(const struct diag_eval *e, const struct diag_cause *c)
 {
+	size_t i;
+
+	for (i = 0; c->needs_unnormalised && i < e->n; i++)
+		if (e->theta_deg[i] == 0.0)
+			return 0;
 	return e->parametric || !c->needs_baffle;
 }
 

@@ -18,6 +18,8 @@
 #include "frames_plot.h"
 #include "frames_run.h"
 #include "image_cv.h"
+#include "stray/aem.h"
+#include "stray/catalogue.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"
@@ -50,6 +52,10 @@ static const char usage[] =
 	"  --out-dir D         the first --save (3) frames as a sweep folder\n"
 	"                      (manifest.csv + FITS); D must not exist or be empty\n"
 	"  --mag-max M         faintest star rendered (10)\n"
+	"  --attitude Q        q_c,e1,e2,e3: the head's attitude (CCSDS 504.0 q_ib,\n"
+	"                      boresight +z): stars from the synthetic catalogue\n"
+	"                      (stray/catalogue.h) at their sky places, the same in\n"
+	"                      every frame, instead of a random field\n"
 	"  --png F.png         the first frame in false colour (log scale)\n"
 	"  --plot-validation V.csv --plot F.png\n"
 	"                      only draw measured vs predicted false stars from the\n"
@@ -61,6 +67,8 @@ struct frames_args {
 	const char *curve, *map, *out_dir, *png, *plot_csv, *plot;
 	double theta_deg, alpha, frames, window, seed, save, mag_max;
 	int has_theta, has_alpha, detector;
+	double att[4];		/* --attitude q_ib; has_att = 0: random field */
+	int has_att;
 };
 
 /* Solid angle of the rendered frame, through the ideal lens the focal
@@ -80,6 +88,27 @@ static int parse_choice(const char *opt, const char *v, const char *a,
 		return cli_usage_error("frames", "option '--%s': '%s' is not %s or %s",
 				       opt, v, a, b);
 	*out = strcmp(v, a) == 0;
+	return CLI_OK;
+}
+
+/* --attitude q_c,e1,e2,e3 (normalised here). */
+static int parse_attitude(const char *v, struct frames_args *a)
+{
+	double n;
+	char tail;
+
+	if (sscanf(v, "%lf,%lf,%lf,%lf%c", &a->att[0], &a->att[1], &a->att[2],
+		   &a->att[3], &tail) != 4)
+		return cli_usage_error("frames", "option '--attitude': '%s' is not q_c,e1,e2,e3", v);
+	n = sqrt(a->att[0] * a->att[0] + a->att[1] * a->att[1] +
+		 a->att[2] * a->att[2] + a->att[3] * a->att[3]);
+	if (!(n > 1e-9) || !isfinite(n))
+		return cli_usage_error("frames", "option '--attitude': '%s' is not a rotation", v);
+	a->att[0] /= n;
+	a->att[1] /= n;
+	a->att[2] /= n;
+	a->att[3] /= n;
+	a->has_att = 1;
 	return CLI_OK;
 }
 
@@ -108,6 +137,7 @@ static int parse_opt(struct fdr_setup *s, struct frames_args *a, int opt)
 					  &a->mag_max);
 	case 'd': return parse_choice("detector", optarg, "thesis", "threshold",
 				      &a->detector);
+	case 'q': return parse_attitude(optarg, a);
 	default: {
 		int rc = fdr_setup_option(s, "frames", opt, optarg);
 		return rc == 1 ? CLI_OK : rc ? rc : CLI_USAGE;
@@ -149,6 +179,7 @@ static int parse_args(int argc, char **argv, struct fdr_setup *s,
 		{ "seed", required_argument, NULL, 'k' },
 		{ "save", required_argument, NULL, 'v' },
 		{ "mag-max", required_argument, NULL, 'g' },
+		{ "attitude", required_argument, NULL, 'q' },
 		{ "detector", required_argument, NULL, 'd' },
 		NORMALISATION_LONG_OPTION,
 		{ "map", required_argument, NULL, 'm' },
@@ -388,8 +419,10 @@ static int save_frame(struct frames_state *st, int i, size_t n_stars,
 		  "normalisation of eq. 2.3" },
 		{ "STRAYE", STRAY_SWEEP_KEY_DOUBLE, st->fm.stray_e, 0, NULL,
 		  "[e-] mean stray per pixel" },
-		{ "STARSRC", STRAY_SWEEP_KEY_STRING, 0.0, 0, "synthetic",
-		  "star field: no catalogue" },
+		{ "STARSRC", STRAY_SWEEP_KEY_STRING, 0.0, 0,
+		  st->a.has_att ? "synthetic catalogue" : "synthetic",
+		  st->a.has_att ? "stray/catalogue.h, --attitude"
+				: "star field: no catalogue" },
 		{ "NSTARS", STRAY_SWEEP_KEY_LONG, 0.0, (long)n_stars, NULL,
 		  "stars rendered" },
 	};
@@ -436,6 +469,32 @@ static int save_png(struct frames_state *st, struct stray_error *err)
 	return STRAY_OK;
 }
 
+/* The catalogue's stars through the --attitude camera (the head's +z the
+ * boresight at the detector centre, an ideal lens). */
+static int catalogue_stars(struct frames_state *st, double f0_e, size_t *n,
+			   struct stray_error *err)
+{
+	const struct stray_sensor *sn = &st->s.sensor;
+	struct stray_cat_star *cat = malloc(MAX_STARS * sizeof(*cat));
+	struct stray_camera cam;
+	size_t n_cat;
+
+	if (!cat)
+		return stray_error_set(err, STRAY_ENOMEM, "frames", "out of memory");
+	stray_q_dcm(st->a.att, cam.m_ih);
+	cam.f_px = stray_sensor_focal_length_mm(sn) / (sn->pixel_pitch_um * 1e-3);
+	cam.cx = 0.5 * sn->pixels_x - st->col0;
+	cam.cy = 0.5 * sn->pixels_y - st->row0;
+	stray_catalogue_cone(STRAY_CATALOGUE_SEED, cam.m_ih[2],
+			     atan(0.5 * hypot(sn->pixels_x, sn->pixels_y) /
+				  cam.f_px) * 180.0 / 3.14159265358979323846 + 0.5,
+			     st->a.mag_max, cat, MAX_STARS, &n_cat);
+	*n = stray_camera_stars(&cam, cat, n_cat, st->cols, st->rows, 8.0, f0_e,
+				st->stars, MAX_STARS);
+	free(cat);
+	return STRAY_OK;
+}
+
 /* Render, detect and count every frame. */
 static int run_frames(struct frames_state *st, struct stray_error *err)
 {
@@ -454,11 +513,14 @@ static int run_frames(struct frames_state *st, struct stray_error *err)
 	f.f0_e = st->s.flux.zero_mag * st->fm.m.t_exp_s * st->fm.m.a_cs_m2;
 	if ((rc = open_store(st, err)) != STRAY_OK)
 		return rc;
+	if (st->a.has_att && (rc = catalogue_stars(st, f.f0_e, &n_stars, err)))
+		return rc;
 	for (i = 0; i < (int)st->a.frames; i++) {
 		uint64_t seed = stray_frame_seed((uint64_t)st->a.seed, (uint64_t)i);
 
-		stray_star_field_draw(&f, st->cols, st->rows, seed, st->stars,
-				      MAX_STARS, &n_stars);
+		if (!st->a.has_att)	/* else the catalogue's, every frame */
+			stray_star_field_draw(&f, st->cols, st->rows, seed,
+					      st->stars, MAX_STARS, &n_stars);
 		st->stars_sum += (double)n_stars;
 		stray_frame_expect(&c, st->stars, n_stars, st->expect);
 		stray_frame_sample(&c, st->expect, seed + 1, st->dn);
@@ -558,7 +620,9 @@ static int print_json(const struct frames_state *st,
 	cJSON_AddItemToObject(s, "model", cli_json_number(st->req.model));
 	cJSON_AddItemToObject(s, "extended", cli_json_number(st->req.extended));
 	s = cJSON_AddObjectToObject(o, "stars");
-	cJSON_AddStringToObject(s, "source", "synthetic: all-sky average counts (no catalogue installed)");
+	cJSON_AddStringToObject(s, "source", st->a.has_att ?
+		"synthetic catalogue (stray/catalogue.h) through --attitude" :
+		"synthetic: all-sky average counts (no catalogue installed)");
 	cJSON_AddItemToObject(s, "per_image", cli_json_number(st->stars_sum / st->a.frames));
 	cJSON_AddItemToObject(s, "mag_max", cli_json_number(st->a.mag_max));
 	add_det(o, st, &r[top]);
@@ -578,7 +642,9 @@ static void print_text(const struct frames_state *st,
 	printf("  normalisation %s, k_px %.3f: %.1f stray e-/px (eq. 2.3), %s\n",
 	       stray_normalisation_name(st->s.normalisation), st->k_px,
 	       st->fm.stray_e, st->a.map ? st->a.map : "uniform");
-	printf("  stars: synthetic field (no catalogue), %.0f per frame to m = %g\n",
+	printf("  stars: %s, %.0f per frame to m = %g\n",
+	       st->a.has_att ? "synthetic catalogue through --attitude"
+			     : "synthetic field (no catalogue)",
 	       st->stars_sum / st->a.frames, st->a.mag_max);
 	printf("  I_sdt %.1f e- (eq. 2.16), pixel threshold %.1f e-\n",
 	       st->fm.i_sdt_e, st->fm.pixel_threshold_e);

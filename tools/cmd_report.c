@@ -61,6 +61,9 @@ static const struct section sections[] = {
 	  "Three heads on a spacecraft in a 550 km sun-synchronous orbit, nadir pointing with yaw steering, its orbit and attitude written as CCSDS OEM/AEM and read back; each head assessed by the flight module at every epoch, the Earth's albedo by latitude and season fed to its Earth term. The table: the fraction of time each head is available and excluded by each body, its outages, and \"any head\". The figures: the availability timeline and each head's sky (Sun, Moon and nearest Earth limb in the head's frame, with its Sun exclusion cone).",
 	  "availability.json", "availability.txt",
 	  { "availability_timeline.png", "availability_sky_A.png", "availability_sky_B.png", "availability_sky_C.png" } },
+	{ "flightcheck", "The tracker in orbit, seen from its own images (thesis §4.3)",
+	  "Flight frames along an attitude sweep of the Sun offset angle (rendered here, with a hidden scale and a hidden coating reflectance), read with their AEM: per frame the Sun angle from time and attitude, a robust background, the catalogue stars placed by the attitude and refined on the matches; the stars calibrate the frames absolutely, so the background is alpha_px(theta) with no lab. The table: the scale over the model's k_px and the shape test; the text: the per-frame curve and what stray diagnose names on it (scale free). Stars from the synthetic catalogue.",
+	  "flightcheck.json", "flightcheck.txt", { "flightcheck.png", "flightcheck_diagnose.png", NULL } },
 };
 
 #define N_SECTIONS (sizeof(sections) / sizeof(sections[0]))
@@ -72,7 +75,8 @@ static const char usage[] =
 	"the artifacts the other commands left in DIR (their --json output,\n"
 	"text output and --plot figures): photometry.json, fdr_sun.json,\n"
 	"reduce.json, exclusion.json, trace.json, diagnose.json, pixels.json,\n"
-	"firmware.json, orbit.json, availability.json, the matching .txt files and\n"
+	"firmware.json, orbit.json, availability.json, flightcheck.json, the\n"
+	"matching .txt files and\n"
 	"figures.  scripts/demo.sh\n"
 	"shows which command leaves which file.\n";
 

@@ -51,6 +51,7 @@ static const struct cmd commands[] = {
 	{ "rig", cmd_rig, "control the lab sweep daemon strayrigd" },
 	{ "sweep", sweep_local, "Sun exclusion angle over a grid of baffle designs (resumable)" },
 	{ "frames", cmd_frames, "rendered frames, star detection and false stars vs the FDR model" },
+	{ "flightcheck", cmd_flightcheck, "stray-light curve from flight frames, calibrated on catalogue stars, vs the model" },
 };
 
 #define N_COMMANDS (sizeof(commands) / sizeof(commands[0]))

@@ -94,7 +94,7 @@ static void test_cause_list(void **state)
 	static const char *const names[] = {
 		"reflectance", "knife_edge_radius", "abg_scatter",
 		"acceptance_cone", "angle_offset", "pivot_offset", "floor",
-		"light_leak", "bevel_face"
+		"light_leak", "bevel_face", "scale"
 	};
 	char *argv[] = { "stray", "diagnose", "--causes", NULL };
 	size_t i;

@@ -44,6 +44,7 @@ struct diag_state {
 	double floor;		/* additive, linear alpha */
 	double leak_log10;	/* leak level; -inf: none */
 	double leak_lo_deg, leak_hi_deg;
+	double scale_log10;	/* the whole curve x 10^this; 0: none */
 };
 
 void diag_state_nominal(struct diag_state *s);
@@ -71,6 +72,10 @@ struct diag_cause {
 	int n_nodes;
 	/* Causes that need the parametric baffle (not a scene file). */
 	int needs_baffle;
+	/* Causes only for curves with no theta = 0 point: a curve that has
+	 * one is normalised by it, its scale is not free (a flight curve,
+	 * `stray flightcheck --out`, is absolute and has none). */
+	int needs_unnormalised;
 	/* Optional starting points (rows of n_params) from the angles;
 	 * NULL: the product grid of each parameter's n_start values. */
 	int (*start_grid)(const double *theta_deg, size_t n,

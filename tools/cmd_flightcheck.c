@@ -1,0 +1,329 @@
+/*
+ * cmd_flightcheck.c - `stray flightcheck FRAMES --aem A --model M`: the
+ * stray-light curve measured from flight frames, made absolute by the
+ * catalogue stars in the same frames, against the predicted curve (issue
+ * 18, thesis §4.3).  The analysis is tools/flightcheck.c; this file
+ * parses, prints, plots and writes the flight curve.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "commands.h"
+#include "fdr_setup.h"
+#include "flightcheck_run.h"
+#include "plot.h"
+#include "stray/errfmt.h"
+#include "stray/curve_io.h"
+
+static const char usage[] =
+	"usage: stray flightcheck FRAMES_DIR --aem A.aem --model M.csv\n"
+	"                         [--sensor S] [--normalisation N] [--out C.csv]\n"
+	"                         [--plot P.png] [--json]\n"
+	"\n"
+	"Flight frames (a sweep folder: FITS with DATE-OBS in UTC and EXPTIME)\n"
+	"and the head's attitude (CCSDS AEM, boresight +z of the body): per\n"
+	"frame the Sun offset angle, a robust background (tile medians, plane:\n"
+	"gradient), the catalogue stars (synthetic, stray/catalogue.h) placed\n"
+	"by the attitude and refined on the matches; the stars' magnitudes and\n"
+	"the passband photometry calibrate DN per photo-electron (eq. 2.2,\n"
+	"2.12), hence alpha_px(theta) absolutely (eq. 2.3).  Against the model\n"
+	"curve: the best scale alpha_px / alpha_model with its interval, the\n"
+	"shape test (chi2 of the scaled model) and the scale over the model's\n"
+	"k_px (1 when the model's normalisation is right).\n"
+	"\n"
+	"  --aem A.aem         attitude of the head (CCSDS 504.0 quaternions)\n"
+	"  --model M.csv       predicted system curve alpha(theta) (stray trace)\n"
+	SENSOR_USAGE
+	NORMALISATION_USAGE
+	"  --out C.csv         the flight curve: theta_deg, alpha (= alpha_px /\n"
+	"                      k_px, absolute), sigma, model; for stray diagnose\n"
+	"  --plot P.png        measured alpha_px vs the scaled model\n"
+	"  --json              machine-readable output\n";
+
+struct fc_args {
+	const char *dir, *aem, *model, *out, *plot;
+};
+
+static int cmp_theta(const void *a, const void *b)
+{
+	const struct fc_point *p = a, *q = b;
+
+	return (p->theta_deg > q->theta_deg) - (p->theta_deg < q->theta_deg);
+}
+
+static int write_curve(const char *path, const struct fc_point *p, size_t n,
+		       const struct fc_summary *s, struct stray_error *err)
+{
+	struct stray_curve c;
+	double *model = malloc(n * sizeof(*model));
+	size_t i;
+	char v[64];
+	int rc;
+
+	if (!model)
+		return stray_error_set(err, STRAY_ENOMEM, "out", "out of memory");
+	if ((rc = stray_curve_alloc(&c, n, 1, err)) != STRAY_OK) {
+		free(model);
+		return rc;
+	}
+	for (i = 0; i < n; i++) {
+		c.theta_deg[i] = p[i].theta_deg;
+		c.alpha[i] = p[i].alpha_px / s->k_px_model;
+		c.sigma[i] = p[i].sigma / s->k_px_model;
+		model[i] = p[i].model;
+	}
+	snprintf(v, sizeof(v), "%.6g", s->scale_over_kpx);
+	rc = stray_curve_add_column(&c, "model", model, err);
+	if (!rc)
+		rc = stray_curve_add_meta(&c, "kind", "flight (stray flightcheck)", err);
+	if (!rc)
+		rc = stray_curve_add_meta(&c, "scale_over_k_px", v, err);
+	if (!rc)
+		rc = stray_curve_add_meta(&c, "stars", "synthetic catalogue", err);
+	/* sigma is the background's; the star calibration is one factor
+	 * common to every point: add it to any fitted scale */
+	snprintf(v, sizeof(v), "%.4g", s->dn_per_e_sigma / s->dn_per_e);
+	if (!rc)
+		rc = stray_curve_add_meta(&c, "calibration_rel_sigma", v, err);
+	if (!rc)
+		rc = stray_curve_save(path, &c, err);
+	stray_curve_free(&c);
+	free(model);
+	return rc;
+}
+
+static int plot(const char *path, const struct fc_point *p, size_t n,
+		const struct fc_summary *s, struct stray_error *err)
+{
+	double *x = malloc(n * sizeof(double) * 5), *y, *lo, *hi, *m;
+	struct plot_series sr[2];
+	struct plot_spec sp;
+	size_t i;
+	int rc;
+
+	if (!x)
+		return stray_error_set(err, STRAY_ENOMEM, "plot", "out of memory");
+	y = x + n;
+	lo = y + n;
+	hi = lo + n;
+	m = hi + n;
+	for (i = 0; i < n; i++) {
+		x[i] = p[i].theta_deg;
+		y[i] = p[i].alpha_px;
+		lo[i] = fmax(y[i] - p[i].sigma, 1e-30);
+		hi[i] = y[i] + p[i].sigma;
+		m[i] = s->scale * p[i].model;
+	}
+	memset(sr, 0, sizeof(sr));
+	sr[0] = (struct plot_series){ x, y, n, lo, hi, PLOT_BLUE, PLOT_POINTS,
+				      "measured alpha_px (star-calibrated)" };
+	sr[1] = (struct plot_series){ x, m, n, NULL, NULL, PLOT_RED, PLOT_LINE,
+				      "model x best scale" };
+	memset(&sp, 0, sizeof(sp));
+	sp.path = path;
+	sp.title = "Flight check: stray light from the tracker's own frames";
+	sp.xlabel = "Sun offset angle [deg]";
+	sp.ylabel = "alpha_px";
+	sp.log_y = 1;
+	sp.x_min = sp.x_max = NAN;
+	sp.y_min = INFINITY;
+	sp.y_max = 0.0;
+	for (i = 0; i < n; i++) {	/* both series in view */
+		sp.y_min = fmin(sp.y_min, fmin(lo[i], m[i] > 0.0 ? m[i] : INFINITY));
+		sp.y_max = fmax(sp.y_max, fmax(hi[i], m[i]));
+	}
+	sp.y_min = isfinite(sp.y_min) && sp.y_min > 0.0 ? sp.y_min / 1.5 : NAN;
+	sp.y_max = sp.y_max > 0.0 ? sp.y_max * 1.5 : NAN;
+	sp.legend_bottom = 1;
+	sp.series = sr;
+	sp.n_series = 2;
+	rc = plot_render(&sp, err);
+	free(x);
+	return rc;
+}
+
+static int emit_json(const struct fc_args *a, const struct fc_frame *f,
+		     const struct fc_point *p, size_t n,
+		     const struct fc_summary *s)
+{
+	cJSON *o = cJSON_CreateObject(), *fr = cJSON_CreateArray();
+	size_t i;
+
+	/* the verdict first (the report shows the first rows) */
+	cJSON_AddItemToObject(o, "scale_over_k_px", cli_json_number(s->scale_over_kpx));
+	cJSON_AddItemToObject(o, "scale_over_k_px_sigma",
+			      cli_json_number(s->scale_over_kpx_sigma));
+	cJSON_AddItemToObject(o, "shape_chi2_dof", cli_json_number(s->chi2_dof));
+	cJSON_AddItemToObject(o, "scale", cli_json_number(s->scale));
+	cJSON_AddItemToObject(o, "scale_sigma", cli_json_number(s->scale_sigma));
+	cJSON_AddItemToObject(o, "scale_sigma_stat", cli_json_number(s->scale_sigma_stat));
+	cJSON_AddItemToObject(o, "k_px_model", cli_json_number(s->k_px_model));
+	cJSON_AddItemToObject(o, "dn_per_e", cli_json_number(s->dn_per_e));
+	cJSON_AddItemToObject(o, "dn_per_e_sigma", cli_json_number(s->dn_per_e_sigma));
+	cJSON_AddNumberToObject(o, "calibration_stars", s->n_cal);
+	cJSON_AddItemToObject(o, "calibration_chi2_dof", cli_json_number(s->cal_chi2_dof));
+	cJSON_AddNumberToObject(o, "frames", (double)n);
+	cJSON_AddStringToObject(o, "catalogue", "synthetic");
+	cJSON_AddStringToObject(o, "frames_dir", a->dir);
+	for (i = 0; i < n; i++) {
+		cJSON *e = cJSON_CreateObject();
+
+		cJSON_AddItemToObject(e, "theta_deg", cli_json_number(f[i].theta_deg));
+		cJSON_AddItemToObject(e, "alpha_px", cli_json_number(p[i].alpha_px));
+		cJSON_AddItemToObject(e, "sigma", cli_json_number(p[i].sigma));
+		cJSON_AddItemToObject(e, "model", cli_json_number(p[i].model));
+		cJSON_AddItemToObject(e, "background_dn", cli_json_number(f[i].bg_dn));
+		cJSON_AddItemToObject(e, "gradient_dn_per_px",
+				      cli_json_number(f[i].grad_dn_per_px));
+		cJSON_AddItemToObject(e, "gradient_dir_deg",
+				      cli_json_number(f[i].grad_dir_deg));
+		cJSON_AddNumberToObject(e, "stars_predicted", f[i].n_pred);
+		cJSON_AddNumberToObject(e, "stars_matched", f[i].n_match);
+		cJSON_AddNumberToObject(e, "calibrators", f[i].n_cal);
+		cJSON_AddItemToObject(e, "shift_px",
+				      cli_json_number(hypot(f[i].dx_px, f[i].dy_px)));
+		cJSON_AddItemToObject(e, "rotation_deg", cli_json_number(f[i].rot_deg));
+		cJSON_AddItemToObject(e, "residual_px", cli_json_number(f[i].resid_px));
+		cJSON_AddItemToArray(fr, e);
+	}
+	cJSON_AddItemToObject(o, "per_frame", fr);
+	return cli_json_emit(o);
+}
+
+static void print_text(const struct fc_frame *f, const struct fc_point *p,
+		       size_t n, const struct fc_summary *s)
+{
+	size_t i;
+
+	printf("Flight check: %zu frames, synthetic catalogue\n", n);
+	printf("  calibration: %.4f +- %.4f DN per photo-e- from %d stars (chi2/dof %.2f)\n",
+	       s->dn_per_e, s->dn_per_e_sigma, s->n_cal, s->cal_chi2_dof);
+	printf("  %7s %11s %10s %11s %9s %6s %8s\n", "theta", "alpha_px",
+	       "sigma", "model", "grad_dir", "stars", "resid");
+	for (i = 0; i < n; i++)
+		printf("  %7.2f %11.4g %10.3g %11.4g %9.1f %3d/%-3d %7.2f\n",
+		       p[i].theta_deg, p[i].alpha_px, p[i].sigma, p[i].model,
+		       f[i].grad_dir_deg, f[i].n_match, f[i].n_pred,
+		       f[i].resid_px);
+	printf("  scale alpha_px / alpha_model = %.4g +- %.2g (stat %.2g); shape chi2/dof %.2f%s\n",
+	       s->scale, s->scale_sigma, s->scale_sigma_stat, s->chi2_dof,
+	       s->chi2_dof > 4.0 ? "  (the model's SHAPE disagrees: stray diagnose --out curve)" : "");
+	printf("  scale / model k_px (%.4g) = %.4f +- %.4f%s\n", s->k_px_model,
+	       s->scale_over_kpx, s->scale_over_kpx_sigma,
+	       fabs(s->scale_over_kpx - 1.0) > 3.0 * s->scale_over_kpx_sigma ?
+	       "  (the model's absolute level is off)" : "  (consistent)");
+}
+
+int cmd_flightcheck(int argc, char **argv)
+{
+	static const struct option opts[] = {
+		SENSOR_LONG_OPTIONS,
+		NORMALISATION_LONG_OPTION,
+		{ "aem", required_argument, NULL, 'a' },
+		{ "model", required_argument, NULL, 'm' },
+		{ "out", required_argument, NULL, 'o' },
+		{ "plot", required_argument, NULL, 'p' },
+		{ "json", no_argument, &cli.json, 1 },
+		{ "help", no_argument, NULL, 'h' },
+		{ NULL, 0, NULL, 0 }
+	};
+	struct fc_args a = { 0 };
+	struct fdr_setup su;
+	struct stray_error err;
+	struct stray_aem aem;
+	struct stray_curve model;
+	struct stray_curve_view mv;
+	struct fc_cfg cfg;
+	struct fc_frame *f = NULL;
+	struct fc_point *p = NULL;
+	struct fc_summary s;
+	size_t n = 0, i;
+	int opt, rc;
+
+	fdr_setup_init(&su);
+	stray_error_clear(&err);
+	while ((opt = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+		switch (opt) {
+		case 0: continue;
+		case 'h': fputs(usage, stdout); return CLI_OK;
+		case 'a': a.aem = optarg; continue;
+		case 'm': a.model = optarg; continue;
+		case 'o': a.out = optarg; continue;
+		case 'p': a.plot = optarg; continue;
+		default: break;
+		}
+		rc = fdr_setup_option(&su, "flightcheck", opt, optarg);
+		if (rc == 0)
+			return cli_usage_error("flightcheck", "unknown option");
+		if (rc != 1)
+			return rc;
+	}
+	if (optind != argc - 1)
+		return cli_usage_error("flightcheck", "one FRAMES_DIR is required");
+	a.dir = argv[optind];
+	if (!a.aem)
+		return cli_usage_error("flightcheck", "--aem is required");
+	if (!a.model)
+		return cli_usage_error("flightcheck", "--model is required");
+	if (fdr_setup_load(&su, &err) != STRAY_OK)
+		return cli_fail("flightcheck", &err);
+	if (stray_curve_load(a.model, &model, &err) != STRAY_OK)
+		return cli_fail("flightcheck", &err);
+	if (stray_aem_read(a.aem, &aem, &err) != STRAY_OK) {
+		stray_curve_free(&model);
+		return cli_fail("flightcheck", &err);
+	}
+	rc = fc_run_dir(a.dir, &aem, &su.sensor, &su.flux, &cfg, &f, &n, &err);
+	stray_aem_free(&aem);
+	if (rc != STRAY_OK) {
+		stray_curve_free(&model);
+		return cli_fail("flightcheck", &err);
+	}
+	mv = stray_curve_view_of(&model);
+	p = calloc(n, sizeof(*p));
+	for (i = 0; p && i < n; i++)
+		p[i].model = stray_curve_alpha_at(&mv, f[i].theta_deg);
+	stray_curve_free(&model);
+	if (!p) {
+		free(f);
+		stray_error_set(&err, STRAY_ENOMEM, "flightcheck", "out of memory");
+		return cli_fail("flightcheck", &err);
+	}
+	fc_summarise(&cfg, f, n, fdr_setup_k_px(&su), p, &s);
+	if (s.n_cal == 0) {
+		free(f);
+		free(p);
+		stray_error_at(&err, STRAY_EINVAL, a.dir, 0, "stars",
+			       "no catalogue star calibrates the frames");
+		return cli_fail("flightcheck", &err);
+	}
+	rc = STRAY_OK;
+	if (a.out) {
+		/* the curve file is ordered by angle, as curves are */
+		struct fc_point *q = malloc(n * sizeof(*q));
+
+		if (q) {
+			memcpy(q, p, n * sizeof(*q));
+			qsort(q, n, sizeof(*q), cmp_theta);
+			rc = write_curve(a.out, q, n, &s, &err);
+			if (!rc && a.plot)
+				rc = plot(a.plot, q, n, &s, &err);
+			free(q);
+		} else {
+			rc = stray_error_set(&err, STRAY_ENOMEM, "out", "out of memory");
+		}
+	} else if (a.plot) {
+		qsort(p, n, sizeof(*p), cmp_theta);
+		rc = plot(a.plot, p, n, &s, &err);
+	}
+	if (rc == STRAY_OK)
+		rc = cli.json ? emit_json(&a, f, p, n, &s) : (print_text(f, p, n, &s), CLI_OK);
+	else
+		rc = cli_fail("flightcheck", &err);
+	free(f);
+	free(p);
+	return rc;
+}

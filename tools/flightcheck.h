@@ -1,0 +1,100 @@
+/*
+ * flightcheck.h - the analysis of `stray flightcheck` (issue 18, thesis
+ * §4.3): flight frames -> Sun offset angle, robust background, catalogue
+ * stars matched through the attitude, the absolute calibration from
+ * those stars, the measured alpha_px(theta) and its scale against the
+ * predicted curve.  Knows only what a tracker team knows: the camera
+ * (bias, gain, dark current, read noise), the sensor (optics, passband
+ * photometry), the catalogue, time and attitude.  Linked by the command,
+ * its test (tests/flightcheck) and its bench.
+ */
+#ifndef STRAY_TOOLS_FLIGHTCHECK_H
+#define STRAY_TOOLS_FLIGHTCHECK_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "stray/catalogue.h"
+
+#define FC_TILE_PX 64		/* background tiles */
+#define FC_MAG_CAL 8.5		/* calibration stars: brighter than this */
+#define FC_APERTURE_PX 6.0
+#define FC_BG_SYS_DN 0.05	/* background systematic floor, DN */	/* the star window's radius (r of n_pps) */
+
+struct fc_cfg {
+	int cols, rows;		/* frame size */
+	double f_px, cx, cy;	/* ideal camera: focal length in px, axis */
+	double t_exp_s, gain_e_per_dn, bias_dn, dark_e, sat_dn;
+	double f0_e;		/* photo-e- of an m = 0 star: F_0 t A_cs (eq. 2.2, 2.12) */
+	double sun_e;		/* F_sun t_exp A_px: photo-e- per pixel per unit alpha_px (eq. 2.3) */
+	uint64_t cat_seed;	/* the catalogue (stray/catalogue.h) */
+	double search_px;	/* first-pass search half-width around a prediction */
+};
+
+/* Buffers of one analysis thread (fc_work_alloc / fc_work_free). */
+struct fc_work {
+	struct stray_cat_star *cat;
+	size_t cat_max;
+	struct stray_star *pred;
+	size_t pred_max;
+	float *tile_med;	/* per tile */
+	uint16_t *sample;	/* one tile's samples */
+	uint32_t *hist;		/* 4096 DN bins */
+	double *mx, *my;	/* matched centroids */
+};
+
+struct fc_frame {
+	double t_tt;		/* TT s since J2000 */
+	double theta_deg;	/* Sun offset angle of the boresight */
+	double bg_dn, bg_sigma_dn;	/* mean background (plane), its error */
+	double noise_dn;	/* pixel noise (tile MAD) */
+	double grad_dn_per_px, grad_dir_deg;	/* plane slope, direction (0 = +x) */
+	int n_tiles_used, n_pred, n_match, n_cal;
+	double dx_px, dy_px, rot_deg, resid_px;	/* refinement on the matches */
+	double cal_sw, cal_swr, cal_swr2;	/* sums for DN per photo-e- */
+};
+
+int fc_work_alloc(struct fc_work *w, const struct fc_cfg *c);
+void fc_work_free(struct fc_work *w);
+
+/* The Sun offset angle [deg] of the boresight (+z of the head) at t_tt
+ * with attitude q_ib (stray/aem.h convention). */
+double fc_sun_angle_deg(const double q_ib[4], double t_tt);
+
+/* One frame (the per-frame step): background, stars, calibration sums. */
+void fc_frame_analyse(const struct fc_cfg *c, struct fc_work *w,
+		      const uint16_t *dn, const double q_ib[4], double t_tt,
+		      struct fc_frame *out);
+
+/* The flight curve and its comparison with the prediction. */
+struct fc_point {
+	double theta_deg, alpha_px, sigma;	/* measured, absolute */
+	double model;		/* predicted alpha_sys(theta), relative */
+};
+
+struct fc_summary {
+	double dn_per_e, dn_per_e_sigma;	/* star calibration */
+	double cal_chi2_dof;
+	int n_cal;
+	double scale, scale_sigma_stat, scale_sigma;	/* alpha_px / alpha_model */
+	double chi2_dof;	/* of the scaled model: the shape test */
+	double k_px_model, scale_over_kpx, scale_over_kpx_sigma;
+};
+
+/* Calibration over all frames, alpha_px per frame (pts[i].model set by
+ * the caller), and the best scale; points with no light are kept. */
+void fc_summarise(const struct fc_cfg *c, const struct fc_frame *f,
+		  size_t n, double k_px_model, struct fc_point *pts,
+		  struct fc_summary *s);
+
+
+
+struct stray_sensor;
+struct stray_fluxes;
+/* The analysis configuration of a cols x rows frame whose first pixel is
+ * detector (col0, row0): the ideal camera of stray_sensor_pixel_deg, the
+ * camera of stray/frames.h, the fluxes of the sensor's passband. */
+void fc_cfg_init(struct fc_cfg *c, const struct stray_sensor *s,
+		 const struct stray_fluxes *fl, int cols, int rows, int col0,
+		 int row0);
+#endif /* STRAY_TOOLS_FLIGHTCHECK_H */
