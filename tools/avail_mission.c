@@ -11,6 +11,7 @@
 #include "avail_mission.h"
 #include "fdrfw/earth.h"
 #include "fdrfw/ephem.h"
+#include "fdrfw/vec.h"
 #include "orbit.h"
 #include "stray/ccsds.h"
 #include "stray/errfmt.h"
@@ -324,14 +325,22 @@ double mission_cap_albedo(const float pos_km[3], const float sun[3])
 {
 	struct fdrfw_earth_cap cap;
 	double sw = 0.0, swa = 0.0, dec = asin(fmax(-1.0, fmin(1.0, sun[2])));
-	double r2 = 0.0, rr = (double)FDRFW_EARTH_RADIUS_KM;
+	double r2 = 0.0, us = 0.0, rr = (double)FDRFW_EARTH_RADIUS_KM;
 	unsigned k;
 	int i;
 
 	if (!fdrfw_earth_cap(pos_km, sun, &cap))
 		return 0.3;
-	for (i = 0; i < 3; i++)
+	for (i = 0; i < 3; i++) {
 		r2 += (double)pos_km[i] * pos_km[i];
+		us += (double)pos_km[i] * sun[i];
+	}
+	/* All the cap in the night: every node's ground point is within
+	 * acos(R / r) of the sub-spacecraft point, so the Sun's elevation
+	 * there is below zero when the Sun is over 90 deg + that from the
+	 * zenith (1e-3 is far above the nodes' float rounding). */
+	if (us / sqrt(r2) < -sqrt(1.0 - rr * rr / r2) - 1e-3)
+		return 0.3;
 	for (k = 0; k < FDRFW_EARTH_NODES; k++) {
 		struct fdrfw_earth_node nd;
 		double pd = 0.0, d, p[3], w;
@@ -423,7 +432,7 @@ static FILE *csv_open(const struct mission_args *a, const struct mission *m,
 
 struct block {
 	double r[BLOCK][3], mib[BLOCK][3][3];
-	float sun[BLOCK][3];
+	float sun[BLOCK][3], moon[BLOCK][3];
 	int32_t t_tt[BLOCK];
 	int bad[BLOCK];
 	uint32_t flags[MISSION_HEADS_MAX][BLOCK];
@@ -443,7 +452,7 @@ static void shared_inputs(struct mission *m, struct block *b, size_t i0,
 #pragma omp parallel for schedule(static)
 	for (j = 0; j < (long)nb; j++) {
 		double t = m->t0 + (double)(i0 + (size_t)j) * m->step_s, v[3], q[4];
-		float pos[3];
+		float pos[3], mo[3];
 		int k;
 
 		b->bad[j] = stray_oem_state(&m->oem, t, b->r[j], v) != STRAY_OK ||
@@ -454,6 +463,12 @@ static void shared_inputs(struct mission *m, struct block *b, size_t i0,
 		for (k = 0; k < 3; k++)
 			pos[k] = (float)b->r[j][k];
 		fdrfw_sun_dir(b->t_tt[j], b->sun[j]);
+		/* the Moon from the spacecraft, as the module's ephemeris
+		 * mode makes it, once for every head */
+		fdrfw_moon_pos_km(b->t_tt[j], mo);
+		for (k = 0; k < 3; k++)
+			mo[k] -= pos[k];
+		(void)fdrfw_unit(mo, b->moon[j]);
 		if ((i0 + (size_t)j) % every == 0)
 			m->albedo[i0 + (size_t)j] =
 				(float)mission_cap_albedo(pos, b->sun[j]);
@@ -489,6 +504,9 @@ static void fly_head(struct mission *m, struct block *b, size_t h,
 		}
 		mission_fw_q(mis, in.q);
 		in.t_tt_s = b->t_tt[j];
+		in.use_given_dirs = 1;
+		memcpy(in.sun_dir, b->sun[j], sizeof(in.sun_dir));
+		memcpy(in.moon_dir, b->moon[j], sizeof(in.moon_dir));
 		in.t_exp_s = hd->table.t_exp_nominal_s;
 		/* the ground feeds the regional albedo to the Earth term */
 		hd->table.earth_albedo = m->albedo[i];
