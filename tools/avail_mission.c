@@ -324,7 +324,7 @@ void mission_fw_q(const double m[3][3], float q[4])
 double mission_cap_albedo(const float pos_km[3], const float sun[3])
 {
 	struct fdrfw_earth_cap cap;
-	double sw = 0.0, swa = 0.0, dec = asin(fmax(-1.0, fmin(1.0, sun[2])));
+	double sw = 0.0, swa = 0.0, sin_dec = fmax(-1.0, fmin(1.0, sun[2]));
 	double r2 = 0.0, us = 0.0, rr = (double)FDRFW_EARTH_RADIUS_KM;
 	unsigned k;
 	int i;
@@ -356,8 +356,9 @@ double mission_cap_albedo(const float pos_km[3], const float sun[3])
 			p[i] = pos_km[i] + d * nd.dir[i];
 		w = (double)nd.cos_sun * nd.omega_sr;
 		sw += w;
-		swa += w * stray_albedo_zonal(asin(fmax(-1.0, fmin(1.0,
-				p[2] / sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2])))), dec);
+		swa += w * stray_albedo_zonal_sin(fmax(-1.0, fmin(1.0,
+				p[2] / sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]))),
+				sin_dec);
 	}
 	return sw > 0.0 ? swa / sw : 0.3;
 }
