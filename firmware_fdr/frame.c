@@ -168,7 +168,7 @@ static int assess(struct fdrfw_ctx *ctx, const float b[3],
 		(held & FDRFW_MOON_EXCLUDED) != 0, &r);
 	r.excluded |= moon_in_field_excluded(ctx, out->theta_deg[FDRFW_MOON]);
 	store(out, FDRFW_MOON, &r, FDRFW_MOON_EXCLUDED);
-	rc |= fdrfw_earth_source(ctx, cap, b,
+	rc |= fdrfw_earth_source(ctx, cap, b, out->theta_deg[FDRFW_EARTH],
 				 (held & FDRFW_EARTH_EXCLUDED) != 0, &r);
 	store(out, FDRFW_EARTH, &r, FDRFW_EARTH_EXCLUDED);
 	out->false_stars_total = out->false_stars[FDRFW_SUN] +

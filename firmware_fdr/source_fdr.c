@@ -23,6 +23,8 @@
 #include "stray/tail.h"
 
 #define INV_PI 0.318309886183790672f
+/* The Earth: below this ln FDR (1e-30) its light is reported as none. */
+#define LN_FDR_NEGLIGIBLE STRAY_R(-69.0775527898)
 
 /* eq. 2.18: ln FDR at attenuation alpha; -inf for no light. */
 static int log_fdr(struct fdrfw_ctx *ctx, stray_real f_src, float alpha,
@@ -43,7 +45,7 @@ int fdrfw_fdr_init(struct fdrfw_ctx *ctx)
 {
 	const struct fdrfw_table *t = ctx->table;
 	struct stray_fdr_model *m = &ctx->model;
-	struct fdrfw_source_result sun = { 0, 0 };
+	struct fdrfw_source_result sun;	/* source_result sets both */
 	stray_real ln_req = STRAY_HUGE;
 
 	/* The thesis model (Gaussian, uniform light, no detector noise). */
@@ -92,16 +94,19 @@ static float envelope_angle(const struct fdrfw_table *t, float theta_deg,
 }
 
 /* FDR rises with alpha: FDR(envelope) >= R iff envelope >= alpha_req
- * (fig. 2.7), i.e. theta before the exclusion angle (fig. 5.1). */
+ * (fig. 2.7), i.e. theta before the exclusion angle (fig. 5.1).  alpha
+ * never passes the envelope, so below ln 1e-30 there (where the vectors
+ * judge no digits) the rate is reported as none, without its own FDR. */
 static int source_result(struct fdrfw_ctx *ctx, stray_real f_src,
 			 float alpha, float env,
 			 struct fdrfw_source_result *res)
 {
 	stray_real ln_env = -STRAY_HUGE;
-	int rc = log_fdr(ctx, f_src, alpha, &res->ln_fdr);
+	int rc = log_fdr(ctx, f_src, env, &ln_env);
 
-	if (rc == 0)
-		rc = log_fdr(ctx, f_src, env, &ln_env);
+	res->ln_fdr = -STRAY_HUGE;
+	if ((rc == 0) && (ln_env >= LN_FDR_NEGLIGIBLE))
+		rc = log_fdr(ctx, f_src, alpha, &res->ln_fdr);
 	res->excluded = rc == 0 && ln_env >= ctx->ln_fdr_tolerated;
 	return rc;
 }
@@ -119,15 +124,31 @@ int fdrfw_point_source(struct fdrfw_ctx *ctx, stray_real f_src,
 
 int fdrfw_earth_source(struct fdrfw_ctx *ctx,
 		       const struct fdrfw_earth_cap *cap, const float b[3],
-		       int latched, struct fdrfw_source_result *res)
+		       float theta_deg, int latched,
+		       struct fdrfw_source_result *res)
 {
 	const struct fdrfw_table *t = ctx->table;
 	/* eq. 2.3 for an extended source: I_px = t A_px sum alpha_k F_k, with
 	 * F_k = L_k dOmega_k and L_k = albedo E_sun cos(i_k) / pi. */
 	float f_tot = 0.0f, fa = 0.0f, fe = 0.0f;
+	/* Every node lies at least theta_deg (the cap's nearest point, to
+	 * ~1e-5 deg in float: 0.01 allowed) off axis, where the envelope
+	 * (never below alpha, never rising outward) bounds alpha and the
+	 * envelope at every node, latched or not. */
+	float env = fdrfw_envelope_at(t, theta_deg - t->hysteresis_deg - 0.01f);
 	unsigned k;
 
-	for (k = 0; k < FDRFW_EARTH_NODES; k++) {
+	/* All the cap's light there (cos i <= 1; the quadrature's solid
+	 * angle within 1.1 of 2 pi (1 - cos rho), 1.0105 at worst) bounds the
+	 * rate, which rises with alpha F (eq. 2.18).  Under the floor of
+	 * source_result, the night side's answer without the nodes: the flag
+	 * is exact (the floor is under the tolerated rate, >= 1e-9 by the
+	 * table's check), the rate below 1e-30 reported as none. */
+	(void)source_result(ctx, (stray_real)(t->earth_albedo *
+			  t->f_sun_ph_s_m2 * 2.2f * cap->one_minus_cos_rho),
+			  env, env, res);
+	for (k = 0u; (k < FDRFW_EARTH_NODES) && (res->ln_fdr > -STRAY_HUGE);
+	     k++) {
 		struct fdrfw_earth_node node;
 		float f, theta;
 

@@ -30,9 +30,12 @@ int fdrfw_point_source(struct fdrfw_ctx *ctx, stray_real f_src,
 		       float theta_deg, int latched,
 		       struct fdrfw_source_result *res);
 
-/* The sunlit Earth over the cap's quadrature, boresight b (unit). */
+/* The sunlit Earth over the cap's quadrature, boresight b (unit), the
+ * cap's nearest point theta_deg off axis (its light is not looked at
+ * node by node where even there it would make a rate below 1e-30). */
 int fdrfw_earth_source(struct fdrfw_ctx *ctx,
 		       const struct fdrfw_earth_cap *cap, const float b[3],
-		       int latched, struct fdrfw_source_result *res);
+		       float theta_deg, int latched,
+		       struct fdrfw_source_result *res);
 
 #endif /* FDRFW_SOURCE_FDR_H */

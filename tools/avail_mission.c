@@ -11,6 +11,7 @@
 #include "avail_mission.h"
 #include "fdrfw/earth.h"
 #include "fdrfw/ephem.h"
+#include "fdrfw/vec.h"
 #include "orbit.h"
 #include "stray/ccsds.h"
 #include "stray/errfmt.h"
@@ -323,15 +324,23 @@ void mission_fw_q(const double m[3][3], float q[4])
 double mission_cap_albedo(const float pos_km[3], const float sun[3])
 {
 	struct fdrfw_earth_cap cap;
-	double sw = 0.0, swa = 0.0, dec = asin(fmax(-1.0, fmin(1.0, sun[2])));
-	double r2 = 0.0, rr = (double)FDRFW_EARTH_RADIUS_KM;
+	double sw = 0.0, swa = 0.0, sin_dec = fmax(-1.0, fmin(1.0, sun[2]));
+	double r2 = 0.0, us = 0.0, rr = (double)FDRFW_EARTH_RADIUS_KM;
 	unsigned k;
 	int i;
 
 	if (!fdrfw_earth_cap(pos_km, sun, &cap))
 		return 0.3;
-	for (i = 0; i < 3; i++)
+	for (i = 0; i < 3; i++) {
 		r2 += (double)pos_km[i] * pos_km[i];
+		us += (double)pos_km[i] * sun[i];
+	}
+	/* All the cap in the night: every node's ground point is within
+	 * acos(R / r) of the sub-spacecraft point, so the Sun's elevation
+	 * there is below zero when the Sun is over 90 deg + that from the
+	 * zenith (1e-3 is far above the nodes' float rounding). */
+	if (us / sqrt(r2) < -sqrt(1.0 - rr * rr / r2) - 1e-3)
+		return 0.3;
 	for (k = 0; k < FDRFW_EARTH_NODES; k++) {
 		struct fdrfw_earth_node nd;
 		double pd = 0.0, d, p[3], w;
@@ -347,8 +356,9 @@ double mission_cap_albedo(const float pos_km[3], const float sun[3])
 			p[i] = pos_km[i] + d * nd.dir[i];
 		w = (double)nd.cos_sun * nd.omega_sr;
 		sw += w;
-		swa += w * stray_albedo_zonal(asin(fmax(-1.0, fmin(1.0,
-				p[2] / sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2])))), dec);
+		swa += w * stray_albedo_zonal_sin(fmax(-1.0, fmin(1.0,
+				p[2] / sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]))),
+				sin_dec);
 	}
 	return sw > 0.0 ? swa / sw : 0.3;
 }
@@ -416,14 +426,16 @@ static FILE *csv_open(const struct mission_args *a, const struct mission *m,
 }
 
 /* Epochs are taken in blocks: what every head shares (orbit, attitude,
- * Sun, albedo) is made for the block in parallel over epochs, then each
- * head flies the block in order (its flags latch from frame to frame),
- * the heads in parallel. */
+ * Sun, Moon, albedo) is made for a block in chunks of epochs, then each
+ * head flies the block in order (its flags latch from frame to frame).
+ * A block's heads fly while the next block's chunks are made, all as
+ * tasks, so two cores share three heads evenly. */
 #define BLOCK 4096
+#define CHUNK 512
 
 struct block {
 	double r[BLOCK][3], mib[BLOCK][3][3];
-	float sun[BLOCK][3];
+	float sun[BLOCK][3], moon[BLOCK][3];
 	int32_t t_tt[BLOCK];
 	int bad[BLOCK];
 	uint32_t flags[MISSION_HEADS_MAX][BLOCK];
@@ -434,16 +446,20 @@ struct block {
  * track moves ~450 km in a minute) and held between. */
 #define ALBEDO_S 60.0
 
-static void shared_inputs(struct mission *m, struct block *b, size_t i0,
-			  size_t nb)
+static size_t albedo_every(const struct mission *m)
 {
-	size_t every = m->step_s >= ALBEDO_S ? 1 : (size_t)(ALBEDO_S / m->step_s);
-	long j;
+	return m->step_s >= ALBEDO_S ? 1 : (size_t)(ALBEDO_S / m->step_s);
+}
 
-#pragma omp parallel for schedule(static)
-	for (j = 0; j < (long)nb; j++) {
-		double t = m->t0 + (double)(i0 + (size_t)j) * m->step_s, v[3], q[4];
-		float pos[3];
+/* Epochs j0 .. j1-1 of the block starting at epoch i0. */
+static void shared_chunk(struct mission *m, struct block *b, size_t i0,
+			 size_t j0, size_t j1)
+{
+	size_t every = albedo_every(m), j;
+
+	for (j = j0; j < j1; j++) {
+		double t = m->t0 + (double)(i0 + j) * m->step_s, v[3], q[4];
+		float pos[3], mo[3];
 		int k;
 
 		b->bad[j] = stray_oem_state(&m->oem, t, b->r[j], v) != STRAY_OK ||
@@ -454,16 +470,26 @@ static void shared_inputs(struct mission *m, struct block *b, size_t i0,
 		for (k = 0; k < 3; k++)
 			pos[k] = (float)b->r[j][k];
 		fdrfw_sun_dir(b->t_tt[j], b->sun[j]);
-		if ((i0 + (size_t)j) % every == 0)
-			m->albedo[i0 + (size_t)j] =
+		/* the Moon from the spacecraft, as the module's ephemeris
+		 * mode makes it, once for every head */
+		fdrfw_moon_pos_km(b->t_tt[j], mo);
+		for (k = 0; k < 3; k++)
+			mo[k] -= pos[k];
+		(void)fdrfw_unit(mo, b->moon[j]);
+		if ((i0 + j) % every == 0)
+			m->albedo[i0 + j] =
 				(float)mission_cap_albedo(pos, b->sun[j]);
 		stray_q_dcm(q, b->mib[j]);
 	}
-	for (j = 0; j < (long)nb; j++) {
-		size_t i = i0 + (size_t)j;
+}
 
+/* The block's albedo held from the epochs it was made at. */
+static void hold_albedo(struct mission *m, size_t i0, size_t nb)
+{
+	size_t every = albedo_every(m), i;
+
+	for (i = i0; i < i0 + nb; i++)
 		m->albedo[i] = m->albedo[i - i % every];
-	}
 }
 
 static void fly_head(struct mission *m, struct block *b, size_t h,
@@ -489,6 +515,9 @@ static void fly_head(struct mission *m, struct block *b, size_t h,
 		}
 		mission_fw_q(mis, in.q);
 		in.t_tt_s = b->t_tt[j];
+		in.use_given_dirs = 1;
+		memcpy(in.sun_dir, b->sun[j], sizeof(in.sun_dir));
+		memcpy(in.moon_dir, b->moon[j], sizeof(in.moon_dir));
 		in.t_exp_s = hd->table.t_exp_nominal_s;
 		/* the ground feeds the regional albedo to the Earth term */
 		hd->table.earth_albedo = m->albedo[i];
@@ -508,31 +537,52 @@ int mission_fly(const struct mission_args *a, struct mission *m,
 	struct stray_file_out out;
 	FILE *csv = csv_open(a, m, &out, err);
 	size_t i0, h, i, sky_every = (m->n + m->n_sky - 1) / m->n_sky;
-	struct block *b = malloc(sizeof(*b));
+	struct block *bb[2] = { malloc(sizeof(struct block)),
+				malloc(sizeof(struct block)) };
+	size_t nb0;
+	int rc = STRAY_OK;
+	long c;
 
-	if ((a->csv && !csv) || !b) {
-		free(b);
-		if (csv)
-			stray_file_abort(&out);
-		return b ? STRAY_EIO : stray_error_set(err, STRAY_ENOMEM, "block", NULL);
+	if ((a->csv && !csv) || !bb[0] || !bb[1]) {
+		rc = bb[0] && bb[1] ? STRAY_EIO :
+		     stray_error_set(err, STRAY_ENOMEM, "block", NULL);
+		goto done;
 	}
 	m->n_sky = (m->n + sky_every - 1) / sky_every;
+	nb0 = m->n < BLOCK ? m->n : BLOCK;
+#pragma omp parallel for schedule(dynamic, 1)
+	for (c = 0; c < (long)nb0; c += CHUNK)
+		shared_chunk(m, bb[0], 0, (size_t)c, (size_t)c + CHUNK < nb0 ?
+			     (size_t)c + CHUNK : nb0);
 	for (i0 = 0; i0 < m->n; i0 += BLOCK) {
+		struct block *b = bb[(i0 / BLOCK) & 1];
+		struct block *next = bb[(i0 / BLOCK + 1) & 1];
 		size_t nb = m->n - i0 < BLOCK ? m->n - i0 : BLOCK, j;
-		long hh;
+		size_t i1 = i0 + nb, nb1 = m->n - i1 < BLOCK ? m->n - i1 : BLOCK;
 
-		shared_inputs(m, b, i0, nb);
+		hold_albedo(m, i0, nb);
 		for (j = 0; j < nb; j++)
 			if (b->bad[j]) {
-				free(b);
-				if (csv)
-					stray_file_abort(&out);
-				return stray_error_at(err, STRAY_ERANGE, a->oem, 0,
-						      "epoch", "outside the ephemeris");
+				rc = stray_error_at(err, STRAY_ERANGE, a->oem, 0,
+						    "epoch", "outside the ephemeris");
+				goto done;
 			}
-#pragma omp parallel for schedule(dynamic, 1)
-		for (hh = 0; hh < (long)m->n_heads; hh++)
-			fly_head(m, b, (size_t)hh, i0, nb, sky_every);
+#pragma omp parallel
+#pragma omp single
+		{
+			long hh, cc;
+
+			for (hh = 0; hh < (long)m->n_heads; hh++) {
+#pragma omp task firstprivate(hh)
+				fly_head(m, b, (size_t)hh, i0, nb, sky_every);
+			}
+			for (cc = 0; cc < (long)nb1; cc += CHUNK) {
+#pragma omp task firstprivate(cc)
+				shared_chunk(m, next, i1, (size_t)cc,
+					     (size_t)cc + CHUNK < nb1 ?
+					     (size_t)cc + CHUNK : nb1);
+			}
+		}
 		for (j = 0; j < nb; j++) {
 			uint8_t all = STRAY_AVAIL_BLIND;
 
@@ -550,7 +600,14 @@ int mission_fly(const struct mission_args *a, struct mission *m,
 			fprintf(csv, ",%d\n", all == 0);
 		}
 	}
-	free(b);
+done:
+	free(bb[0]);
+	free(bb[1]);
+	if (rc != STRAY_OK) {
+		if (csv)
+			stray_file_abort(&out);
+		return rc;
+	}
 	for (h = 0; h < m->n_heads; h++) {
 		struct mission_head *hd = &m->head[h];
 		double sum = 0.0, mx = 0.0;

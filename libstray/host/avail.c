@@ -55,11 +55,16 @@ void stray_avail_summarise(const uint8_t *mask, size_t n, double step_s,
 		s->mean_outage_s /= (double)s->outages;
 }
 
-double stray_albedo_zonal(double lat_rad, double dec_rad)
+double stray_albedo_zonal_sin(double x, double sin_dec)
 {
-	double x = sin(lat_rad), p2 = 0.5 * (3.0 * x * x - 1.0);
+	double p2 = 0.5 * (3.0 * x * x - 1.0);
 	double a = 0.30 + 0.12 * p2 -
-		   0.04 * x * sin(dec_rad) / sin(23.44 * 3.14159265358979324 / 180.0);
+		   0.04 * x * sin_dec / sin(23.44 * 3.14159265358979324 / 180.0);
 
 	return a < 0.05 ? 0.05 : a > 0.9 ? 0.9 : a;
+}
+
+double stray_albedo_zonal(double lat_rad, double dec_rad)
+{
+	return stray_albedo_zonal_sin(sin(lat_rad), sin(dec_rad));
 }

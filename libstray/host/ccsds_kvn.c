@@ -53,16 +53,17 @@ static const long leap_ym[] = {
 };
 #define N_LEAP (sizeof(leap_ym) / sizeof(leap_ym[0]))
 
-/* TAI - UTC on the UTC day `day` (days from 2000-01-01). */
+/* TAI - UTC on the UTC day `day` (days from 2000-01-01): the latest step
+ * first, so a recent epoch costs one comparison. */
 static double tai_minus_utc(long day)
 {
-	double dat = 10.0;
 	size_t i;
 
-	for (i = 0; i < N_LEAP; i++)
-		if (day >= days_from_2000(leap_ym[i] / 100, leap_ym[i] % 100, 1))
-			dat += 1.0;
-	return dat;
+	for (i = N_LEAP; i > 0; i--)
+		if (day >= days_from_2000(leap_ym[i - 1] / 100,
+					  leap_ym[i - 1] % 100, 1))
+			return 10.0 + (double)i;
+	return 10.0;
 }
 
 int stray_ccsds_time_system(const char *text)

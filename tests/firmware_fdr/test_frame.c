@@ -14,8 +14,10 @@
 
 #include <cmocka.h>
 
+#include "fdrfw/earth.h"
 #include "fdrfw/ephem.h"
 #include "fdrfw/fdrfw.h"
+#include "fdrfw/vec.h"
 #include "fixture.h"
 #include "stray/fdr.h"
 #include "stray/photometry.h"
@@ -362,6 +364,97 @@ static void test_bad_table_never_used(void **state)
 	expect_invalid(&ctx, &in);
 }
 
+/* The Earth term by the full quadrature, as the module sums it (float,
+ * node by node), its ln FDR and ln FDR at the envelope by libstray. */
+static void earth_by_nodes(const struct fdrfw_ctx *ctx,
+			   const struct fdrfw_input *in, int latched,
+			   double *ln, double *ln_env)
+{
+	const struct fdrfw_table *t = ctx->table;
+	struct stray_fdr_model m = ctx->model;
+	struct fdrfw_earth_cap cap;
+	float sun[3], b[3], f_tot = 0.0f, fa = 0.0f, fe = 0.0f;
+	unsigned k;
+
+	assert_true(fdrfw_unit(in->sun_dir, sun));
+	assert_true(fdrfw_earth_cap(in->pos_km, sun, &cap));
+	fdrfw_boresight_renorm(in->q, b);
+	for (k = 0; k < FDRFW_EARTH_NODES; k++) {
+		struct fdrfw_earth_node nd;
+		float f, th;
+
+		fdrfw_earth_node(&cap, k, &nd);
+		if (!(nd.cos_sun > 0.0f))
+			continue;
+		f = t->earth_albedo * t->f_sun_ph_s_m2 * nd.cos_sun *
+		    0.318309886183790672f * nd.omega_sr;
+		th = fdrfw_angle_deg(b, nd.dir);
+		f_tot += f;
+		fa += f * fdrfw_alpha_at(t, th);
+		fe += f * fdrfw_envelope_at(t, latched ? th - t->hysteresis_deg : th);
+	}
+	*ln = *ln_env = -HUGE_VAL;
+	if (!(f_tot > 0.0f))
+		return;
+	m.f_src_ph_s_m2 = f_tot;
+	assert_int_equal(stray_fdr_log_rate(&m, fa / f_tot, ctx->i_sdt_e, ln,
+					    NULL), 0);
+	assert_int_equal(stray_fdr_log_rate(&m, fe / f_tot, ctx->i_sdt_e,
+					    ln_env, NULL), 0);
+}
+
+/* The module skips the Earth's nodes (and a source's own FDR) where a
+ * bound is under 1e-30: against the full quadrature, the same Earth flag
+ * latched or not, the same ln FDR above 1e-30, below it elsewhere; at LEO,
+ * MEO and GEO with the boresight swept from zenith to nadir, so both the
+ * shortcut and the full sum are taken. */
+static void test_earth_shortcut_exact(void **state)
+{
+	static const float r_km[] = { 6921.0f, 12000.0f, 42164.0f };
+	const double floor_ln = log(1e-30);
+	struct fdrfw_ctx ctx;
+	struct fdrfw_input in;
+	struct fdrfw_output out;
+	int a, i, lat, skipped = 0, full = 0;
+
+	(void)state;
+	assert_int_equal(fdrfw_init(&ctx, &table), FDRFW_OK);
+	for (a = 0; a < 3; a++)
+		for (lat = 0; lat < 2; lat++)
+			for (i = 0; i <= 180; i++) {
+				double ln, ln_env, tilt = i * DEG;
+
+				/* zenith +z, the Sun 60 deg from it: the
+				 * cap part lit; boresight tilted about x */
+				frame_with_sun_at(&in, 0.0, 0.1f);
+				in.pos_km[2] = r_km[a];
+				in.sun_dir[0] = 0.8660254f;
+				in.sun_dir[2] = 0.5f;
+				in.moon_dir[0] = -1.0f;
+				in.q[0] = (float)cos(tilt / 2.0);
+				in.q[1] = (float)sin(tilt / 2.0);
+				ctx.latched = lat ? FDRFW_EARTH_EXCLUDED : 0u;
+				assert_int_equal(fdrfw_frame(&ctx, &in, &out),
+						 FDRFW_OK);
+				earth_by_nodes(&ctx, &in, lat, &ln, &ln_env);
+				assert_int_equal(
+					(out.flags & FDRFW_EARTH_EXCLUDED) != 0,
+					ln_env >= ctx.ln_fdr_tolerated);
+				if (ln >= floor_ln) {
+					assert_true(fabs((double)out.ln_fdr[FDRFW_EARTH] -
+						ln) <= 1e-5 * fabs(ln) + 1e-5);
+					full++;
+				} else {
+					assert_true((double)out.ln_fdr[FDRFW_EARTH] <
+						    floor_ln + 1e-3);
+					skipped += ln > -HUGE_VAL &&
+						   isinf(out.ln_fdr[FDRFW_EARTH]);
+				}
+			}
+	assert_true(full > 20);
+	assert_true(skipped > 20);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -371,6 +464,7 @@ int main(void)
 		cmocka_unit_test(test_moon_phase_and_field),
 		cmocka_unit_test(test_sunlit_earth),
 		cmocka_unit_test(test_earth_flag_no_chatter),
+		cmocka_unit_test(test_earth_shortcut_exact),
 		cmocka_unit_test(test_ephemeris_mode_parallax),
 		cmocka_unit_test(test_invalid_inputs_flagged),
 		cmocka_unit_test(test_bad_table_never_used),

@@ -43,4 +43,7 @@ void stray_avail_summarise(const uint8_t *mask, size_t n, double step_s,
  */
 double stray_albedo_zonal(double lat_rad, double dec_rad);
 
+/* The same from x = sin(lat) and sin(dec), for callers that have them. */
+double stray_albedo_zonal_sin(double x, double sin_dec);
+
 #endif /* STRAY_AVAIL_H */
