@@ -136,9 +136,10 @@ static void select_pair(uint64_t *key, size_t n, size_t k, uint32_t *hist,
 			*hi = mn;
 			return;
 		}
-		for (i = 0; i < n; i++)	/* keep the shared bucket */
-			if (((key[i] >> shift) & (DIGIT_BINS - 1)) == b_lo)
-				key[m++] = key[i];
+		for (i = 0; i < n; i++) {	/* keep the shared bucket */
+			key[m] = key[i];	/* (no branch to mispredict) */
+			m += ((key[i] >> shift) & (DIGIT_BINS - 1)) == b_lo;
+		}
 		n = m;
 		k -= below_lo;
 		if (shift == 0)
