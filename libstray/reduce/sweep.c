@@ -14,6 +14,7 @@
 #include "stray/sweep_store.h"
 #include "stray/reduce_sweep.h"
 #include "bigmem.h"
+#include "prefetch.h"
 
 /* Darks kept in memory between the two dark passes, at most. */
 #define STRAY_REDUCE_DARK_CACHE 6
@@ -34,6 +35,7 @@ struct workspace {
 	struct stray_sweep_manifest man;
 	struct stray_sweep_fits fits;		/* the frame being read */
 	struct stray_sweep_buf file;	/* its bytes, when hashed */
+	struct stray_prefetch pf;	/* the next ones, read and hashed */
 	struct stray_sweep_header geo;	/* the first frame: the geometry */
 	size_t n_pix;
 	uint16_t *pix;
@@ -148,19 +150,33 @@ static int load_frame(struct workspace *w, const struct stray_sweep_entry *e,
 	char path[4096 + STRAY_SWEEP_FILE_MAX];
 	int rc;
 
+	struct stray_sweep_buf *b = &w->file;
+	int taken = 0;
+
 	frame_path(w, e, path, sizeof(path));
-	/* Hashed: read once, hash those bytes, decode them from memory. */
-	if (w->o->verify_sha256)
-		rc = stray_sweep_file_load(path, &w->file, err);
-	else
+	/* Hashed: read once, hash those bytes, decode them from memory
+	 * (read and hashed ahead by the prefetch thread, in its order). */
+	if (w->o->verify_sha256) {
+		rc = stray_prefetch_take(&w->pf, e, &b, err);
+		taken = rc == STRAY_OK;
+		if (rc == STRAY_PREFETCH_NOT_NEXT) {
+			b = &w->file;
+			rc = stray_sweep_file_load(path, b, err);
+			if (rc == STRAY_OK)
+				rc = stray_sweep_sha256_check_mem(path,
+					b->data, b->len, e->sha256, err);
+		}
+		if (rc == STRAY_OK)
+			rc = stray_sweep_fits_open_buf(path, b, &w->fits,
+						       err);
+	} else {
 		rc = stray_sweep_fits_open(path, &w->fits, err);
-	if (rc == STRAY_OK && w->o->verify_sha256)
-		rc = stray_sweep_sha256_check_mem(path, w->file.data,
-						  w->file.len, e->sha256, err);
-	if (rc == STRAY_OK && w->o->verify_sha256)
-		rc = stray_sweep_fits_open_buf(path, &w->file, &w->fits, err);
-	if (rc != STRAY_OK)
+	}
+	if (rc != STRAY_OK) {
+		if (taken)
+			stray_prefetch_release(&w->pf);
 		return rc;
+	}
 	rc = check_header(w, path, e, &w->fits.h, err);
 	if (rc == STRAY_OK && e->type != STRAY_SWEEP_DARK) {
 		if (w->monitor < 0)
@@ -173,6 +189,8 @@ static int load_frame(struct workspace *w, const struct stray_sweep_entry *e,
 	if (rc == STRAY_OK)
 		rc = stray_sweep_fits_read(&w->fits, pix, err);
 	stray_sweep_fits_close(&w->fits);
+	if (taken)
+		stray_prefetch_release(&w->pf);
 	if (rc != STRAY_OK)
 		return rc;
 	f->n_rows = w->geo.n_rows;
@@ -436,7 +454,8 @@ static int no_duplicate_rows(const char *dir,
 	return rc;
 }
 
-/* Visits: a run of one angle's FULL and AMBIENT frames, or two. */
+/* Visits: a run of one angle's FULL and AMBIENT frames, or two
+ * (planned before the darks are read: the read order needs it). */
 static int plan_visits(struct workspace *w,
 		       struct stray_reduce_sweep_result *res,
 		       struct stray_error *err)
@@ -447,6 +466,14 @@ static int plan_visits(struct workspace *w,
 		return stray_error_set(err, STRAY_ENOMEM, "manifest",
 				       "no memory for the visit plan");
 	res->n_visits = pair_runs(w, find_runs(w));
+	return STRAY_OK;
+}
+
+/* ... and said to be empty where the darks are done. */
+static int check_visits(struct workspace *w,
+			struct stray_reduce_sweep_result *res,
+			struct stray_error *err)
+{
 	if (res->n_visits == 0)
 		return stray_error_at(err, STRAY_ENOTFOUND, w->man.n ?
 			"manifest.csv" : "", 0, "frametyp",
@@ -614,6 +641,36 @@ static int track_ghosts(struct workspace *w,
 	return STRAY_OK;
 }
 
+/*
+ * The order load_frame will ask for frames in: the darks (pass 1), the
+ * darks pass 1 could not keep (pass 2), then every visit's light frames.
+ * Without memory for the list the frames are read as asked.
+ */
+static void start_reading(struct workspace *w,
+			  const struct stray_reduce_sweep_result *res)
+{
+	const struct stray_sweep_entry **seq;
+	size_t i, n = 0, n_dark = 0, v, r;
+
+	seq = malloc((2 * w->man.n + 1) * sizeof(*seq));
+	if (!seq)
+		return;
+	for (i = 0; i < w->man.n; i++)
+		if (w->man.e[i].type == STRAY_SWEEP_DARK)
+			seq[n++] = &w->man.e[i];
+	for (i = 0; i < w->man.n; i++)
+		if (w->man.e[i].type == STRAY_SWEEP_DARK &&
+		    n_dark++ >= w->cache_slots)
+			seq[n++] = &w->man.e[i];
+	for (v = 0; v < res->n_visits; v++)
+		for (r = 0; r < w->plan[v].n_runs; r++)
+			for (i = w->plan[v].first[r]; i <= w->plan[v].last[r];
+			     i++)
+				if (w->man.e[i].type != STRAY_SWEEP_DARK)
+					seq[n++] = &w->man.e[i];
+	stray_prefetch_start(&w->pf, w->dir, seq, n, 1);	/* owns seq */
+}
+
 static int reduce_all(struct workspace *w,
 		      struct stray_reduce_sweep_result *res,
 		      struct stray_error *err)
@@ -621,9 +678,13 @@ static int reduce_all(struct workspace *w,
 	size_t v;
 	int rc;
 
-	if ((rc = setup(w, err)) || (rc = dark_levels(w, res, err)) ||
+	if ((rc = setup(w, err)) || (rc = plan_visits(w, res, err)))
+		return rc;
+	if (w->o->verify_sha256)
+		start_reading(w, res);
+	if ((rc = dark_levels(w, res, err)) ||
 	    (rc = dark_pixels(w, res, err)) ||
-	    (rc = plan_visits(w, res, err)) ||
+	    (rc = check_visits(w, res, err)) ||
 	    (rc = light_buffers(w, res, err)))
 		return rc;
 	for (v = 0; v < res->n_visits; v++)
@@ -662,6 +723,7 @@ int stray_reduce_sweep(const char *dir, const struct stray_reduce_sweep_opts *o,
 		res->n_cols = w->geo.n_cols;
 		res->col0 = w->geo.col0;
 	}
+	stray_prefetch_stop(&w->pf);
 	res->workspace_bytes = w->peak_bytes;
 	stray_big_free(w->pix, w->n_pix * sizeof(*w->pix));
 	stray_big_free(w->mask, w->n_pix);
