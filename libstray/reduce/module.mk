@@ -5,8 +5,10 @@
 #   - libstray/reduce/*.c: the reduction math (libc/libm only, no heap)
 #     and sweep.c, the one call that streams a sweep folder through it
 #     (stray_reduce_sweep), reading the folder through the sweep store
-#     (libstray/sweep: cfitsio, libcsv, OpenSSL); all archived into
-#     libstray.a, linked with $(STRAY_LDLIBS);
+#     (libstray/sweep: cfitsio, libcsv, OpenSSL), with its helpers
+#     bigmem.c (buffers on 2 MiB pages) and prefetch.c (the next frame
+#     read and hashed by a second thread, POSIX threads of libc); all
+#     archived into libstray.a, linked with $(STRAY_LDLIBS);
 #   - its plots go through the OpenCV image writer (tools/module.mk);
 #   - tests/reduce: unit tests, the synthetic-sweep generator
 #     (tests/reduce/synth_*.c, the truth stays there) and the end-to-end
