@@ -20,6 +20,9 @@ $(STRAY_LIB): $(REDUCE_OBJ)
 # accum.c's usual-row loop is written to vectorise (no reassociation: the
 # same bits as scalar code)
 $(B)/obj/libstray/reduce/accum.o: EXTRA_CFLAGS += -ftree-vectorize
+# so are the darks' per-pixel statistics and the 16-bit decode of a frame
+$(B)/obj/libstray/reduce/pixmask.o: EXTRA_CFLAGS += -ftree-vectorize
+$(B)/obj/libstray/sweep/fits_read.o: EXTRA_CFLAGS += -ftree-vectorize
 
 # Tests: one binary per file.  Unit tests of the math link libstray;
 # the sweep tests link the generator and run build/bin/stray.

@@ -22,13 +22,44 @@ void stray_pixstat_init(struct stray_pixstat *s, size_t n_pix, double *mean,
 		mean[i] = m2[i] = 0.0;
 }
 
+/* Welford (1962): running mean and sum of squares of x = row - level. */
+static inline void welford_px(double *restrict mean, double *restrict m2,
+			      const uint16_t *restrict row, size_t c,
+			      double lc, double k)
+{
+	double x = row[c] - lc;
+	double d = x - mean[c];
+
+	mean[c] += d * k;
+	m2[c] += d * (x - mean[c]);
+}
+
+/* One row, four columns (one Bayer period) a step so the loop
+ * vectorises: the same arithmetic pixel by pixel. */
+static void welford_row(double *restrict mean, double *restrict m2,
+			const uint16_t *restrict row, size_t n_cols,
+			const double *lvl, double k)
+{
+	double l0 = lvl[0], l1 = lvl[1], l2 = lvl[2], l3 = lvl[3];
+	size_t c;
+
+	for (c = 0; c + 4 <= n_cols; c += 4) {
+		welford_px(mean, m2, row, c, l0, k);
+		welford_px(mean, m2, row, c + 1, l1, k);
+		welford_px(mean, m2, row, c + 2, l2, k);
+		welford_px(mean, m2, row, c + 3, l3, k);
+	}
+	for (; c < n_cols; c++)
+		welford_px(mean, m2, row, c, lvl[c & 3], k);
+}
+
 int stray_pixstat_add(struct stray_pixstat *s,
 		      const struct stray_dark_model *m,
 		      const struct stray_frame *f, struct stray_error *err)
 {
 	const struct stray_dark_level *l;
 	double k;
-	size_t r, c, li;
+	size_t r, li;
 	int rc;
 
 	if (f->n_rows * f->n_cols != s->n_pix)
@@ -49,14 +80,8 @@ int stray_pixstat_add(struct stray_pixstat *s,
 		for (ph = 0; ph < 4; ph++)	/* the channel repeats every 4 */
 			lvl[ph] = l->mean[stray_bayer_channel(&m->map,
 				f->det_row[r], f->col0 + (long)ph)];
-		for (c = 0; c < f->n_cols; c++) {
-			double x = row[c] - lvl[c & 3];
-			double d = x - s->mean[base + c];
-
-			/* Welford (1962): running mean and sum of squares. */
-			s->mean[base + c] += d * k;
-			s->m2[base + c] += d * (x - s->mean[base + c]);
-		}
+		welford_row(s->mean + base, s->m2 + base, row, f->n_cols, lvl,
+			    k);
 	}
 	return STRAY_OK;
 }
