@@ -4,6 +4,16 @@
  * thesis §3.2: darks (levels per read channel, then hot/dead pixels),
  * then every visit to an angle (FULL and AMBIENT groups -> J, eq. 3.6),
  * then the curve (eq. 3.12-3.15) and the ghost tracks.
+ *
+ * Reading (issue 19): every frame file is read once, whole; its SHA-256
+ * is taken of those bytes and cfitsio decodes the same bytes from memory.
+ * A second thread (prefetch.c) reads and hashes the next frame while this
+ * one is decoded and accumulated.  The darks of pass 1 are decoded into
+ * the part of the arena the pixel statistics leave free (up to
+ * STRAY_REDUCE_DARK_CACHE), so pass 2 reads no file again; the phases
+ * share that one arena, on 2 MiB pages (bigmem.c).  workspace_bytes
+ * still counts the buffers each phase lays in it, as when each had its
+ * own allocation.
  */
 #include <math.h>
 #include <stdio.h>
