@@ -120,16 +120,24 @@ int stray_dark_add(struct stray_dark_model *m, const struct stray_frame *f,
 	memset(hist, 0, STRAY_DARK_HIST_LEN * sizeof(*hist));
 	for (r = 0; r < f->n_rows; r++) {
 		const uint16_t *row = f->pix + r * f->n_cols;
+		uint32_t *h[4];
 		unsigned ph[4], k;
 
-		for (k = 0; k < 4; k++)	/* the channel repeats every 4 */
+		for (k = 0; k < 4; k++) {	/* the channel repeats every 4 */
 			ph[k] = stray_bayer_channel(&m->map, f->det_row[r],
 						    f->col0 + (long)k);
-		for (c = 0; c < f->n_cols; c++) {
-			ch = ph[c & 3];
-			hist[ch * 65536u + row[c]]++;
-			n_ch[ch] += 1.0;
+			h[k] = hist + ph[k] * 65536u;
+			/* every column is one read of its channel */
+			n_ch[ph[k]] += (double)((f->n_cols + 3 - k) / 4);
 		}
+		for (c = 0; c + 4 <= f->n_cols; c += 4) {
+			h[0][row[c]]++;
+			h[1][row[c + 1]]++;
+			h[2][row[c + 2]]++;
+			h[3][row[c + 3]]++;
+		}
+		for (; c < f->n_cols; c++)
+			h[c & 3][row[c]]++;
 	}
 	l = &m->lvl[li];
 	for (ch = 0; ch < STRAY_BAYER_CHANNELS; ch++) {

@@ -5,8 +5,10 @@
 #   - libstray/reduce/*.c: the reduction math (libc/libm only, no heap)
 #     and sweep.c, the one call that streams a sweep folder through it
 #     (stray_reduce_sweep), reading the folder through the sweep store
-#     (libstray/sweep: cfitsio, libcsv, OpenSSL); all archived into
-#     libstray.a, linked with $(STRAY_LDLIBS);
+#     (libstray/sweep: cfitsio, libcsv, OpenSSL), with its helpers
+#     bigmem.c (buffers on 2 MiB pages) and prefetch.c (the next frame
+#     read and hashed by a second thread, POSIX threads of libc); all
+#     archived into libstray.a, linked with $(STRAY_LDLIBS);
 #   - its plots go through the OpenCV image writer (tools/module.mk);
 #   - tests/reduce: unit tests, the synthetic-sweep generator
 #     (tests/reduce/synth_*.c, the truth stays there) and the end-to-end
@@ -18,6 +20,9 @@ $(STRAY_LIB): $(REDUCE_OBJ)
 # accum.c's usual-row loop is written to vectorise (no reassociation: the
 # same bits as scalar code)
 $(B)/obj/libstray/reduce/accum.o: EXTRA_CFLAGS += -ftree-vectorize
+# so are the darks' per-pixel statistics and the 16-bit decode of a frame
+$(B)/obj/libstray/reduce/pixmask.o: EXTRA_CFLAGS += -ftree-vectorize
+$(B)/obj/libstray/sweep/fits_read.o: EXTRA_CFLAGS += -ftree-vectorize
 
 # Tests: one binary per file.  Unit tests of the math link libstray;
 # the sweep tests link the generator and run build/bin/stray.

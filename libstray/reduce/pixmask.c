@@ -4,6 +4,8 @@
  * robust spread of all pixels.
  */
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 #include "stray/reduce_dark.h"
 
@@ -20,13 +22,44 @@ void stray_pixstat_init(struct stray_pixstat *s, size_t n_pix, double *mean,
 		mean[i] = m2[i] = 0.0;
 }
 
+/* Welford (1962): running mean and sum of squares of x = row - level. */
+static inline void welford_px(double *restrict mean, double *restrict m2,
+			      const uint16_t *restrict row, size_t c,
+			      double lc, double k)
+{
+	double x = row[c] - lc;
+	double d = x - mean[c];
+
+	mean[c] += d * k;
+	m2[c] += d * (x - mean[c]);
+}
+
+/* One row, four columns (one Bayer period) a step so the loop
+ * vectorises: the same arithmetic pixel by pixel. */
+static void welford_row(double *restrict mean, double *restrict m2,
+			const uint16_t *restrict row, size_t n_cols,
+			const double *lvl, double k)
+{
+	double l0 = lvl[0], l1 = lvl[1], l2 = lvl[2], l3 = lvl[3];
+	size_t c;
+
+	for (c = 0; c + 4 <= n_cols; c += 4) {
+		welford_px(mean, m2, row, c, l0, k);
+		welford_px(mean, m2, row, c + 1, l1, k);
+		welford_px(mean, m2, row, c + 2, l2, k);
+		welford_px(mean, m2, row, c + 3, l3, k);
+	}
+	for (; c < n_cols; c++)
+		welford_px(mean, m2, row, c, lvl[c & 3], k);
+}
+
 int stray_pixstat_add(struct stray_pixstat *s,
 		      const struct stray_dark_model *m,
 		      const struct stray_frame *f, struct stray_error *err)
 {
 	const struct stray_dark_level *l;
 	double k;
-	size_t r, c, li;
+	size_t r, li;
 	int rc;
 
 	if (f->n_rows * f->n_cols != s->n_pix)
@@ -47,71 +80,120 @@ int stray_pixstat_add(struct stray_pixstat *s,
 		for (ph = 0; ph < 4; ph++)	/* the channel repeats every 4 */
 			lvl[ph] = l->mean[stray_bayer_channel(&m->map,
 				f->det_row[r], f->col0 + (long)ph)];
-		for (c = 0; c < f->n_cols; c++) {
-			double x = row[c] - lvl[c & 3];
-			double d = x - s->mean[base + c];
-
-			/* Welford (1962): running mean and sum of squares. */
-			s->mean[base + c] += d * k;
-			s->m2[base + c] += d * (x - s->mean[base + c]);
-		}
+		welford_row(s->mean + base, s->m2 + base, row, f->n_cols, lvl,
+			    k);
 	}
 	return STRAY_OK;
 }
 
-/* k-th smallest of v[0..n) by Hoare's selection (reorders v). */
-static double select_kth(double *v, size_t n, size_t k)
+/*
+ * The median by radix selection (exact, O(n), no comparisons to
+ * mispredict): doubles as order-preserving 64-bit keys, the candidates
+ * narrowed 12 bits a step by a histogram of that digit (the last step
+ * overlaps bits already shared: harmless).
+ */
+#define DIGIT_BITS 12
+#define DIGIT_BINS (1u << DIGIT_BITS)
+
+/* Order-preserving key of a finite double (+0.0 and -0.0 alike). */
+static uint64_t key_of(double x)
 {
-	size_t lo = 0, hi = n - 1;
+	uint64_t u;
 
-	while (lo < hi) {	/* each pass shrinks [lo, hi] */
-		double pivot = v[lo + (hi - lo) / 2];
-		size_t i = lo, j = hi;
-
-		while (i <= j) {
-			while (v[i] < pivot)
-				i++;
-			while (v[j] > pivot)
-				j--;
-			if (i <= j) {
-				double t = v[i];
-
-				v[i] = v[j];
-				v[j] = t;
-				i++;
-				if (j == 0)
-					break;
-				j--;
-			}
-		}
-		if (k <= j)
-			hi = j;
-		else if (k >= i)
-			lo = i;
-		else
-			break;
-	}
-	return v[k];
+	x += 0.0;		/* -0.0 -> +0.0 */
+	memcpy(&u, &x, sizeof(u));
+	return u >> 63 ? ~u : u | 0x8000000000000000ull;
 }
 
-/* Median of v[0..n) (n >= 1), reordering v. */
-static double median_sorting(double *v, size_t n)
+static double value_of(uint64_t k)
 {
-	double hi = select_kth(v, n, n / 2), lo = hi;
-	size_t i;
+	uint64_t u = k >> 63 ? k & 0x7fffffffffffffffull : ~k;
+	double x;
 
-	if (n % 2 == 0) {	/* the largest of the lower half */
-		lo = v[0];
-		for (i = 1; i < n / 2; i++)
-			lo = v[i] > lo ? v[i] : lo;
+	memcpy(&x, &u, sizeof(x));
+	return x;
+}
+
+/* Bucket holding rank k of a histogram; *below: the count under it. */
+static unsigned bucket_of(const uint32_t *h, size_t k, size_t *below)
+{
+	size_t cum = 0;
+	unsigned b;
+
+	for (b = 0; b + 1 < DIGIT_BINS && cum + h[b] <= k; b++)
+		cum += h[b];
+	*below = cum;
+	return b;
+}
+
+/*
+ * Ranks k - 1 and k (1 <= k < n) of key[0..n) into *lo and *hi
+ * (reorders key; hist DIGIT_BINS counters).  While both ranks share a
+ * bucket the candidates shrink to it; once they part, the lower is the
+ * largest of its bucket and the upper the smallest of its own.
+ */
+static void select_pair(uint64_t *key, size_t n, size_t k, uint32_t *hist,
+			uint64_t *lo, uint64_t *hi)
+{
+	int shift = 64 - DIGIT_BITS;
+
+	for (;;) {
+		size_t i, m = 0, below_lo, below_hi;
+		unsigned b_lo, b_hi;
+		uint64_t mx = 0, mn = ~0ull;
+
+		memset(hist, 0, DIGIT_BINS * sizeof(*hist));
+		for (i = 0; i < n; i++)
+			hist[(key[i] >> shift) & (DIGIT_BINS - 1)]++;
+		b_lo = bucket_of(hist, k - 1, &below_lo);
+		b_hi = bucket_of(hist, k, &below_hi);
+		if (b_lo != b_hi) {
+			for (i = 0; i < n; i++) {
+				unsigned b = (key[i] >> shift) &
+					     (DIGIT_BINS - 1);
+
+				if (b == b_lo && key[i] > mx)
+					mx = key[i];
+				if (b == b_hi && key[i] < mn)
+					mn = key[i];
+			}
+			*lo = mx;
+			*hi = mn;
+			return;
+		}
+		for (i = 0; i < n; i++) {	/* keep the shared bucket */
+			key[m] = key[i];	/* (no branch to mispredict) */
+			m += ((key[i] >> shift) & (DIGIT_BINS - 1)) == b_lo;
+		}
+		n = m;
+		k -= below_lo;
+		if (shift == 0)
+			break;
+		shift = shift > DIGIT_BITS ? shift - DIGIT_BITS : 0;
 	}
-	return 0.5 * (lo + hi);
+	*lo = *hi = key[0];	/* all 64 bits agree */
+}
+
+/* Median of the n keys (n >= 1): the middle one, or the mean of the
+ * middle two (reorders key). */
+static double median_keys(uint64_t *key, size_t n, uint32_t *hist)
+{
+	uint64_t lo, hi;
+
+	if (n == 1)
+		return value_of(key[0]);
+	select_pair(key, n, n / 2, hist, &lo, &hi);
+	if (n % 2)
+		lo = hi;
+	return 0.5 * (value_of(lo) + value_of(hi));
 }
 
 int stray_mask_build(const struct stray_pixstat *s, double hot_sigma,
 		     uint8_t *mask, double *scratch,
 		     struct stray_mask_stats *out, struct stray_error *err)
 {
+	uint64_t *key = (uint64_t *)scratch;	/* same 8 bytes a pixel */
+	uint32_t hist[DIGIT_BINS];
 	double med, spread;
 	size_t i;
 
@@ -123,12 +205,12 @@ int stray_mask_build(const struct stray_pixstat *s, double hot_sigma,
 		return stray_error_set_value(err, STRAY_EINVAL, "hot_sigma",
 			"must be finite and > 0", hot_sigma);
 	for (i = 0; i < s->n_pix; i++)
-		scratch[i] = s->mean[i];
-	med = median_sorting(scratch, s->n_pix);
+		key[i] = key_of(s->mean[i]);
+	med = median_keys(key, s->n_pix, hist);
 	for (i = 0; i < s->n_pix; i++)
-		scratch[i] = fabs(s->mean[i] - med);
+		key[i] = key_of(fabs(s->mean[i] - med));
 	/* 1.4826 MAD estimates a Gaussian sigma; floor it for quiet data. */
-	spread = fmax(1.4826 * median_sorting(scratch, s->n_pix), 0.25);
+	spread = fmax(1.4826 * median_keys(key, s->n_pix, hist), 0.25);
 	out->n_hot = out->n_dead = 0;
 	out->excess_median = med;
 	out->excess_sigma = spread;

@@ -8,19 +8,41 @@
 
 #include "stray/reduce_response.h"
 
-/* Single-frame variance of a rate, pooled over pixels with repeats. */
-static double pooled_var(const struct stray_accum *a,
-			 const struct stray_dark_model *d)
+/* The sums of pooled_var for two groups in one pass (four independent
+ * chains of additions instead of two after two; each in pixel order, so
+ * the same sums). */
+static void pooled_sums(const struct stray_accum *a,
+			const struct stray_accum *b, double *sum)
 {
-	double num = 0.0, den = 0.0, v = 0.0, k;
-	size_t i, l;
+	double na = 0.0, da = 0.0, nb = 0.0, db = 0.0;
+	size_t i;
+
+	for (i = 0; i < a->n_pix; i++) {
+		if (a->n[i] >= 2) {
+			na += a->m2[i];
+			da += a->n[i] - 1.0;
+		}
+		if (b->n[i] >= 2) {
+			nb += b->m2[i];
+			db += b->n[i] - 1.0;
+		}
+	}
+	sum[0] = na;
+	sum[1] = da;
+	sum[2] = nb;
+	sum[3] = db;
+}
+
+/* Single-frame variance of a rate, pooled over pixels with repeats
+ * (num, den: the sums of pooled_sums). */
+static double pooled_var(const struct stray_accum *a,
+			 const struct stray_dark_model *d, double num,
+			 double den)
+{
+	double v = 0.0, k;
+	size_t l;
 	unsigned ch;
 
-	for (i = 0; i < a->n_pix; i++)
-		if (a->n[i] >= 2) {
-			num += a->m2[i];
-			den += a->n[i] - 1.0;
-		}
 	if (den > 0.0)
 		return num / den;
 	/* One frame only: read and dark noise of the darks, a lower bound. */
@@ -156,7 +178,7 @@ int stray_response_compute(const struct stray_accum *full,
 			   struct stray_error *err)
 {
 	size_t n = geo->n_rows * geo->n_cols, i, r;
-	double p = 0.0, vp = 0.0, s2 = 0.0;
+	double p = 0.0, vp = 0.0, s2 = 0.0, sum[4];
 
 	if (full->n_pix != n || amb->n_pix != n)
 		return stray_error_set(err, STRAY_EINVAL, "NAXIS",
@@ -167,8 +189,9 @@ int stray_response_compute(const struct stray_accum *full,
 				       : "no FULL frame at this angle");
 	out->n_pix = n;
 	out->n_valid = out->n_masked = out->n_sat_pix = 0;
-	per_pixel_j(full, amb, mask, pooled_var(full, d), pooled_var(amb, d),
-		    j, var_j, out);
+	pooled_sums(full, amb, sum);
+	per_pixel_j(full, amb, mask, pooled_var(full, d, sum[0], sum[1]),
+		    pooled_var(amb, d, sum[2], sum[3]), j, var_j, out);
 	for (r = 0; r < geo->n_rows; r++) {
 		size_t off = r * geo->n_cols;
 

@@ -4,6 +4,16 @@
  * thesis §3.2: darks (levels per read channel, then hot/dead pixels),
  * then every visit to an angle (FULL and AMBIENT groups -> J, eq. 3.6),
  * then the curve (eq. 3.12-3.15) and the ghost tracks.
+ *
+ * Reading (issue 19): every frame file is read once, whole; its SHA-256
+ * is taken of those bytes and cfitsio decodes the same bytes from memory.
+ * A second thread (prefetch.c) reads and hashes the next frame while this
+ * one is decoded and accumulated.  The darks of pass 1 are decoded into
+ * the part of the arena the pixel statistics leave free (up to
+ * STRAY_REDUCE_DARK_CACHE), so pass 2 reads no file again; the phases
+ * share that one arena, on 2 MiB pages (bigmem.c).  workspace_bytes
+ * still counts the buffers each phase lays in it, as when each had its
+ * own allocation.
  */
 #include <math.h>
 #include <stdio.h>
@@ -13,6 +23,11 @@
 #include "stray/errfmt.h"
 #include "stray/sweep_store.h"
 #include "stray/reduce_sweep.h"
+#include "bigmem.h"
+#include "prefetch.h"
+
+/* Darks kept in memory between the two dark passes, at most. */
+#define STRAY_REDUCE_DARK_CACHE 6
 
 struct visit_plan {
 	/* Manifest runs (darks skipped inside): the visit's own, and a run
@@ -29,6 +44,8 @@ struct workspace {
 	const struct stray_reduce_sweep_opts *o;
 	struct stray_sweep_manifest man;
 	struct stray_sweep_fits fits;		/* the frame being read */
+	struct stray_sweep_buf file;	/* its bytes, when hashed */
+	struct stray_prefetch pf;	/* the next ones, read and hashed */
 	struct stray_sweep_header geo;	/* the first frame: the geometry */
 	size_t n_pix;
 	uint16_t *pix;
@@ -39,6 +56,11 @@ struct workspace {
 	float *j, *var_j;
 	double *prof_var, *ghost_scratch;
 	struct visit_plan *plan;
+	/* The phases' memory, and in it (beside the pixel statistics) the
+	 * darks of pass 1 kept for pass 2. */
+	unsigned char *arena;
+	size_t arena_bytes, cache_at, cache_slots, n_cached;
+	struct stray_frame cached[STRAY_REDUCE_DARK_CACHE];
 	int monitor;		/* -1 unknown, else whether light frames
 				 * carry MONITOR: all or none must */
 	size_t bytes, peak_bytes;
@@ -56,7 +78,7 @@ void stray_reduce_sweep_opts_default(struct stray_reduce_sweep_opts *o)
 /* Per-pixel allocation, counted toward the workspace bound. */
 static void *ws_alloc(struct workspace *w, size_t bytes)
 {
-	void *p = calloc(1, bytes ? bytes : 1);
+	void *p = stray_big_alloc(bytes);
 
 	if (p) {
 		w->bytes += bytes;
@@ -66,11 +88,23 @@ static void *ws_alloc(struct workspace *w, size_t bytes)
 	return p;
 }
 
-static void ws_free(struct workspace *w, void *p, size_t bytes)
+/*
+ * A buffer of one phase, laid in the phase arena at offset at (the
+ * darks' histograms, then their pixel statistics, then the light
+ * accumulators: one after the other in the same memory), counted as
+ * ws_alloc counts.
+ */
+static void *ws_take(struct workspace *w, size_t bytes, size_t at)
 {
-	if (p)
-		w->bytes -= bytes;
-	free(p);
+	w->bytes += bytes;
+	if (w->bytes > w->peak_bytes)
+		w->peak_bytes = w->bytes;
+	return w->arena + at;
+}
+
+static void ws_give(struct workspace *w, size_t bytes)
+{
+	w->bytes -= bytes;
 }
 
 static int same(double a, double b, double rel)
@@ -118,19 +152,41 @@ static void frame_path(const struct workspace *w,
 	snprintf(path, size, "%s/%s", w->dir, e->file);
 }
 
-/* Verify, open, check and read one frame into w->pix; fill f. */
+/* Verify, open, check and read one frame into pix; fill f. */
 static int load_frame(struct workspace *w, const struct stray_sweep_entry *e,
-		      struct stray_frame *f, struct stray_error *err)
+		      struct stray_frame *f, uint16_t *pix,
+		      struct stray_error *err)
 {
 	char path[4096 + STRAY_SWEEP_FILE_MAX];
 	int rc;
 
+	struct stray_sweep_buf *b = &w->file;
+	int taken = 0;
+
 	frame_path(w, e, path, sizeof(path));
-	if (w->o->verify_sha256 &&
-	    (rc = stray_sweep_sha256_check(path, e->sha256, err)) != STRAY_OK)
+	/* Hashed: read once, hash those bytes, decode them from memory
+	 * (read and hashed ahead by the prefetch thread, in its order). */
+	if (w->o->verify_sha256) {
+		rc = stray_prefetch_take(&w->pf, e, &b, err);
+		taken = rc == STRAY_OK;
+		if (rc == STRAY_PREFETCH_NOT_NEXT) {
+			b = &w->file;
+			rc = stray_sweep_file_load(path, b, err);
+			if (rc == STRAY_OK)
+				rc = stray_sweep_sha256_check_mem(path,
+					b->data, b->len, e->sha256, err);
+		}
+		if (rc == STRAY_OK)
+			rc = stray_sweep_fits_open_buf(path, b, &w->fits,
+						       err);
+	} else {
+		rc = stray_sweep_fits_open(path, &w->fits, err);
+	}
+	if (rc != STRAY_OK) {
+		if (taken)
+			stray_prefetch_release(&w->pf);
 		return rc;
-	if ((rc = stray_sweep_fits_open(path, &w->fits, err)) != STRAY_OK)
-		return rc;
+	}
 	rc = check_header(w, path, e, &w->fits.h, err);
 	if (rc == STRAY_OK && e->type != STRAY_SWEEP_DARK) {
 		if (w->monitor < 0)
@@ -141,13 +197,15 @@ static int load_frame(struct workspace *w, const struct stray_sweep_entry *e,
 				"present in some light frames only");
 	}
 	if (rc == STRAY_OK)
-		rc = stray_sweep_fits_read(&w->fits, w->pix, err);
+		rc = stray_sweep_fits_read(&w->fits, pix, err);
 	stray_sweep_fits_close(&w->fits);
+	if (taken)
+		stray_prefetch_release(&w->pf);
 	if (rc != STRAY_OK)
 		return rc;
 	f->n_rows = w->geo.n_rows;
 	f->n_cols = w->geo.n_cols;
-	f->pix = w->pix;
+	f->pix = pix;
 	f->det_row = w->geo.det_row;
 	f->col0 = w->geo.col0;
 	f->t_exp_s = w->fits.h.exptime_s;
@@ -171,6 +229,31 @@ static int at_frame(struct workspace *w, const struct stray_sweep_entry *e,
 	return rc;
 }
 
+/*
+ * The phases' arena: the largest of the darks' histograms, their pixel
+ * statistics (mean, m2, scratch: 24 bytes a pixel) and the light
+ * buffers (two accumulators, J and its variance: 28), with room after
+ * the statistics' mean and m2 for up to STRAY_REDUCE_DARK_CACHE darks.
+ */
+static unsigned char *arena_alloc(struct workspace *w)
+{
+	size_t n = w->n_pix, frame = n * sizeof(uint16_t);
+	size_t hist = STRAY_DARK_HIST_LEN * sizeof(uint32_t);
+	size_t light = 2 * stray_accum_bytes(n) + 2 * n * sizeof(float);
+	size_t stats = 3 * n * sizeof(double), a;
+
+	w->cache_at = 2 * n * sizeof(double) > hist ? 2 * n * sizeof(double)
+						     : hist;
+	a = light > stats ? light : stats;
+	if (a < w->cache_at + STRAY_REDUCE_DARK_CACHE * frame)
+		a = w->cache_at + STRAY_REDUCE_DARK_CACHE * frame;
+	w->cache_slots = (a - w->cache_at) / (frame ? frame : 1);
+	if (w->cache_slots > STRAY_REDUCE_DARK_CACHE)
+		w->cache_slots = STRAY_REDUCE_DARK_CACHE;
+	w->arena_bytes = a;
+	return stray_big_alloc(a);
+}
+
 /* Learn the geometry from the first frame and size the buffers. */
 static int setup(struct workspace *w, struct stray_error *err)
 {
@@ -185,7 +268,8 @@ static int setup(struct workspace *w, struct stray_error *err)
 	w->n_pix = w->geo.n_rows * w->geo.n_cols;
 	w->pix = ws_alloc(w, w->n_pix * sizeof(*w->pix));
 	w->mask = ws_alloc(w, w->n_pix);
-	if (!w->pix || !w->mask)
+	w->arena = arena_alloc(w);
+	if (!w->pix || !w->mask || !w->arena)
 		return stray_error_set(err, STRAY_ENOMEM, "frame",
 				       "no memory for the frame buffers");
 	stray_dark_init(&w->dark, &w->o->map);
@@ -197,25 +281,29 @@ static int dark_levels(struct workspace *w,
 		       struct stray_reduce_sweep_result *res,
 		       struct stray_error *err)
 {
-	uint32_t *hist = ws_alloc(w, STRAY_DARK_HIST_LEN * sizeof(*hist));
+	uint32_t *hist = ws_take(w, STRAY_DARK_HIST_LEN * sizeof(*hist), 0);
 	struct stray_frame f;
 	size_t i;
 	int rc = STRAY_OK;
 
-	if (!hist)
-		return stray_error_set(err, STRAY_ENOMEM, "DARK",
-				       "no memory for the histograms");
 	for (i = 0; i < w->man.n && rc == STRAY_OK; i++) {
+		/* the first darks straight into the cache for pass 2 */
+		int keep = w->n_cached < w->cache_slots;
+		uint16_t *pix = keep ? (uint16_t *)(w->arena + w->cache_at) +
+				w->n_cached * w->n_pix : w->pix;
+
 		if (w->man.e[i].type != STRAY_SWEEP_DARK)
 			continue;
-		rc = load_frame(w, &w->man.e[i], &f, err);
+		rc = load_frame(w, &w->man.e[i], &f, pix, err);
 		if (rc == STRAY_OK)
 			rc = at_frame(w, &w->man.e[i],
 				      stray_dark_add(&w->dark, &f, hist, err),
 				      err);
+		if (rc == STRAY_OK && keep)
+			w->cached[w->n_cached++] = f;
 		res->n_darks++;
 	}
-	ws_free(w, hist, STRAY_DARK_HIST_LEN * sizeof(*hist));
+	ws_give(w, STRAY_DARK_HIST_LEN * sizeof(*hist));
 	stray_dark_finish(&w->dark);
 	return rc;
 }
@@ -243,22 +331,22 @@ static int dark_pixels(struct workspace *w,
 		       struct stray_reduce_sweep_result *res,
 		       struct stray_error *err)
 {
-	size_t nb = w->n_pix * sizeof(double), i;
-	double *mean = ws_alloc(w, nb), *m2 = ws_alloc(w, nb);
-	double *scratch = ws_alloc(w, nb);
+	size_t nb = w->n_pix * sizeof(double), i, k = 0;
+	double *mean = ws_take(w, nb, 0), *m2 = ws_take(w, nb, nb);
+	/* over the cached darks: used once they are done with */
+	double *scratch = ws_take(w, nb, 2 * nb);
 	struct stray_pixstat s;
 	struct stray_frame f;
 	int rc = STRAY_OK;
 
-	if (!mean || !m2 || !scratch)
-		rc = stray_error_set(err, STRAY_ENOMEM, "DARK",
-				     "no memory for the pixel statistics");
-	else
-		stray_pixstat_init(&s, w->n_pix, mean, m2);
+	stray_pixstat_init(&s, w->n_pix, mean, m2);
 	for (i = 0; i < w->man.n && rc == STRAY_OK; i++) {
 		if (w->man.e[i].type != STRAY_SWEEP_DARK)
 			continue;
-		rc = load_frame(w, &w->man.e[i], &f, err);
+		if (k < w->n_cached)	/* pass 1 read, checked and kept it */
+			f = w->cached[k++];
+		else
+			rc = load_frame(w, &w->man.e[i], &f, w->pix, err);
 		if (rc == STRAY_OK)
 			rc = at_frame(w, &w->man.e[i],
 				      stray_pixstat_add(&s, &w->dark, &f, err),
@@ -275,9 +363,7 @@ static int dark_pixels(struct workspace *w,
 	}
 	if (rc == STRAY_OK)
 		list_pixels(w, res);
-	ws_free(w, scratch, nb);
-	ws_free(w, m2, nb);
-	ws_free(w, mean, nb);
+	ws_give(w, 3 * nb);
 	return rc;
 }
 
@@ -378,7 +464,8 @@ static int no_duplicate_rows(const char *dir,
 	return rc;
 }
 
-/* Visits: a run of one angle's FULL and AMBIENT frames, or two. */
+/* Visits: a run of one angle's FULL and AMBIENT frames, or two
+ * (planned before the darks are read: the read order needs it). */
 static int plan_visits(struct workspace *w,
 		       struct stray_reduce_sweep_result *res,
 		       struct stray_error *err)
@@ -389,6 +476,14 @@ static int plan_visits(struct workspace *w,
 		return stray_error_set(err, STRAY_ENOMEM, "manifest",
 				       "no memory for the visit plan");
 	res->n_visits = pair_runs(w, find_runs(w));
+	return STRAY_OK;
+}
+
+/* ... and said to be empty where the darks are done. */
+static int check_visits(struct workspace *w,
+			struct stray_reduce_sweep_result *res,
+			struct stray_error *err)
+{
 	if (res->n_visits == 0)
 		return stray_error_at(err, STRAY_ENOTFOUND, w->man.n ?
 			"manifest.csv" : "", 0, "frametyp",
@@ -401,11 +496,12 @@ static int light_buffers(struct workspace *w,
 			 struct stray_error *err)
 {
 	size_t ab = stray_accum_bytes(w->n_pix), nc = w->geo.n_cols;
+	size_t fb = w->n_pix * sizeof(float);
 
-	w->acc_mem[0] = ws_alloc(w, ab);
-	w->acc_mem[1] = ws_alloc(w, ab);
-	w->j = ws_alloc(w, w->n_pix * sizeof(float));
-	w->var_j = ws_alloc(w, w->n_pix * sizeof(float));
+	w->acc_mem[0] = ws_take(w, ab, 0);
+	w->acc_mem[1] = ws_take(w, ab, ab);
+	w->j = ws_take(w, fb, 2 * ab);
+	w->var_j = ws_take(w, fb, 2 * ab + fb);
 	w->prof_var = calloc(nc, sizeof(double));
 	w->ghost_scratch = calloc(stray_ghost_scratch(nc, &w->o->ghost),
 				  sizeof(double));
@@ -435,7 +531,7 @@ static int accumulate_visit(struct workspace *w, const struct visit_plan *p,
 
 			if (e->type == STRAY_SWEEP_DARK)
 				continue;
-			rc = load_frame(w, e, &f, err);
+			rc = load_frame(w, e, &f, w->pix, err);
 			if (rc == STRAY_OK)
 				rc = at_frame(w, e, stray_accum_add(
 					e->type == STRAY_SWEEP_FULL ? &w->full : &w->amb,
@@ -555,6 +651,36 @@ static int track_ghosts(struct workspace *w,
 	return STRAY_OK;
 }
 
+/*
+ * The order load_frame will ask for frames in: the darks (pass 1), the
+ * darks pass 1 could not keep (pass 2), then every visit's light frames.
+ * Without memory for the list the frames are read as asked.
+ */
+static void start_reading(struct workspace *w,
+			  const struct stray_reduce_sweep_result *res)
+{
+	const struct stray_sweep_entry **seq;
+	size_t i, n = 0, n_dark = 0, v, r;
+
+	seq = malloc((2 * w->man.n + 1) * sizeof(*seq));
+	if (!seq)
+		return;
+	for (i = 0; i < w->man.n; i++)
+		if (w->man.e[i].type == STRAY_SWEEP_DARK)
+			seq[n++] = &w->man.e[i];
+	for (i = 0; i < w->man.n; i++)
+		if (w->man.e[i].type == STRAY_SWEEP_DARK &&
+		    n_dark++ >= w->cache_slots)
+			seq[n++] = &w->man.e[i];
+	for (v = 0; v < res->n_visits; v++)
+		for (r = 0; r < w->plan[v].n_runs; r++)
+			for (i = w->plan[v].first[r]; i <= w->plan[v].last[r];
+			     i++)
+				if (w->man.e[i].type != STRAY_SWEEP_DARK)
+					seq[n++] = &w->man.e[i];
+	stray_prefetch_start(&w->pf, w->dir, seq, n, 1);	/* owns seq */
+}
+
 static int reduce_all(struct workspace *w,
 		      struct stray_reduce_sweep_result *res,
 		      struct stray_error *err)
@@ -562,9 +688,13 @@ static int reduce_all(struct workspace *w,
 	size_t v;
 	int rc;
 
-	if ((rc = setup(w, err)) || (rc = dark_levels(w, res, err)) ||
+	if ((rc = setup(w, err)) || (rc = plan_visits(w, res, err)))
+		return rc;
+	if (w->o->verify_sha256)
+		start_reading(w, res);
+	if ((rc = dark_levels(w, res, err)) ||
 	    (rc = dark_pixels(w, res, err)) ||
-	    (rc = plan_visits(w, res, err)) ||
+	    (rc = check_visits(w, res, err)) ||
 	    (rc = light_buffers(w, res, err)))
 		return rc;
 	for (v = 0; v < res->n_visits; v++)
@@ -603,16 +733,15 @@ int stray_reduce_sweep(const char *dir, const struct stray_reduce_sweep_opts *o,
 		res->n_cols = w->geo.n_cols;
 		res->col0 = w->geo.col0;
 	}
+	stray_prefetch_stop(&w->pf);
 	res->workspace_bytes = w->peak_bytes;
-	free(w->pix);
-	free(w->mask);
-	free(w->acc_mem[0]);
-	free(w->acc_mem[1]);
-	free(w->j);
-	free(w->var_j);
+	stray_big_free(w->pix, w->n_pix * sizeof(*w->pix));
+	stray_big_free(w->mask, w->n_pix);
+	stray_big_free(w->arena, w->arena_bytes);
 	free(w->prof_var);
 	free(w->ghost_scratch);
 	free(w->plan);
+	stray_sweep_buf_free(&w->file);
 	stray_sweep_manifest_free(&w->man);
 	free(w);
 	return rc;

@@ -171,9 +171,11 @@ static int read_geometry(struct stray_sweep_fits *f, struct stray_error *err)
 	int status = 0, bitpix = 0, naxis = 0;
 
 	if (fits_get_img_equivtype(f->fptr, &bitpix, &status) ||
+	    fits_get_img_type(f->fptr, &f->bitpix, &status) ||
 	    fits_get_img_dim(f->fptr, &naxis, &status))
 		return fits_fail(f->path, "BITPIX", "cannot be read", status,
 				 err);
+	f->equiv_bitpix = bitpix;
 	if (bitpix != USHORT_IMG && bitpix != SHORT_IMG)
 		return stray_error_at(err, STRAY_EPARSE, f->path, 0, "BITPIX",
 			"must be 16 (with BZERO 32768 for unsigned counts)");
@@ -245,6 +247,7 @@ int stray_sweep_fits_open(const char *path, struct stray_sweep_fits *f,
 	f->path = path;
 	f->fptr = NULL;
 	f->mem = NULL;
+	f->mem_borrowed = 0;
 	if (fits_open_image((fitsfile **)&f->fptr, path, READONLY, &status))
 		return fits_fail(path, "file", "not a readable FITS image",
 				 status, err);
@@ -266,6 +269,8 @@ int stray_sweep_fits_open_mem(const char *name, const void *data, size_t len,
 	 * with zeros so a short buffer is never read past its end. */
 	f->mem = calloc(1, padded ? padded : 2880);
 	f->mem_size = padded;
+	f->mem_borrowed = 0;
+	f->data_len = len;
 	if (!f->mem)
 		return stray_error_at(err, STRAY_ENOMEM, name, 0, "file",
 				      "no memory for the frame");
@@ -282,6 +287,61 @@ int stray_sweep_fits_open_mem(const char *name, const void *data, size_t len,
 	return rc;
 }
 
+int stray_sweep_fits_open_buf(const char *name, struct stray_sweep_buf *b,
+			      struct stray_sweep_fits *f,
+			      struct stray_error *err)
+{
+	int status = 0, rc;
+
+	f->path = name;
+	f->fptr = NULL;
+	f->mem = b->data;	/* zero-padded to whole blocks */
+	f->mem_size = (b->len + 2879) / 2880 * 2880;
+	f->mem_borrowed = 1;
+	f->data_len = b->len;
+	if (fits_open_memfile((fitsfile **)&f->fptr, name, READONLY, &f->mem,
+			      &f->mem_size, 0, NULL, &status)) {
+		stray_sweep_fits_close(f);
+		return fits_fail(name, "file", "not a readable FITS image",
+				 status, err);
+	}
+	rc = read_header(f, err);
+	if (rc != STRAY_OK)
+		stray_sweep_fits_close(f);
+	return rc;
+}
+
+/* Whether the image is unsigned 16-bit as the lab writes it (BITPIX 16,
+ * BSCALE 1, BZERO 32768): then the stored value is the count with its
+ * top bit flipped, big-endian. */
+static int plain_u16(struct stray_sweep_fits *f)
+{
+	double zero = 0.0, scale = 1.0;
+	int status = 0;
+
+	if (f->bitpix != SHORT_IMG || f->equiv_bitpix != USHORT_IMG)
+		return 0;
+	if (fits_read_key_dbl(f->fptr, "BZERO", &zero, NULL, &status))
+		zero = 0.0;
+	status = 0;
+	if (fits_read_key_dbl(f->fptr, "BSCALE", &scale, NULL, &status))
+		scale = 1.0;
+	fits_clear_errmsg();
+	return zero == 32768.0 && scale == 1.0;
+}
+
+/* What cfitsio's ffi2u2 does for BSCALE 1, BZERO 32768, in a loop the
+ * compiler vectorises. */
+static void decode_u16(const unsigned char *restrict p, uint16_t *restrict pix,
+		       size_t n)
+{
+	size_t i;
+
+	for (i = 0; i < n; i++)
+		pix[i] = (uint16_t)(((unsigned)p[2 * i] << 8 |
+				     (unsigned)p[2 * i + 1]) ^ 0x8000u);
+}
+
 int stray_sweep_fits_read(struct stray_sweep_fits *f, uint16_t *pix,
 		    struct stray_error *err)
 {
@@ -290,13 +350,19 @@ int stray_sweep_fits_read(struct stray_sweep_fits *f, uint16_t *pix,
 	unsigned short nul = 0;
 	LONGLONG head, data, end;
 
-	/* cfitsio's memory driver does not bound its reads: check first. */
+	/* cfitsio's memory driver does not bound its reads (and reads the
+	 * zeros padding the buffer to whole blocks): check first. */
 	if (f->mem && (fits_get_hduaddrll(f->fptr, &head, &data, &end,
 					  &status) ||
-		       (LONGLONG)f->mem_size < data + 2LL * n))
+		       (LONGLONG)f->data_len < data + 2LL * n))
 		return fits_fail(f->path, "data",
 			"truncated: fewer pixels than NAXIS1 x NAXIS2", status,
 			err);
+	if (f->mem && plain_u16(f)) {
+		decode_u16((const unsigned char *)f->mem + data, pix,
+			   (size_t)n);
+		return STRAY_OK;
+	}
 
 	if (fits_read_img(f->fptr, TUSHORT, 1, n, &nul, pix, &anynul,
 			  &status))
@@ -316,6 +382,8 @@ void stray_sweep_fits_close(struct stray_sweep_fits *f)
 		fits_close_file(f->fptr, &status);
 	fits_clear_errmsg();
 	f->fptr = NULL;
-	free(f->mem);
+	if (!f->mem_borrowed)
+		free(f->mem);
 	f->mem = NULL;
+	f->mem_borrowed = 0;
 }

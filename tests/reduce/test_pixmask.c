@@ -108,11 +108,79 @@ static void test_mask_needs_two_darks(void **state)
 	assert_int_equal(rc, STRAY_EINVAL);
 }
 
+static int by_value(const void *a, const void *b)
+{
+	double x = *(const double *)a, y = *(const double *)b;
+
+	return (x > y) - (x < y);
+}
+
+/* The median as the textbook defines it: sort, take the middle (or the
+ * mean of the middle two). */
+static double sorted_median(double *v, size_t n)
+{
+	qsort(v, n, sizeof(*v), by_value);
+	return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* The median and MAD of mask_build against a sort, on values built to
+ * stress a radix selection: both signs, zeros, many ties, magnitudes
+ * from 1e-300 to 1e300, the middle two in different buckets; odd and
+ * even counts. */
+static void test_mask_median_is_exact(void **state)
+{
+	static double mean[2 * N + 1], m2[2 * N + 1], scratch[2 * N + 1];
+	static double sorted[2 * N + 1];
+	static uint8_t mask[2 * N + 1];
+	unsigned seed = 7;
+	size_t n, i;
+	int trial;
+
+	(void)state;
+	for (trial = 0; trial < 40; trial++) {
+		n = trial % 2 ? 2 * N : 2 * N + 1 - (size_t)(trial % 7);
+		for (i = 0; i < n; i++) {
+			double u = noise(&seed);
+
+			switch ((trial + i) % 5) {
+			case 0: mean[i] = floor(u * 4.0) / 4.0; break;
+			case 1: mean[i] = u * pow(10.0, trial * 15 - 300); break;
+			case 2: mean[i] = trial % 3 ? 0.0 : -u; break;
+			case 3: mean[i] = 3.0 + (trial % 4) * u; break;
+			default: mean[i] = -1.0 / (1.0 + u * u); break;
+			}
+			m2[i] = 1.0;
+		}
+		if (trial == 39) {	/* the middle two far apart */
+			for (i = 0; i < n; i++)
+				mean[i] = i < n / 2 ? -1e200 : 1e-200;
+		}
+		{
+			struct stray_pixstat s = { n, mean, m2, 2 };
+			struct stray_mask_stats st;
+			double med, mad;
+
+			for (i = 0; i < n; i++)
+				sorted[i] = mean[i];
+			med = sorted_median(sorted, n);
+			for (i = 0; i < n; i++)
+				sorted[i] = fabs(mean[i] - med);
+			mad = fmax(1.4826 * sorted_median(sorted, n), 0.25);
+			assert_int_equal(stray_mask_build(&s, 6.0, mask,
+							  scratch, &st, NULL),
+					 STRAY_OK);
+			assert_true(st.excess_median == med);
+			assert_true(st.excess_sigma == mad);
+		}
+	}
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_mask_finds_hot_dead_stuck),
 		cmocka_unit_test(test_mask_needs_two_darks),
+		cmocka_unit_test(test_mask_median_is_exact),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

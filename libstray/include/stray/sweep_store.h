@@ -112,6 +112,27 @@ int stray_sweep_sha256_file(const char *path,
 int stray_sweep_sha256_check(const char *path, const char *hex,
 			     struct stray_error *err);
 
+/* SHA-256 of bytes in memory; the same check for a file read whole
+ * (path names it in errors). */
+int stray_sweep_sha256_mem(const void *data, size_t len,
+			   char hex[STRAY_SWEEP_SHA256_HEX]);
+int stray_sweep_sha256_check_mem(const char *path, const void *data,
+				 size_t len, const char *hex,
+				 struct stray_error *err);
+
+/* A whole file in memory, reused from frame to frame: len bytes, zeros
+ * after them up to the next 2880-byte FITS block (cap bytes held). */
+struct stray_sweep_buf {
+	unsigned char *data;
+	size_t len, cap;
+};
+
+/* Read the file at path into b (missing: STRAY_ENOTFOUND, as
+ * stray_sweep_sha256_file says it). */
+int stray_sweep_file_load(const char *path, struct stray_sweep_buf *b,
+			  struct stray_error *err);
+void stray_sweep_buf_free(struct stray_sweep_buf *b);
+
 /* ---- writer ------------------------------------------------------------ */
 
 /* A keyword a writer adds to a frame's header (after the lab-frame
@@ -199,6 +220,9 @@ struct stray_sweep_fits {
 	/* An in-memory file: cfitsio keeps the addresses of these two. */
 	void *mem;
 	size_t mem_size;
+	int mem_borrowed;	/* mem is the caller's: not freed */
+	size_t data_len;	/* bytes of the file in mem */
+	int bitpix, equiv_bitpix;
 };
 
 /* Open and read the header; errors name the file and the keyword. */
@@ -208,6 +232,12 @@ int stray_sweep_fits_open(const char *path, struct stray_sweep_fits *f,
 /* Open an in-memory FITS image (the fuzz target's entry). */
 int stray_sweep_fits_open_mem(const char *name, const void *data,
 			      size_t len, struct stray_sweep_fits *f,
+			      struct stray_error *err);
+
+/* Open the file read whole into b (stray_sweep_file_load), without a
+ * copy: b must outlive the open file. */
+int stray_sweep_fits_open_buf(const char *name, struct stray_sweep_buf *b,
+			      struct stray_sweep_fits *f,
 			      struct stray_error *err);
 
 /* Read all n_rows * n_cols pixels into pix (row-major). */
