@@ -346,6 +346,8 @@ int stray_sweep_fits_read(struct stray_sweep_fits *f, uint16_t *pix,
 		    struct stray_error *err)
 {
 	long n = (long)(f->h.n_rows * f->h.n_cols);
+	/* bytes a stored pixel takes: BITPIX 8, 16, 32, 64, -32 or -64 */
+	LONGLONG px_bytes = f->bitpix < 0 ? -f->bitpix / 8 : f->bitpix / 8;
 	int status = 0, anynul = 0;
 	unsigned short nul = 0;
 	LONGLONG head, data, end;
@@ -354,7 +356,7 @@ int stray_sweep_fits_read(struct stray_sweep_fits *f, uint16_t *pix,
 	 * zeros padding the buffer to whole blocks): check first. */
 	if (f->mem && (fits_get_hduaddrll(f->fptr, &head, &data, &end,
 					  &status) ||
-		       (LONGLONG)f->data_len < data + 2LL * n))
+		       (LONGLONG)f->data_len < data + px_bytes * n))
 		return fits_fail(f->path, "data",
 			"truncated: fewer pixels than NAXIS1 x NAXIS2", status,
 			err);
