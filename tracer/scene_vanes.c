@@ -36,17 +36,26 @@
 #include "tracer/scene_file.h"
 #include "scene_json.h"
 
+/* An error at a key of the file (a run-time name: copied). */
+static int key_fail(const struct tracer_json_ctx *c, const char *key,
+		    const char *reason)
+{
+	int rc = tracer_json_fail(c, STRAY_EINVAL, "key", reason);
+
+	stray_error_column(c->err, key);
+	return rc;
+}
+
 static int set_number(const struct tracer_json_ctx *c, struct tracer_baffle *b,
 		      const char *key, const cJSON *v)
 {
 	char buf[96];
 
 	if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble))
-		return tracer_json_fail(c, STRAY_EINVAL, key,
-					"must be a number");
+		return key_fail(c, key, "must be a number");
 	snprintf(buf, sizeof(buf), "%s=%.17g", key, v->valuedouble);
 	if (tracer_baffle_set(b, buf, NULL))
-		return tracer_json_fail(c, STRAY_EINVAL, key,
+		return key_fail(c, key,
 			"is not a vanes parameter (or not an integer)");
 	return STRAY_OK;
 }
@@ -67,8 +76,8 @@ static int sub_object(const struct tracer_json_ctx *c, struct tracer_baffle *b,
 			if (strcmp(it->string, map[i][0]) == 0)
 				break;
 		if (i == n_map)
-			return tracer_json_fail(c, STRAY_EINVAL, it->string,
-						"is not a key of this object");
+			return key_fail(c, it->string,
+					"is not a key of this object");
 		if (set_number(c, b, map[i][1], it))
 			return c->err ? c->err->code : STRAY_EINVAL;
 	}
@@ -95,9 +104,8 @@ static int vanes_list(const struct tracer_json_ctx *c, struct tracer_baffle *b,
 		cJSON_ArrayForEach(it, v)
 			if (strcmp(it->string, "z") != 0 &&
 			    strcmp(it->string, "aperture_mm") != 0)
-				return tracer_json_fail(c, STRAY_EINVAL,
-					it->string, "a vane has only z and "
-					"aperture_mm");
+				return key_fail(c, it->string,
+					"a vane has only z and aperture_mm");
 		if (!cJSON_IsNumber(z) || !isfinite(z->valuedouble))
 			return tracer_json_fail(c, STRAY_EINVAL, "z",
 				"every vane needs a number z (its top face)");
@@ -154,9 +162,8 @@ static int parameters(const struct tracer_json_ctx *c, const cJSON *root,
 			if (strcmp(it->string, "vane_thickness") == 0)
 				rc = set_number(c, b, it->string, it);
 			else
-				rc = tracer_json_fail(c, STRAY_EINVAL,
-					it->string, "give the vanes as the "
-					"\"vanes\" list");
+				rc = key_fail(c, it->string, "give the "
+					"vanes as the \"vanes\" list");
 		} else
 			rc = set_number(c, b, it->string, it);
 		if (rc)
@@ -200,8 +207,8 @@ static int materials(const struct tracer_json_ctx *c, const cJSON *root,
 					"must be an object");
 	cJSON_ArrayForEach(it, map)
 		if (!cJSON_IsString(it))
-			return tracer_json_fail(c, STRAY_EINVAL, it->string,
-						"must name a material");
+			return key_fail(c, it->string,
+					"must name a material");
 	for (g = 0; g < s->mesh.n_group; g++) {
 		const char *gname = s->mesh.group_name[g];
 		const char *mname;
