@@ -247,6 +247,8 @@ int tracer_scene_vanes_build(const struct tracer_json_ctx *c,
 		rc = tracer_baffle_set(&b, sets[i], c->err);
 	if (!rc)	/* the range checks name the field and its value */
 		rc = tracer_baffle_build(&b, s, c->err);
+	if (rc)
+		stray_error_locate(c->err, c->path, 0);
 	return rc ? rc : materials(c, root, s);
 }
 
