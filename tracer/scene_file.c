@@ -17,8 +17,8 @@
  *     "beam": { "center": [0, 0, 0], "normal": [0, 0, 1],
  *               "radius_mm": 14 } }
  * The beam is every ray through the aperture disk (centre, normal toward
- * the sky, radius); normal defaults to +z; "radius_mm": "auto" over-fills
- * the mesh (its widest vertex from the beam axis).
+ * the sky, radius); normal defaults to +z; "radius_mm": "auto" (or left
+ * out) over-fills the mesh (its widest vertex from the beam axis).
  * A file with "type": "vanes" describes a parametric vane baffle instead
  * (tracer/scene_vanes.c).
  */
@@ -280,9 +280,10 @@ static int detector_and_beam(const struct ctx *c, const cJSON *root,
 	if (!rc && cJSON_GetObjectItemCaseSensitive(b, "normal"))
 		rc = vec(c, b, "normal", &s->beam.normal);
 	s->beam.normal = v3_norm(s->beam.normal);
-	if (!rc && cJSON_IsString(cJSON_GetObjectItemCaseSensitive(b,
-	    "radius_mm")) && strcmp(cJSON_GetObjectItemCaseSensitive(b,
-	    "radius_mm")->valuestring, "auto") == 0)
+	if (!rc && (!cJSON_GetObjectItemCaseSensitive(b, "radius_mm") ||
+	    (cJSON_IsString(cJSON_GetObjectItemCaseSensitive(b, "radius_mm")) &&
+	     strcmp(cJSON_GetObjectItemCaseSensitive(b,
+		    "radius_mm")->valuestring, "auto") == 0)))
 		s->beam.radius_mm = overfill_radius(s);
 	else if (!rc)
 		rc = number(c, b, "radius_mm", &s->beam.radius_mm, 1);
