@@ -31,5 +31,5 @@ const struct diag_cause diag_cause_acceptance_cone = {
 	.geo_axis = DIAG_GEO_ACCEPT,
 	.nodes = nodes,
 	.n_nodes = (int)(sizeof(nodes) / sizeof(nodes[0])),
-	.needs_baffle = 1,
+	.needs_baffle = 0,	/* the detector's own: any scene */
 };

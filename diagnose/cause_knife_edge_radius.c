@@ -32,5 +32,5 @@ const struct diag_cause diag_cause_knife_edge_radius = {
 	.geo_axis = DIAG_GEO_EDGE_RADIUS,
 	.nodes = nodes,
 	.n_nodes = (int)(sizeof(nodes) / sizeof(nodes[0])),
-	.needs_baffle = 1,
+	.needs_baffle = 0,	/* meshes: tracer/mesh_edges.c */
 };

@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "trace_cache.h"
+#include "tracer/scene_file.h"
 #include "stray/errfmt.h"
 
 #define LEAK_EDGE_DEG 0.2	/* soft window edge, so the fit has a slope */
@@ -27,7 +28,9 @@ void diag_eval_init(struct diag_eval *e, const char *scene,
 	memset(e, 0, sizeof(*e));
 	e->scene = scene;
 	e->runner = runner;
-	e->parametric = strcmp(scene, "ref4") == 0;
+	/* the vane family: built-in ref4 or a "type": "vanes" file */
+	e->parametric = strcmp(scene, "ref4") == 0 ||
+			tracer_scene_file_is_vanes(scene);
 	e->n_paths = 200000;
 	e->seed = 1;
 	e->threads = 1;

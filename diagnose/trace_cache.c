@@ -151,8 +151,14 @@ static int reduce_paths(struct diag_trace *t, const struct tracer_result *r,
 		n = tracer_seq_unpack(pe->seq, g);
 		for (k = 0; k < n; k++) {
 			if (g[k] >= 0 && g[k] < TRACER_GROUP_MAX &&
-			    interior[g[k]])
+			    interior[g[k]]) {
 				n_int++;
+				/* groups coated apart (a vanes file's per-
+				 * group materials, a mesh's): rho' scales
+				 * them all, their ratios kept; 1 when equal */
+				if (t->base_rho > 0.0)
+					ext *= rho[g[k]] / t->base_rho;
+			}
 			else if (g[k] >= 0 && g[k] < TRACER_GROUP_MAX)
 				ext *= rho[g[k]];
 		}

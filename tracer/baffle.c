@@ -16,6 +16,7 @@
 
 struct profile {
 	int n;
+	int top1;			/* start of vane 1's flat top face */
 	double r[PROFILE_MAX], z[PROFILE_MAX];
 	int group[PROFILE_MAX];		/* group of the segment i -> i+1 */
 };
@@ -130,6 +131,7 @@ static int body_profile(const struct tracer_baffle *b, struct tracer_mesh *m,
 	p->n = 0;
 	/* the polygon is cyclic: the last wall segment closes on vane 1 */
 	add_vane(b, 0, &vg[0], p);
+	p->top1 = p->n - 1;
 	push(p, r_in, b->vane_z[0], ext);	/* top rim */
 	push(p, r_out, b->vane_z[0], ext);	/* outer wall */
 	push(p, r_out, b->pupil_z, ext);	/* bottom end */
@@ -285,7 +287,12 @@ int tracer_baffle_build(const struct tracer_baffle *b,
 	s->det.accept_half_angle_deg = b->accept_half_angle_deg;
 	s->beam.center = v3(0.0, 0.0, b->vane_z[0]);
 	s->beam.normal = v3(0.0, 0.0, 1.0);
-	s->beam.radius_mm = tracer_baffle_aperture(b, 0) + b->beam_margin;
+	/* The beam over-fills the entrance as built: out to where vane 1's
+	 * flat top face begins (the fillet's tangent point, r0 + rho /
+	 * tan(phi/2) with a lower bevel; the bevel's outer end with an upper
+	 * one), so every ray into the opening and every lit face below the
+	 * top plane is in it, whatever the edge radius. */
+	s->beam.radius_mm = p->r[p->top1] + b->beam_margin;
 out_free:
 	free(p);
 	free(ring);

@@ -64,6 +64,9 @@ void tracer_scene_spec_edit(const struct tracer_scene_spec *spec,
 				s->material[k].abg.g = spec->abg_g;
 			}
 	}
-	if (spec->beam_shift_z != 0.0)	/* beam axis through the pivot */
-		s->beam.center.z -= spec->beam_shift_z;
+	/* beam axis through the pivot, behind the aperture along its
+	 * normal (z for the vane family: the same bits as a z shift) */
+	if (spec->beam_shift_z != 0.0)
+		s->beam.center = v3_sub(s->beam.center,
+			v3_scale(s->beam.normal, spec->beam_shift_z));
 }

@@ -17,7 +17,10 @@
  *     "beam": { "center": [0, 0, 0], "normal": [0, 0, 1],
  *               "radius_mm": 14 } }
  * The beam is every ray through the aperture disk (centre, normal toward
- * the sky, radius); normal defaults to +z.
+ * the sky, radius); normal defaults to +z; "radius_mm": "auto" (or left
+ * out) over-fills the mesh (its widest vertex from the beam axis).
+ * A file with "type": "vanes" describes a parametric vane baffle instead
+ * (tracer/scene_vanes.c).
  */
 #include <limits.h>
 #include <math.h>
@@ -31,11 +34,10 @@
 #include "stray/file.h"
 #include "tracer/mesh_import.h"
 #include "tracer/scene_file.h"
+#include "scene_json.h"
+#include "tracer/mesh_edges.h"
 
-struct ctx {
-	const char *path;
-	struct stray_error *err;
-};
+#define ctx tracer_json_ctx
 
 static int fail(const struct ctx *c, int code, const char *field,
 		const char *reason)
@@ -98,8 +100,14 @@ static int vec(const struct ctx *c, const cJSON *o, const char *key,
 	return STRAY_OK;
 }
 
-static int material(const struct ctx *c, const cJSON *m,
-		    struct tracer_brdf *b)
+int tracer_json_fail(const struct ctx *c, int code, const char *field,
+		     const char *reason)
+{
+	return fail(c, code, field, reason);
+}
+
+int tracer_json_material(const struct ctx *c, const cJSON *m,
+			 struct tracer_brdf *b)
 {
 	const cJSON *t = cJSON_GetObjectItemCaseSensitive(m, "type");
 	const char *type = cJSON_IsString(t) ? t->valuestring : "";
@@ -205,13 +213,34 @@ static int assign(const struct ctx *c, const cJSON *root,
 			stray_error_text(c->err, gname);
 			return rc;
 		}
-		rc = material(c, m, &s->material[g]);
+		rc = tracer_json_material(c, m, &s->material[g]);
 		if (rc) {
 			stray_error_text(c->err, mname);
 			return rc;
 		}
 	}
 	return STRAY_OK;
+}
+
+/* A beam that over-fills the whole mesh: its widest vertex from the
+ * beam axis (plus 1 %), so no opening of the geometry as built is
+ * clipped, whatever its edges (issue 17 item 0). */
+static double overfill_radius(const struct tracer_scene *s)
+{
+	struct vec3 n = v3_norm(s->beam.normal);
+	double r2 = 0.0;
+	size_t i;
+
+	for (i = 0; i < s->mesh.n_vert; i++) {
+		struct vec3 q = v3_sub(v3(s->mesh.vert[3 * i],
+					  s->mesh.vert[3 * i + 1],
+					  s->mesh.vert[3 * i + 2]),
+				       s->beam.center);
+		struct vec3 t = v3_sub(q, v3_scale(n, v3_dot(q, n)));
+
+		r2 = fmax(r2, v3_dot(t, t));
+	}
+	return 1.01 * sqrt(r2);
 }
 
 static int detector_and_beam(const struct ctx *c, const cJSON *root,
@@ -251,7 +280,12 @@ static int detector_and_beam(const struct ctx *c, const cJSON *root,
 	if (!rc && cJSON_GetObjectItemCaseSensitive(b, "normal"))
 		rc = vec(c, b, "normal", &s->beam.normal);
 	s->beam.normal = v3_norm(s->beam.normal);
-	if (!rc)
+	if (!rc && (!cJSON_GetObjectItemCaseSensitive(b, "radius_mm") ||
+	    (cJSON_IsString(cJSON_GetObjectItemCaseSensitive(b, "radius_mm")) &&
+	     strcmp(cJSON_GetObjectItemCaseSensitive(b,
+		    "radius_mm")->valuestring, "auto") == 0)))
+		s->beam.radius_mm = overfill_radius(s);
+	else if (!rc)
 		rc = number(c, b, "radius_mm", &s->beam.radius_mm, 1);
 	if (!rc && !(s->beam.radius_mm > 0.0))
 		rc = fail(c, STRAY_EINVAL, "radius_mm", "beam must be wider than 0");
@@ -274,7 +308,55 @@ static long line_of(const char *text, const char *at)
 int tracer_scene_file_load(const char *path, struct tracer_scene *s,
 			   struct stray_error *err)
 {
+	return tracer_scene_file_load_sets(path, NULL, 0, s, err);
+}
+
+/* The keys a mesh scene takes as `--set key=value`: what needs no
+ * parametric geometry (issue 17 item 2). */
+static int mesh_sets(const char *path, const char *const *sets, int n,
+		     struct tracer_scene *s, struct stray_error *err)
+{
+	int i;
+
+	for (i = 0; i < n; i++) {
+		const char *eq = strchr(sets[i], '=');
+		char *end;
+		double v = eq ? strtod(eq + 1, &end) : NAN;
+		size_t len = eq ? (size_t)(eq - sets[i]) : 0;
+
+		if (!eq || end == eq + 1 || *end || !isfinite(v)) {
+			stray_error_at(err, STRAY_EINVAL, path, 0, "--set",
+				       "expected key=number");
+			stray_error_text(err, sets[i]);
+			return STRAY_EINVAL;
+		}
+		if (len == 21 && strncmp(sets[i], "accept_half_angle_deg",
+					 len) == 0 && v >= 0.0 && v <= 90.0) {
+			s->det.accept_half_angle_deg = v;
+		} else if (len == 11 && strncmp(sets[i], "edge_radius",
+						len) == 0 && v >= 0.0) {
+			int rc = tracer_mesh_round_edges(s, v, err);
+
+			if (rc)
+				return rc;
+		} else {
+			stray_error_at(err, STRAY_EINVAL, path, 0, "--set",
+				       "a mesh scene takes only "
+				       "accept_half_angle_deg (0-90) and "
+				       "edge_radius (>= 0)");
+			stray_error_text(err, sets[i]);
+			return STRAY_EINVAL;
+		}
+	}
+	return STRAY_OK;
+}
+
+int tracer_scene_file_load_sets(const char *path, const char *const *sets,
+				int n_sets, struct tracer_scene *s,
+				struct stray_error *err)
+{
 	struct ctx c = { path, err };
+	const cJSON *type;
 	cJSON *root;
 	char *text;
 	int rc;
@@ -292,11 +374,22 @@ int tracer_scene_file_load(const char *path, struct tracer_scene *s,
 		free(text);
 		return rc;
 	}
-	rc = meshes(&c, root, &s->mesh);
-	if (!rc)
-		rc = assign(&c, root, s);
-	if (!rc)
-		rc = detector_and_beam(&c, root, s);
+	type = cJSON_GetObjectItemCaseSensitive(root, "type");
+	if (type && !(cJSON_IsString(type) &&
+		      (strcmp(type->valuestring, "vanes") == 0 ||
+		       strcmp(type->valuestring, "mesh") == 0))) {
+		rc = fail(&c, STRAY_EINVAL, "type", "must be mesh or vanes");
+	} else if (type && strcmp(type->valuestring, "vanes") == 0) {
+		rc = tracer_scene_vanes_build(&c, root, sets, n_sets, s);
+	} else {
+		rc = meshes(&c, root, &s->mesh);
+		if (!rc)
+			rc = assign(&c, root, s);
+		if (!rc)
+			rc = detector_and_beam(&c, root, s);
+		if (!rc)
+			rc = mesh_sets(path, sets, n_sets, s, err);
+	}
 	cJSON_Delete(root);
 	free(text);
 	return rc;

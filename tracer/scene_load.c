@@ -1,6 +1,7 @@
 /*
  * scene_load.c - scenes by name: the built-in `ref4` baffle, or a JSON
- * scene file naming meshes and the material of each surface group.
+ * scene file: a vane baffle of the parametric family ("type": "vanes") or
+ * meshes with the material of each surface group.
  */
 #include <string.h>
 
@@ -15,12 +16,10 @@ int tracer_scene_load(const char *name, const char *const *sets, int n_sets,
 	struct tracer_baffle b;
 	int i, rc;
 
-	if (strcmp(name, "ref4") != 0) {
-		if (n_sets > 0)
-			return stray_error_set(err, STRAY_EINVAL, "--set",
-				"overrides apply to the parametric baffle only");
-		return tracer_scene_file_load(name, s, err);
-	}
+	/* a scene file takes its own overrides: any baffle key for a
+	 * "vanes" file, the mesh-level keys for a mesh scene */
+	if (strcmp(name, "ref4") != 0)
+		return tracer_scene_file_load_sets(name, sets, n_sets, s, err);
 	tracer_baffle_ref4(&b);
 	for (i = 0; i < n_sets; i++) {
 		rc = tracer_baffle_set(&b, sets[i], err);

@@ -51,6 +51,34 @@ static inline cJSON *diagnose_truth(const struct truth_config *c)
 	return j;
 }
 
+/* The same, the analysis told the scene `scene` (a scene file). */
+static inline cJSON *diagnose_truth_on(const struct truth_config *c,
+				       const char *scene)
+{
+	static struct cli_run r;
+	char path[] = "/tmp/stray_diag_XXXXXX.csv";
+	int fd = mkstemps(path, 4);
+	char *argv[] = { "stray", "diagnose", path, "--scene", (char *)scene,
+			 "--rays", DIAG_TEST_RAYS, "--threads", "2", "--json",
+			 NULL };
+	cJSON *j;
+
+	assert_true(fd >= 0);
+	close(fd);
+	assert_int_equal(truth_write(c, path), 0);
+	run_stray(&r, argv);
+	if (getenv("DIAG_TEST_KEEP"))
+		fprintf(stderr, "kept %s\n", path);
+	else
+		unlink(path);
+	if (r.status != 0)
+		fprintf(stderr, "stray diagnose: %s\n", r.err);
+	assert_int_equal(r.status, 0);
+	j = cJSON_Parse(r.out);
+	assert_non_null(j);
+	return j;
+}
+
 static inline int n_causes(const cJSON *j)
 {
 	return cJSON_GetArraySize(cJSON_GetObjectItem(j, "causes"));

@@ -89,7 +89,8 @@ static int trace_truth(const struct truth_config *c, double *alpha,
 		th[i + 1] = fabs(c->theta_deg[i] + c->angle_offset_deg);
 	tracer_scene_init(&s);
 	memset(&r, 0, sizeof(r));
-	rc = tracer_scene_load("ref4", c->sets, c->n_sets, &s, &err);
+	rc = tracer_scene_load(c->scene ? c->scene : "ref4", c->sets,
+			       c->n_sets, &s, &err);
 	if (!rc && c->abg_g > 0.0)
 		make_abg(&s, c->abg_g);
 	/* the stage turns about a point behind the aperture: in the baffle's

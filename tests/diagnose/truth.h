@@ -14,6 +14,7 @@
 #define TRUTH_SETS_MAX 8
 
 struct truth_config {
+	const char *scene;		/* NULL: ref4; else a scene file */
 	const double *theta_deg;	/* logged angles, 0 first */
 	size_t n;
 	const char *sets[TRUTH_SETS_MAX];	/* hidden scene changes */

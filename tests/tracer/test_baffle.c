@@ -364,6 +364,56 @@ static void test_baffle_bevel_rise_found_and_named(void **state)
 	tracer_scene_free(&s);
 }
 
+/*
+ * Issue 17 item 0: the beam over-fills the entrance as built.  A 3-vane
+ * baffle with edges rounded to 0.08 mm opens vane 1 by up to
+ * r / tan(phi/2) = 2.41 r beyond its design aperture; the direct light
+ * near the cut-off must equal that of a beam far wider than the tube
+ * opening (same seed: the same detector points, so equal to rounding).
+ * A beam of the design aperture + 0.1 mm (the old rule) is 3 to 30 %
+ * low from 25 to 27 deg.
+ */
+static void test_baffle_beam_overfills_rounded_entrance(void **state)
+{
+	const char *const built[] = { "segments=128", "n_vanes=3",
+		"vane2_z=-13", "vane3_z=-26", "edge_radius=0.08" };
+	const char *const wide[] = { "segments=128", "n_vanes=3",
+		"vane2_z=-13", "vane3_z=-26", "edge_radius=0.08",
+		"beam_margin=8" };
+	const double th[] = { 0, 20, 23, 25, 26, 27 };
+	struct tracer_scene s;
+	struct tracer_result ra, rb;
+	struct tracer_baffle b;
+	double r0, opening;
+	size_t j;
+
+	(void)state;
+	tracer_baffle_ref4(&b);
+	for (j = 0; j < 5; j++)
+		assert_int_equal(tracer_baffle_set(&b, built[j], NULL), 0);
+	r0 = tracer_baffle_aperture(&b, 0);
+	opening = r0 + 0.08 / tan(M_PI / 8.0);	/* 45 deg bevel */
+	build(&s, built, 5);
+	assert_true(s.beam.radius_mm >= opening + b.beam_margin - 1e-9);
+	test_trace(&s, th, 6, 40000, 2, &ra);
+	tracer_scene_free(&s);
+	build(&s, wide, 6);
+	test_trace(&s, th, 6, 40000, 2, &rb);
+	tracer_scene_free(&s);
+	for (j = 1; j < 6; j++) {
+		double pa, pb, sa, sb;
+
+		tracer_result_power(&ra, j, 0, &pa, &sa);
+		tracer_result_power(&rb, j, 0, &pb, &sb);
+		assert_true(pb > 0.0);
+		if (fabs(pa / pb - 1.0) > 1e-9)
+			fail_msg("direct light at %g deg is %.4f %% of the "
+				 "over-sized beam's", th[j], 100.0 * pa / pb);
+	}
+	tracer_result_free(&ra);
+	tracer_result_free(&rb);
+}
+
 /* The exported OBJ names every surface group and every triangle. */
 static void test_baffle_obj_export(void **state)
 {
@@ -404,6 +454,7 @@ int main(void)
 		cmocka_unit_test(test_baffle_direct_light_vs_geometry),
 		cmocka_unit_test(test_baffle_edge_and_reflectance_trends),
 		cmocka_unit_test(test_baffle_bevel_rise_found_and_named),
+		cmocka_unit_test(test_baffle_beam_overfills_rounded_entrance),
 		cmocka_unit_test(test_baffle_obj_export),
 	};
 

@@ -70,7 +70,8 @@ struct diag_cause {
 	int geo_axis;
 	const double *nodes;
 	int n_nodes;
-	/* Causes that need the parametric baffle (not a scene file). */
+	/* Causes that need the parametric vane family (ref4 or a "type":
+	 * "vanes" scene file), not a mesh scene. */
 	int needs_baffle;
 	/* Causes only for curves with no theta = 0 point: a curve that has
 	 * one is normalised by it, its scale is not free (a flight curve,

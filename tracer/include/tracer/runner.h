@@ -23,7 +23,7 @@ struct tracer_scene_spec {
 	const char *lens;		/* lens table path, or NULL */
 	/* edits after loading that no --set says (the diagnosis's causes),
 	 * made by tracer_scene_spec_edit before the commit; 0: none */
-	double beam_shift_z;	/* beam centre moved by -this along z, m */
+	double beam_shift_z;	/* beam centre moved back along its normal, mm */
 	double abg_g;		/* > 0: Lambertian groups become ABg, this g */
 };
 

@@ -1,0 +1,33 @@
+/*
+ * scene_json.h - what the scene-file readers share (private to tracer/):
+ * the file being read for error messages, a material object, the
+ * "vanes" family.
+ */
+#ifndef TRACER_SCENE_JSON_H
+#define TRACER_SCENE_JSON_H
+
+#include <cJSON.h>
+
+#include "stray/error.h"
+#include "tracer/scene.h"
+
+struct tracer_json_ctx {
+	const char *path;
+	struct stray_error *err;
+};
+
+/* A one-line error naming the file and the field; returns code. */
+int tracer_json_fail(const struct tracer_json_ctx *c, int code,
+		     const char *field, const char *reason);
+
+/* One material object ({"type": "lambert", "reflectance": ...}). */
+int tracer_json_material(const struct tracer_json_ctx *c, const cJSON *m,
+			 struct tracer_brdf *b);
+
+/* A "type": "vanes" file: the parametric baffle with these parameters,
+ * then `key=value` sets, built into s, then the per-group materials. */
+int tracer_scene_vanes_build(const struct tracer_json_ctx *c,
+			     const cJSON *root, const char *const *sets,
+			     int n_sets, struct tracer_scene *s);
+
+#endif /* TRACER_SCENE_JSON_H */
