@@ -30,4 +30,5 @@ const struct diag_cause diag_cause_beam_profile = {
 		   { "gauss_radius_deg", "deg", 5.0, 0.2, 5.0, 3 } },
 	.k_bic = 2,
 	.apply = apply,
+	.nests = "beam_divergence",
 };

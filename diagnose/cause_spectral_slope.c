@@ -33,4 +33,5 @@ const struct diag_cause diag_cause_spectral_slope = {
 		   { "slope", "1", 0.0, -8.0, 8.0, 5 } },
 	.k_bic = 2,
 	.apply = apply,
+	.nests = "reflectance",
 };

@@ -37,8 +37,8 @@ static void test_two_band_coating(void **state)
 	assert_null(cause(j, "reflectance"));
 	s = param(sp, "slope", 0.0, &inside);
 	assert_false(inside);		/* 0 (grey) outside the interval */
-	rho0 = param(sp, "reflectance", 0.0, &inside);
 	assert_int_equal(truth_band_moments(&c, m, 2), 0);
+	rho0 = param(sp, "reflectance", m[1], &inside);	/* band mean, shown */
 	diag_band_moments(diag_band_current(), rho0, s, f, 2);
 	fprintf(stderr, "  <rho> %.4f fitted %.4f; <rho^2>/<rho>^2 %.3f "
 		"fitted %.3f\n", m[1], f[1], m[2] / (m[1] * m[1]),

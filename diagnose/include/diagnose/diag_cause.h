@@ -89,6 +89,10 @@ struct diag_cause {
 	 * NULL: the product grid of each parameter's n_start values. */
 	int (*start_grid)(const double *theta_deg, size_t n,
 			  double (*out)[DIAG_PARAMS_MAX], int max);
+	/* The simpler cause this one extends (its limit at some parameter
+	 * value), or NULL: a named extension gives way to it unless it
+	 * lowers BIC by the margin (run.c, simplify). */
+	const char *nests;
 };
 
 /* The registry, in cli.md order; NULL-terminated. */
