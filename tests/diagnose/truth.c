@@ -216,9 +216,15 @@ static int trace_truth_beam(const struct truth_config *c,
 	for (i = 0; !rc && i <= c->n; i++) {
 		double sum = 0.0, var = 0.0;
 
-		for (d = 0; d < nd; d++) {
-			sum += p[i * nd + d];
-			var += sg[i * nd + d] * sg[i * nd + d];
+		for (d = 0; d < nd; d++) {	/* r^2 of point d: b^2 (d+.5)/nd */
+			double r2 = c->beam_half_deg * c->beam_half_deg *
+				    (d + 0.5) / nd,
+			       w = c->beam_gauss_deg > 0.0 ?
+				   exp(-2.0 * r2 / (c->beam_gauss_deg *
+						    c->beam_gauss_deg)) : 1.0;
+
+			sum += w * p[i * nd + d];
+			var += w * w * sg[i * nd + d] * sg[i * nd + d];
 		}
 		if (i == 0) {
 			p0 = sum;

@@ -26,6 +26,8 @@ struct truth_config {
 	double dip_factor, dip_lo_deg, dip_hi_deg;	/* 0: none */
 	double beam_half_deg;		/* > 0: divergent beam, a uniform
 					 * disk of directions (issue 17) */
+	double beam_gauss_deg;		/* > 0: its intensity falls off as
+					 * exp(-2 r^2 / w^2) inside it */
 	double band_rho_blue, band_rho_red, band_split_nm;	/* > 0: a
 					 * two-band coating over the Sun x QE
 					 * band (issue 17): rho_blue below
