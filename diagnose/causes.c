@@ -11,7 +11,9 @@ extern const struct diag_cause diag_cause_reflectance,
 	diag_cause_knife_edge_radius, diag_cause_abg_scatter,
 	diag_cause_acceptance_cone, diag_cause_angle_offset,
 	diag_cause_pivot_offset, diag_cause_floor, diag_cause_light_leak,
-	diag_cause_bevel_face, diag_cause_scale;
+	diag_cause_bevel_face, diag_cause_scale,
+	diag_cause_spectral_slope, diag_cause_beam_divergence,
+	diag_cause_beam_profile;
 
 const struct diag_cause *const diag_causes[] = {
 	&diag_cause_reflectance,
@@ -24,6 +26,9 @@ const struct diag_cause *const diag_causes[] = {
 	&diag_cause_light_leak,
 	&diag_cause_bevel_face,
 	&diag_cause_scale,
+	&diag_cause_spectral_slope,
+	&diag_cause_beam_divergence,
+	&diag_cause_beam_profile,
 	NULL
 };
 

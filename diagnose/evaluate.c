@@ -20,6 +20,8 @@
 #include "stray/errfmt.h"
 
 #define LEAK_EDGE_DEG 0.2	/* soft window edge, so the fit has a slope */
+#define BEAM_RINGS 8		/* the beam disk's quadrature */
+#define BEAM_AZ 16
 
 void diag_eval_init(struct diag_eval *e, const char *scene,
 		    const double *theta_deg, size_t n,
@@ -127,14 +129,17 @@ static void bracket(const struct diag_state *s, struct corners *c)
 /* alpha and relative variance at the centre of each measured angle (and
  * at the fine sub-points when t is fine), for one trace. */
 static void trace_alpha(const struct diag_eval *e, const struct diag_trace *t,
-			double rho, double *p, double *var, double *alpha,
-			double *relvar, int all_sub)
+			double rho, double slope, double *p, double *var,
+			double *alpha, double *relvar, int all_sub)
 {
 	size_t i;
 	int k;
 	double p0, v0;
 
-	diag_trace_power(t, rho, p, var);
+	if (slope != 0.0)	/* cause_spectral_slope.c */
+		diag_trace_power_band(t, rho, slope, p, var);
+	else
+		diag_trace_power(t, rho, p, var);
 	p0 = p[t->ref];
 	v0 = p0 > 0.0 ? var[t->ref] / (p0 * p0) : 0.0;
 	for (i = 0; i < e->n; i++)
@@ -192,7 +197,8 @@ static int blend_geometry(struct diag_eval *e, const struct diag_state *s,
 		rc = diag_trace_get(e, geo, 0, &t, err);
 		if (rc)
 			break;
-		trace_alpha(e, t, s->reflectance, p, var, a_c, rv_c, 0);
+		trace_alpha(e, t, s->reflectance, s->spectral_slope, p, var, a_c,
+			    rv_c, 0);
 		for (i = 0; i < e->n; i++) {
 			double ai = a_c[i * DIAG_SUB + DIAG_SUB / 2];
 
@@ -232,7 +238,8 @@ static int offset_factor(struct diag_eval *e, const struct diag_state *s,
 	var = p + t->n_theta;
 	a = var + t->n_theta;
 	rv = a + nm;
-	trace_alpha(e, t, s->reflectance, p, var, a, rv, 1);
+	trace_alpha(e, t, s->reflectance, s->spectral_slope, p, var, a, rv,
+		    1);
 	for (i = 0; i < e->n; i++) {
 		double x = fmin(fmax(d / h, -(DIAG_SUB / 2)), DIAG_SUB / 2);
 		int m = (int)lround(x), k;
@@ -258,6 +265,145 @@ static int offset_factor(struct diag_eval *e, const struct diag_state *s,
 	return STRAY_OK;
 }
 
+/* alpha at off-axis angle phi, log-linear between the fine points
+ * (sorted by angle), held constant beyond them. */
+static double fine_at(const double *th, const double *a, size_t m,
+		      double phi)
+{
+	size_t lo = 0, hi = m - 1;
+
+	if (phi <= th[0])
+		return a[0];
+	if (phi >= th[m - 1])
+		return a[m - 1];
+	while (hi - lo > 1) {
+		size_t mid = (lo + hi) / 2;
+
+		if (th[mid] <= phi)
+			lo = mid;
+		else
+			hi = mid;
+	}
+	/* quadratic in log alpha through lo, hi and the nearer outer
+	 * neighbour (Lagrange), where all three are positive */
+	{
+		size_t c = lo == 0 ? 0 : hi == m - 1 ? lo - 1 :
+			   phi - th[lo] < th[hi] - phi ? lo - 1 : lo;
+
+		if (m >= 3 && a[c] > 0.0 && a[c + 1] > 0.0 && a[c + 2] > 0.0) {
+			double x0 = th[c], x1 = th[c + 1], x2 = th[c + 2];
+
+			return exp(log(a[c]) * (phi - x1) * (phi - x2) /
+				   ((x0 - x1) * (x0 - x2)) +
+				   log(a[c + 1]) * (phi - x0) * (phi - x2) /
+				   ((x1 - x0) * (x1 - x2)) +
+				   log(a[c + 2]) * (phi - x0) * (phi - x1) /
+				   ((x2 - x0) * (x2 - x1)));
+		}
+	}
+	if (a[lo] > 0.0 && a[hi] > 0.0)
+		return exp(log(a[lo]) + (log(a[hi]) - log(a[lo])) *
+			   (phi - th[lo]) / (th[hi] - th[lo]));
+	return a[lo] + (a[hi] - a[lo]) * (phi - th[lo]) / (th[hi] - th[lo]);
+}
+
+/* The beam average of alpha about theta: directions (theta + u, v) over
+ * the disk |(u, v)| <= b, weighted exp(-2 r^2 / g^2) when g > 0 (polar
+ * midpoint rule); an axisymmetric baffle sees off-axis angle
+ * sqrt((theta + u)^2 + v^2) (small angles). */
+static double beam_mean(const double *th, const double *a, size_t m,
+			double theta, double b, double g)
+{
+	double sum = 0.0, sw = 0.0;
+	int ir, ia;
+
+	for (ir = 0; ir < BEAM_RINGS; ir++) {
+		double r = b * (ir + 0.5) / BEAM_RINGS, w = r;
+
+		if (g > 0.0)
+			w *= exp(-2.0 * r * r / (g * g));
+		for (ia = 0; ia < BEAM_AZ; ia++) {
+			double ph = 2.0 * M_PI * (ia + 0.5) / BEAM_AZ,
+			       u = theta + r * cos(ph), v = r * sin(ph);
+
+			sum += w * fine_at(th, a, m, sqrt(u * u + v * v));
+			sw += w;
+		}
+	}
+	return sw > 0.0 ? sum / sw : fine_at(th, a, m, theta);
+}
+
+static int cmp_pair(const void *x, const void *y)
+{
+	const double *p = x, *q = y;
+
+	return (p[0] > q[0]) - (p[0] < q[0]);
+}
+
+/*
+ * The lab beam (cause_beam_divergence.c, cause_beam_profile.c): the
+ * measured P(theta) / P(0) is the beam average of the model about both
+ * angles.  The average runs over the nominal fine grid (every measured
+ * angle +- 1 deg, log-linear between windows: the measured angles should
+ * be <= 2 deg apart where the curve is steep), at the state's coating;
+ * factor = (<alpha>(theta_i) / alpha(theta_i)) / <alpha>(0).
+ */
+static int beam_factor(struct diag_eval *e, const struct diag_state *s,
+		       double *factor, struct stray_error *err)
+{
+	double nominal[DIAG_GEO_N], b = s->beam_half_deg, h = e->sub_step_deg;
+	const struct diag_trace *t;
+	size_t i, m = 0, nm = e->n * DIAG_SUB, nt;
+	double *buf, *p, *var, *a, *rv, *pair, *th, *al, a0;
+	int rc, g, k;
+
+	for (g = 0; g < DIAG_GEO_N; g++)
+		nominal[g] = NAN;
+	rc = diag_trace_get(e, nominal, 1, &t, err);
+	if (rc)
+		return rc;
+	nt = t->n_theta;
+	buf = malloc((2 * nt + 6 * nm + 1) * sizeof(*buf));
+	if (!buf)
+		return stray_error_set(err, STRAY_ENOMEM, "diagnose",
+				       "out of memory");
+	p = buf;
+	var = p + nt;
+	a = var + nt;
+	rv = a + nm;
+	pair = rv + nm;
+	th = pair + 2 * nm;
+	al = th + nm;
+	trace_alpha(e, t, s->reflectance, s->spectral_slope, p, var, a, rv,
+		    1);
+	for (i = 0; i < e->n; i++)
+		for (k = 0; k < DIAG_SUB; k++) {
+			pair[2 * m] = fabs(e->theta_deg[i] +
+					   (k - DIAG_SUB / 2) * h);
+			pair[2 * m + 1] = a[i * DIAG_SUB + k];
+			m++;
+		}
+	qsort(pair, m, 2 * sizeof(*pair), cmp_pair);
+	for (i = 0, k = 0; i < m; i++) {	/* one point per angle */
+		if (k > 0 && pair[2 * i] - th[k - 1] < 1e-9)
+			continue;
+		th[k] = pair[2 * i];
+		al[k++] = pair[2 * i + 1];
+	}
+	m = (size_t)k;
+	a0 = th[0] <= 1.0 ? beam_mean(th, al, m, 0.0, b, s->beam_gauss_deg) /
+			    fine_at(th, al, m, 0.0) : 1.0;
+	for (i = 0; i < e->n; i++) {
+		double c = a[i * DIAG_SUB + DIAG_SUB / 2];
+
+		factor[i] = c > 0.0 && a0 > 0.0 ?
+			beam_mean(th, al, m, e->theta_deg[i], b,
+				  s->beam_gauss_deg) / c / a0 : 1.0;
+	}
+	free(buf);
+	return STRAY_OK;
+}
+
 static double window(double theta, double lo, double hi)
 {
 	return 1.0 / (1.0 + exp(-(theta - lo) / LEAK_EDGE_DEG)) /
@@ -269,10 +415,10 @@ int diag_eval_model(struct diag_eval *e, const struct diag_state *s,
 		    struct stray_error *err)
 {
 	size_t i, k, n = e->n, nt = n * DIAG_SUB + 1, n_work;
-	double *work, *rc_own = NULL, *factor, *frac;
+	double *work, *rc_own = NULL, *factor, *frac, *bfac;
 	int rc;
 
-	n_work = 2 * nt + 2 * n * DIAG_SUB + 4 * n;
+	n_work = 2 * nt + 2 * n * DIAG_SUB + 5 * n;
 	work = malloc(n_work * sizeof(*work));
 	if (!relcov)
 		relcov = rc_own = malloc(n * n * sizeof(*relcov));
@@ -282,16 +428,21 @@ int diag_eval_model(struct diag_eval *e, const struct diag_state *s,
 		return stray_error_set(err, STRAY_ENOMEM, "diagnose",
 				       "out of memory");
 	}
-	factor = work + n_work - 2 * n;
+	factor = work + n_work - 3 * n;
 	frac = factor + n;
+	bfac = frac + n;
 	rc = blend_geometry(e, s, work, alpha, relcov, err);
 	if (!rc && s->angle_offset_deg != 0.0)
 		rc = offset_factor(e, s, work, factor, err);
+	if (!rc && s->beam_half_deg > 0.0)
+		rc = beam_factor(e, s, bfac, err);
 	for (i = 0; !rc && i < n; i++) {
 		double th = e->theta_deg[i], a = alpha[i], g;
 
 		if (s->angle_offset_deg != 0.0)
 			a *= factor[i];
+		if (s->beam_half_deg > 0.0)
+			a *= bfac[i];
 		a *= pow(10.0, s->scale_log10);	/* cause_scale.c */
 		g = a;		/* the traced part carries the MC error */
 		a += s->floor;

@@ -172,6 +172,46 @@ static int backward(struct diag_eval *e, const struct diag_data *d,
 	return rc;
 }
 
+/* A named extension (spectral_slope, beam_profile) gives way to the
+ * simpler cause it nests unless it lowers BIC by the margin. */
+static int simplify(struct diag_eval *e, const struct diag_data *d,
+		    struct diag_fit *cur, void (*log)(const char *),
+		    struct stray_error *err)
+{
+	int i, j, rc = STRAY_OK;
+
+	for (i = 0; i < cur->n_causes && !rc; i++) {
+		const struct diag_cause *c = cur->cause[i], *s;
+		struct diag_fit f;
+		int k, o = 0, q = 0;
+
+		s = c->nests ? diag_cause_find(c->nests) : NULL;
+		if (!s || uses(cur, s) || !usable(e, s))
+			continue;
+		memset(&f, 0, sizeof(f));
+		for (j = 0; j < cur->n_causes; j++) {
+			int np = cur->cause[j]->n_params;
+
+			if (j != i) {
+				f.cause[f.n_causes++] = cur->cause[j];
+				for (k = 0; k < np; k++)
+					f.p[q++] = cur->p[o + k];
+			}
+			o += np;
+		}
+		f.cause[f.n_causes++] = s;	/* from its grid */
+		rc = diag_fit_run(e, d, &f, 1, err);
+		if (!rc && f.bic - cur->bic < DIAG_BIC_MARGIN) {
+			say(log, "  %s -> %s: the extension is not needed "
+			    "(BIC %.1f -> %.1f)", c->name, s->name, cur->bic,
+			    f.bic);
+			*cur = f;
+			i = -1;
+		}
+	}
+	return rc;
+}
+
 static int fit_singles(struct diag_eval *e, const struct diag_data *d,
 		       struct diag_result *r, void (*log)(const char *),
 		       struct stray_error *err)
@@ -265,6 +305,8 @@ static int name_causes(struct diag_eval *e, const struct diag_data *d,
 	rc = forward(e, d, r, &cur, log, err);
 	if (!rc)
 		rc = backward(e, d, &cur, log, err);
+	if (!rc)
+		rc = simplify(e, d, &cur, log, err);
 	if (!rc)
 		rc = diag_fit_intervals(e, d, &cur, err);
 	if (rc)

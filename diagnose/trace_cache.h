@@ -34,4 +34,9 @@ void diag_trace_cache_free(struct diag_eval *e);
 void diag_trace_power(const struct diag_trace *t, double rho, double *p,
 		      double *var);
 
+/* The same with rho(l) = rho (l / l0)^slope over the current band
+ * (diagnose/spectral.c). */
+void diag_trace_power_band(const struct diag_trace *t, double rho,
+			   double slope, double *p, double *var);
+
 #endif /* DIAGNOSE_TRACE_CACHE_H */

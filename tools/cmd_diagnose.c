@@ -14,11 +14,13 @@
 #include "cli.h"
 #include "commands.h"
 #include "diag_report.h"
+#include "diagnose/diag_spectral.h"
 #include "stray/errfmt.h"
 
 static const char usage[] =
 	"usage: stray diagnose MEASURED.csv --scene SCENE [--rays N]\n"
 	"                      [--seed K] [--threads T] [--set key=value]...\n"
+	"                      [--spectrum S] [--response R]\n"
 	"                      [--plot F.png] [--causes] [--json]\n"
 	"\n"
 	"Compares a measured attenuation curve (CSV with a sigma column) with\n"
@@ -33,12 +35,17 @@ static const char usage[] =
 	"  --seed K          seed shared by every trace (default 1)\n"
 	"  --threads T       tracer threads (default 1)\n"
 	"  --set key=value   the scene as built (repeatable)\n"
+	"  --spectrum S      the source's spectrum, CSV or builtin:NAME, for a\n"
+	"                    coating that changes with wavelength (default\n"
+	"                    builtin:sun_am0_astm_e490)\n"
+	"  --response R      the detector's spectral response (a photometer's\n"
+	"                    own; default builtin:qe_mt9p031_approx)\n"
 	"  --plot F.png      measured vs model (F.png) and residuals (F-resid.png)\n"
 	"  --causes          list the registered causes and exit\n"
 	"  --json            machine-readable output\n";
 
 struct diag_args {
-	const char *measured, *scene, *plot;
+	const char *measured, *scene, *plot, *spectrum, *response;
 	const char *sets[DIAG_SETS_MAX];
 	int n_sets, list;
 	double rays, seed, threads;
@@ -53,6 +60,8 @@ static int parse_args(int argc, char **argv, struct diag_args *a)
 		{ "threads", required_argument, NULL, 't' },
 		{ "set", required_argument, NULL, 'S' },
 		{ "plot", required_argument, NULL, 'p' },
+		{ "spectrum", required_argument, NULL, 'L' },
+		{ "response", required_argument, NULL, 'R' },
 		{ "causes", no_argument, NULL, 'c' },
 		{ "json", no_argument, NULL, 'j' },
 		{ "help", no_argument, NULL, 'h' },
@@ -64,6 +73,8 @@ static int parse_args(int argc, char **argv, struct diag_args *a)
 		switch (opt) {
 		case 's': a->scene = optarg; break;
 		case 'p': a->plot = optarg; break;
+		case 'L': a->spectrum = optarg; break;
+		case 'R': a->response = optarg; break;
 		case 'c': a->list = 1; break;
 		case 'j': cli.json = 1; break;
 		case 'n': rc = cli_parse_double("diagnose", "rays", optarg, &a->rays); break;
@@ -136,6 +147,9 @@ int cmd_diagnose(int argc, char **argv, const struct tracer_runner *runner)
 		list_causes();
 		return CLI_OK;
 	}
+	if ((a.spectrum || a.response) &&	/* cause_spectral_slope.c */
+	    diag_band_set(a.spectrum, a.response, &err))
+		return cli_fail("diagnose", &err);
 	if (diag_data_load(a.measured, &d, &err))
 		return cli_fail("diagnose", &err);
 	diag_eval_init(&e, a.scene, d.theta_deg, d.n, runner);

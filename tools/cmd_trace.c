@@ -23,6 +23,7 @@
 #include "tracer/obj_export.h"
 #include "tracer/path_report.h"
 #include "tracer/runner.h"
+#include "tracer/spectral.h"
 #include "tracer/scene_load.h"
 #include "trace_run.h"
 
@@ -59,6 +60,11 @@ static const char usage[] =
 	"  --dump-count N    how many paths to dump (default 100)\n"
 	"  --map M.csv       detector irradiance map at --map-angle\n"
 	"  --map-size N      map pixels per side (default 64)\n"
+	"  --spectrum S      source spectrum for materials with a\n"
+	"                    \"reflectance_table\" (CSV or builtin:NAME;\n"
+	"                    default builtin:sun_am0_astm_e490)\n"
+	"  --response R      detector response for them (a photometer's own;\n"
+	"                    default builtin:qe_mt9p031_approx)\n"
 	FOCAL_MAP_USAGE
 	"  --json            print a run summary (paths_per_s, ...)\n";
 
@@ -68,6 +74,7 @@ struct trace_args {
 	const struct tracer_runner *runner;	/* who runs the trace */
 	const char *scene, *angles, *out, *lens, *export_obj, *paths_out;
 	const char *plot, *plot_orders, *dump, *map;
+	const char *spectrum, *response;	/* tracer/spectral.h */
 	double map_angle;
 	int dump_count, map_size;
 	const char *sets[SETS_MAX];
@@ -93,6 +100,8 @@ static const struct option trace_opts[] = {
 	{ "map", required_argument, NULL, 'M' },
 	{ "map-angle", required_argument, NULL, 'A' },
 	{ "map-size", required_argument, NULL, 'Z' },
+	{ "spectrum", required_argument, NULL, 1001 },
+	{ "response", required_argument, NULL, 1002 },
 	FOCAL_MAP_LONG_OPTIONS,
 	{ "json", no_argument, NULL, 'j' },
 	{ "help", no_argument, NULL, 'h' },
@@ -135,6 +144,8 @@ static int parse_file(int opt, char *text, struct trace_args *a)
 	case 'O': a->plot_orders = text; return 0;
 	case 'D': a->dump = text; return 0;
 	case 'M': a->map = text; return 0;
+	case 1001: a->spectrum = text; return 0;
+	case 1002: a->response = text; return 0;
 	default: return 1;
 	}
 }
@@ -402,6 +413,7 @@ static int run_trace(struct trace_args *a, struct tracer_scene *s,
 {
 	struct tracer_result r;
 	struct tracer_lens lens = { 0, NULL, NULL };
+	static struct tracer_band band;
 	double *theta = NULL;
 	size_t n, first;
 	int rc, last = -1;
@@ -417,6 +429,12 @@ static int run_trace(struct trace_args *a, struct tracer_scene *s,
 	a->o.n_theta = n;
 	a->o.lens = a->lens ? &lens : NULL;
 	a->o.record_paths = a->paths_out || a->top;
+	if (tracer_scene_spectral(s)) {	/* a "reflectance_table" */
+		rc = tracer_band_load(a->spectrum, a->response, &band, err);
+		if (rc)
+			goto out_free;
+		a->o.record_paths = 1;
+	}
 	if (a->dump)
 		a->o.dump_paths = (uint64_t)a->dump_count <= a->o.n_paths ?
 				  (uint64_t)a->dump_count : a->o.n_paths;
@@ -444,6 +462,11 @@ static int run_trace(struct trace_args *a, struct tracer_scene *s,
 						  a->lens, 0.0, 0.0 };
 
 		rc = tracer_run(a->runner, &spec, s, &a->o, &r, err);
+	}
+	if (!rc && tracer_scene_spectral(s)) {
+		rc = tracer_result_apply_band(&r, s, &band, err);
+		if (rc)
+			tracer_result_free(&r);
 	}
 	if (rc)
 		goto out_free;

@@ -136,6 +136,7 @@ void diag_report_text(const struct diag_data *d, const struct diag_eval *e,
 	print_angle(r->sun_deg_after);
 	putchar('\n');
 	printf("Approximations: geometry interpolated in log alpha between "
-	       "traced nodes; angle offset from the nominal geometry's fine "
-	       "grid.\n");
+	       "traced nodes; angle offset and beam average from the nominal "
+	       "geometry's fine grid; spectral coating over the source x "
+	       "response band.\n");
 }

@@ -11,6 +11,10 @@
  *                               "g": 2 },
  *                    "dead":  { "type": "absorber" } },
  *     "groups": { "exterior": "shiny", "detector": "dead" },
+ *     (a material's reflectance may change with wavelength, issue 17:
+ *      "reflectance_table": "black.csv" (wavelength_nm,reflectance,
+ *      relative to the scene file) or { "wavelength_nm": [...],
+ *      "reflectance": [...] }; tracer/spectral.h)
  *     "default_material": "black",
  *     "detector": { "shape": "disk", "center": [0, 0, -40],
  *                   "normal": [0, 0, 1], "radius_mm": 6.5 },
@@ -32,6 +36,7 @@
 
 #include "stray/errfmt.h"
 #include "stray/file.h"
+#include "stray/spectrum_io.h"
 #include "tracer/mesh_import.h"
 #include "tracer/scene_file.h"
 #include "scene_json.h"
@@ -106,14 +111,91 @@ int tracer_json_fail(const struct ctx *c, int code, const char *field,
 	return fail(c, code, field, reason);
 }
 
+/* Path of a mesh file relative to the scene file's directory. */
+static void sibling(const char *scene, const char *file, char *out,
+		    size_t size);
+
+/* "reflectance_table": a CSV (wavelength_nm,<reflectance>) or inline
+ * arrays; rho in [0, 1], wavelengths increasing; b->rho its mean. */
+static int rho_table(const struct ctx *c, const cJSON *m,
+		     struct tracer_brdf *b, struct tracer_rho_table *t)
+{
+	const cJSON *it = cJSON_GetObjectItemCaseSensitive(m,
+							   "reflectance_table");
+	double sum = 0.0;
+	int i, n;
+
+	t->n = 0;
+	if (!it)
+		return STRAY_OK;
+	if (cJSON_IsString(it)) {
+		struct stray_spectrum_data d;
+		char path[PATH_MAX];
+		int rc;
+
+		sibling(c->path, it->valuestring, path, sizeof(path));
+		memset(&d, 0, sizeof(d));
+		rc = stray_spectrum_load(path, &d, c->err);
+		if (!rc && (d.s.n < 1 || d.s.n > TRACER_RHO_TABLE_MAX))
+			rc = fail(c, STRAY_EINVAL, "reflectance_table",
+				  "needs 1 to 64 rows");
+		for (i = 0; !rc && i < (int)d.s.n; i++) {
+			t->nm[i] = d.wavelength_nm[i];
+			t->rho[i] = d.value[i];
+		}
+		n = rc ? 0 : (int)d.s.n;
+		stray_spectrum_data_free(&d);
+		if (rc)
+			return rc;
+	} else {
+		const cJSON *l = cJSON_GetObjectItemCaseSensitive(it,
+							"wavelength_nm");
+		const cJSON *r = cJSON_GetObjectItemCaseSensitive(it,
+							"reflectance");
+
+		n = cJSON_GetArraySize(l);
+		if (!cJSON_IsArray(l) || !cJSON_IsArray(r) || n < 1 ||
+		    n > TRACER_RHO_TABLE_MAX || cJSON_GetArraySize(r) != n)
+			return fail(c, STRAY_EINVAL, "reflectance_table",
+				    "must be a CSV file or { \"wavelength_nm\": "
+				    "[...], \"reflectance\": [...] } of 1 to "
+				    "64 equal lengths");
+		for (i = 0; i < n; i++) {
+			const cJSON *x = cJSON_GetArrayItem(l, i),
+				    *y = cJSON_GetArrayItem(r, i);
+
+			if (!cJSON_IsNumber(x) || !cJSON_IsNumber(y))
+				return fail(c, STRAY_EINVAL,
+					    "reflectance_table",
+					    "entries must be numbers");
+			t->nm[i] = x->valuedouble;
+			t->rho[i] = y->valuedouble;
+		}
+	}
+	for (i = 0; i < n; i++) {
+		if (!(t->nm[i] > 0.0 && isfinite(t->nm[i])) ||
+		    (i > 0 && !(t->nm[i] > t->nm[i - 1])))
+			return fail(c, STRAY_EINVAL, "reflectance_table",
+				    "wavelength_nm must be > 0 and increasing");
+		if (!(t->rho[i] >= 0.0 && t->rho[i] <= 1.0))
+			return fail(c, STRAY_EINVAL, "reflectance_table",
+				    "reflectance must be in [0, 1]");
+		sum += t->rho[i];
+	}
+	t->n = n;
+	b->rho = sum / n;
+	return STRAY_OK;
+}
+
 int tracer_json_material(const struct ctx *c, const cJSON *m,
-			 struct tracer_brdf *b)
+			 struct tracer_brdf *b, struct tracer_rho_table *tab)
 {
 	const cJSON *t = cJSON_GetObjectItemCaseSensitive(m, "type");
 	const char *type = cJSON_IsString(t) ? t->valuestring : "";
 	int rc = STRAY_OK;
 
 	memset(b, 0, sizeof(*b));
+	tab->n = 0;
 	b->rho = 1.0;
 	if (strcmp(type, "absorber") == 0)
 		return STRAY_OK;
@@ -127,13 +209,16 @@ int tracer_json_material(const struct ctx *c, const cJSON *m,
 		return fail(c, STRAY_EINVAL, "type", "must be lambert, mirror, "
 			    "abg or absorber");
 	rc = number(c, m, "reflectance", &b->rho, b->ops ==
-		    &tracer_brdf_lambert_ops);
+		    &tracer_brdf_lambert_ops &&
+		    !cJSON_GetObjectItemCaseSensitive(m, "reflectance_table"));
 	if (!rc && b->ops == &tracer_brdf_abg_ops)
 		rc = number(c, m, "a", &b->abg.a, 1) ||
 		     number(c, m, "b", &b->abg.b, 1) ||
 		     number(c, m, "g", &b->abg.g, 1);
 	if (!rc && (b->rho < 0.0 || b->rho > 1.0))
 		rc = fail(c, STRAY_EINVAL, "reflectance", "must be in [0, 1]");
+	if (!rc)
+		rc = rho_table(c, m, b, tab);
 	if (!rc && b->ops == &tracer_brdf_abg_ops &&
 	    !(b->abg.a >= 0.0 && b->abg.b > 0.0 && b->abg.g >= 0.0))
 		rc = fail(c, STRAY_EINVAL, "abg", "needs a >= 0, b > 0, g >= 0");
@@ -213,7 +298,8 @@ static int assign(const struct ctx *c, const cJSON *root,
 			stray_error_text(c->err, gname);
 			return rc;
 		}
-		rc = tracer_json_material(c, m, &s->material[g]);
+		rc = tracer_json_material(c, m, &s->material[g],
+					  &s->spectral[g]);
 		if (rc) {
 			stray_error_text(c->err, mname);
 			return rc;

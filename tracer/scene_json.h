@@ -20,9 +20,10 @@ struct tracer_json_ctx {
 int tracer_json_fail(const struct tracer_json_ctx *c, int code,
 		     const char *field, const char *reason);
 
-/* One material object ({"type": "lambert", "reflectance": ...}). */
+/* One material object ({"type": "lambert", "reflectance": ...}), with
+ * its "reflectance_table" (if any) into tab. */
 int tracer_json_material(const struct tracer_json_ctx *c, const cJSON *m,
-			 struct tracer_brdf *b);
+			 struct tracer_brdf *b, struct tracer_rho_table *tab);
 
 /* A "type": "vanes" file: the parametric baffle with these parameters,
  * then `key=value` sets, built into s, then the per-group materials. */

@@ -227,7 +227,8 @@ static int materials(const struct tracer_json_ctx *c, const cJSON *root,
 			stray_error_text(c->err, mname);
 			return rc;
 		}
-		rc = tracer_json_material(c, m, &s->material[g]);
+		rc = tracer_json_material(c, m, &s->material[g],
+					  &s->spectral[g]);
 		if (rc) {
 			stray_error_text(c->err, mname);
 			return rc;

@@ -89,12 +89,46 @@ static void test_missing_file_and_usage(void **state)
 	assert_non_null(strstr(r.out, "usage: stray diagnose"));
 }
 
+/* A bad --response or --spectrum: one line naming the file (and line),
+ * exit 2, before any trace. */
+static void test_bad_band(void **state)
+{
+	char good[64], bad[64];
+	char *missing[] = { "stray", "diagnose", good, "--scene", "ref4",
+			    "--response", "/nonexistent/r.csv", NULL };
+	char *decreasing[] = { "stray", "diagnose", good, "--scene", "ref4",
+			       "--spectrum", bad, NULL };
+	char *zero[] = { "stray", "diagnose", good, "--scene", "ref4",
+			 "--response", bad, NULL };
+
+	(void)state;
+	write_csv(good, "theta_deg,alpha,sigma\n0,1,0.01\n40,1e-5,1e-6\n");
+	run_stray(&r, missing);
+	assert_int_equal(r.status, 2);
+	assert_int_equal(r.err_lines, 1);
+	assert_non_null(strstr(r.err, "/nonexistent/r.csv"));
+	write_csv(bad, "wavelength_nm,irradiance\n500,1\n400,1\n");
+	run_stray(&r, decreasing);
+	unlink(bad);
+	assert_int_equal(r.status, 2);
+	assert_int_equal(r.err_lines, 1);
+	assert_non_null(strstr(r.err, "wavelength_nm"));
+	write_csv(bad, "wavelength_nm,qe\n2000,0.5\n3000,0.5\n");
+	run_stray(&r, zero);	/* no overlap with the Sun x it in band */
+	unlink(bad);
+	unlink(good);
+	assert_int_equal(r.status, 2);
+	assert_int_equal(r.err_lines, 1);
+	assert_non_null(strstr(r.err, "stray_diag_err_"));
+}
+
 static void test_cause_list(void **state)
 {
 	static const char *const names[] = {
 		"reflectance", "knife_edge_radius", "abg_scatter",
 		"acceptance_cone", "angle_offset", "pivot_offset", "floor",
-		"light_leak", "bevel_face", "scale"
+		"light_leak", "bevel_face", "scale", "spectral_slope",
+		"beam_divergence", "beam_profile"
 	};
 	char *argv[] = { "stray", "diagnose", "--causes", NULL };
 	size_t i;
@@ -119,6 +153,7 @@ int main(void)
 		cmocka_unit_test(test_angle_out_of_range),
 		cmocka_unit_test(test_nan),
 		cmocka_unit_test(test_missing_file_and_usage),
+		cmocka_unit_test(test_bad_band),
 		cmocka_unit_test(test_cause_list),
 	};
 

@@ -45,6 +45,15 @@ struct diag_state {
 	double leak_log10;	/* leak level; -inf: none */
 	double leak_lo_deg, leak_hi_deg;
 	double scale_log10;	/* the whole curve x 10^this; 0: none */
+	/* issue 17 item 5: rho(l) = rho0 (l / l0)^slope, weighted by the
+	 * source spectrum x response (diag_spectral.h); 0: grey */
+	double spectral_slope;
+	/* issue 17 item 6: the lab beam's directions, a disk of this
+	 * half-angle (deg; 0: collimated) ... */
+	double beam_half_deg;
+	/* ... with a Gaussian fall-off of this 1/e^2 radius (deg) inside it
+	 * (0: uniform over the disk) */
+	double beam_gauss_deg;
 };
 
 void diag_state_nominal(struct diag_state *s);
@@ -81,6 +90,10 @@ struct diag_cause {
 	 * NULL: the product grid of each parameter's n_start values. */
 	int (*start_grid)(const double *theta_deg, size_t n,
 			  double (*out)[DIAG_PARAMS_MAX], int max);
+	/* The simpler cause this one extends (its limit at some parameter
+	 * value), or NULL: a named extension gives way to it unless it
+	 * lowers BIC by the margin (run.c, simplify). */
+	const char *nests;
 };
 
 /* The registry, in cli.md order; NULL-terminated. */

@@ -16,9 +16,20 @@
 
 struct tracer_rt;	/* opaque: the Embree device and scene */
 
+/* A reflectance that changes with wavelength (issue 17 item 5): linear
+ * between points, held beyond them; n = 0: the material is grey.  The
+ * trace runs at the material's rho (the table's mean); the recorded
+ * paths are re-weighted photon by photon afterwards (tracer/spectral.h). */
+#define TRACER_RHO_TABLE_MAX 64
+struct tracer_rho_table {
+	int n;
+	double nm[TRACER_RHO_TABLE_MAX], rho[TRACER_RHO_TABLE_MAX];
+};
+
 struct tracer_scene {
 	struct tracer_mesh mesh;
 	struct tracer_brdf material[TRACER_GROUP_MAX];	/* per group */
+	struct tracer_rho_table spectral[TRACER_GROUP_MAX];	/* per group */
 	struct tracer_detector det;
 	struct tracer_beam beam;
 	struct tracer_rt *rt;		/* set by tracer_scene_commit */
