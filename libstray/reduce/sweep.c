@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "stray/errfmt.h"
+#include "stray/reduce_common.h"
 #include "stray/sweep_store.h"
 #include "stray/reduce_sweep.h"
 
@@ -22,6 +23,10 @@ struct visit_plan {
 	size_t n_full, n_amb;
 	size_t n_peaks;
 	struct stray_ghost_peak peaks[STRAY_GHOST_PEAKS_MAX];
+	/* Mean frame totals of its FULL [0] and AMBIENT [1] groups and
+	 * their frame counts (reduce_common.h). */
+	double tot[2];
+	size_t n_tot[2];
 };
 
 struct workspace {
@@ -35,6 +40,8 @@ struct workspace {
 	struct stray_dark_model dark;
 	uint8_t *mask;
 	struct stray_accum full, amb;
+	struct stray_common_group cg[2];	/* FULL, AMBIENT totals */
+	struct stray_common_pool common;
 	void *acc_mem[2];
 	float *j, *var_j;
 	double *prof_var, *ghost_scratch;
@@ -429,6 +436,8 @@ static int accumulate_visit(struct workspace *w, const struct visit_plan *p,
 
 	stray_accum_reset(&w->full);
 	stray_accum_reset(&w->amb);
+	stray_common_group_reset(&w->cg[0]);
+	stray_common_group_reset(&w->cg[1]);
 	for (r = 0; r < p->n_runs; r++)
 		for (i = p->first[r]; i <= p->last[r] && rc == STRAY_OK; i++) {
 			const struct stray_sweep_entry *e = &w->man.e[i];
@@ -440,6 +449,10 @@ static int accumulate_visit(struct workspace *w, const struct visit_plan *p,
 				rc = at_frame(w, e, stray_accum_add(
 					e->type == STRAY_SWEEP_FULL ? &w->full : &w->amb,
 					&w->dark, &f, err), err);
+			if (rc == STRAY_OK)
+				rc = at_frame(w, e, stray_common_group_add(
+					&w->cg[e->type != STRAY_SWEEP_FULL],
+					&w->dark, &f, w->mask, err), err);
 			res->has_monitor |= w->fits.h.has_monitor;
 		}
 	return rc;
@@ -489,6 +502,12 @@ static int reduce_visit(struct workspace *w, size_t v,
 	vis->power = s.power;
 	vis->var_power = s.var_power;
 	vis->sigma = s.sigma;
+	stray_common_pool_add(&w->common, &w->cg[0], &w->full, w->mask);
+	stray_common_pool_add(&w->common, &w->cg[1], &w->amb, w->mask);
+	p->tot[0] = w->cg[0].mean;
+	p->tot[1] = w->cg[1].mean;
+	p->n_tot[0] = w->cg[0].n;
+	p->n_tot[1] = w->cg[1].n;
 	vis->n_pix = s.n_pix;
 	res->n_sat_samples += w->full.n_sat + w->amb.n_sat;
 	res->n_sat_pixels += s.n_sat_pix;
@@ -555,6 +574,25 @@ static int track_ghosts(struct workspace *w,
 	return STRAY_OK;
 }
 
+/* Frame-common noise (reduce_common.h): s^2 P_group^2 / n per group. */
+static void add_common(struct workspace *w,
+		       struct stray_reduce_sweep_result *res)
+{
+	double s2 = stray_common_rel_var(&w->common);
+	size_t v, g;
+
+	res->common_rel_sigma = sqrt(s2);
+	res->common_dof = w->common.dof;
+	if (w->o->no_common)
+		return;
+	for (v = 0; v < res->n_visits; v++)
+		for (g = 0; g < 2; g++)
+			if (w->plan[v].n_tot[g] > 0)
+				res->visits[v].var_power += s2 *
+					w->plan[v].tot[g] * w->plan[v].tot[g] /
+					(double)w->plan[v].n_tot[g];
+}
+
 static int reduce_all(struct workspace *w,
 		      struct stray_reduce_sweep_result *res,
 		      struct stray_error *err)
@@ -570,6 +608,7 @@ static int reduce_all(struct workspace *w,
 	for (v = 0; v < res->n_visits; v++)
 		if ((rc = reduce_visit(w, v, res, err)) != STRAY_OK)
 			return rc;
+	add_common(w, res);
 	res->points = calloc(res->n_visits, sizeof(*res->points));
 	if (!res->points)
 		return stray_error_set(err, STRAY_ENOMEM, "curve", "no memory");

@@ -1,0 +1,76 @@
+/*
+ * common.c - frame-common noise (reduce_common.h): the scatter of whole-
+ * frame totals over a group's repeats beyond the pixels' own variances,
+ * pooled over the sweep.
+ */
+#include <string.h>
+
+#include "stray/reduce_common.h"
+
+void stray_common_group_reset(struct stray_common_group *g)
+{
+	memset(g, 0, sizeof(*g));
+}
+
+int stray_common_group_add(struct stray_common_group *g,
+			   const struct stray_dark_model *d,
+			   const struct stray_frame *f, const uint8_t *mask,
+			   struct stray_error *err)
+{
+	const struct stray_dark_level *l;
+	double s = 0.0, inv, delta;
+	size_t r, c, li;
+	int rc;
+
+	if ((rc = stray_dark_find(d, f->t_exp_s, &li, err)) != STRAY_OK)
+		return rc;
+	l = &d->lvl[li];
+	inv = 1.0 / (f->t_exp_s * f->nd_trans * f->monitor);
+	for (r = 0; r < f->n_rows; r++) {
+		const uint16_t *row = f->pix + r * f->n_cols;
+		const uint8_t *m = mask ? mask + r * f->n_cols : NULL;
+		double lvl[4];
+		unsigned k;
+
+		for (k = 0; k < 4; k++)
+			lvl[k] = l->mean[stray_bayer_channel(&d->map,
+					f->det_row[r], f->col0 + (long)k)];
+		for (c = 0; c < f->n_cols; c++) {
+			if (m && m[c] != STRAY_PIX_OK)
+				continue;
+			if (row[c] >= f->sat_level)
+				g->incomplete = 1;
+			/* eq. 3.4-3.5, per unit t alpha_nd as in accum.c */
+			s += (row[c] - lvl[c & 3]) * inv;
+		}
+	}
+	g->n++;
+	delta = s - g->mean;
+	g->mean += delta / (double)g->n;
+	g->m2 += delta * (s - g->mean);
+	return STRAY_OK;
+}
+
+void stray_common_pool_add(struct stray_common_pool *p,
+			   const struct stray_common_group *g,
+			   const struct stray_accum *a, const uint8_t *mask)
+{
+	double v_ind = 0.0, dof = (double)g->n - 1.0;
+	size_t i;
+
+	if (g->n < 2 || g->incomplete)
+		return;
+	/* What independent pixels give: sum_i var(L_i) (one frame). */
+	for (i = 0; i < a->n_pix; i++)
+		if ((!mask || mask[i] == STRAY_PIX_OK) && a->n[i] >= 2)
+			v_ind += a->m2[i] / (a->n[i] - 1.0);
+	p->num += dof * (g->m2 / dof - v_ind);
+	p->den += dof * g->mean * g->mean;
+	p->n_groups++;
+	p->dof += g->n - 1;
+}
+
+double stray_common_rel_var(const struct stray_common_pool *p)
+{
+	return p->den > 0.0 && p->num > 0.0 ? p->num / p->den : 0.0;
+}
