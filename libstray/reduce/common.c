@@ -1,7 +1,7 @@
 /*
  * common.c - frame-common noise (reduce_common.h): the scatter of whole-
  * frame totals over a group's repeats beyond the pixels' own variances,
- * pooled over the sweep.
+ * pooled over the sweep by inverse-variance weights.
  */
 #include <string.h>
 
@@ -51,26 +51,47 @@ int stray_common_group_add(struct stray_common_group *g,
 	return STRAY_OK;
 }
 
-void stray_common_pool_add(struct stray_common_pool *p,
-			   const struct stray_common_group *g,
-			   const struct stray_accum *a, const uint8_t *mask)
+size_t stray_common_group_stats(const struct stray_common_group *g,
+				const struct stray_accum *a,
+				const uint8_t *mask, double *est,
+				double *ind)
 {
-	double v_ind = 0.0, dof = (double)g->n - 1.0;
+	double v_ind = 0.0, dof = (double)g->n - 1.0, s2;
 	size_t i;
 
-	if (g->n < 2 || g->incomplete)
-		return;
+	*est = *ind = 0.0;
+	if (g->n < 2 || g->incomplete || !(g->mean != 0.0))
+		return 0;
 	/* What independent pixels give: sum_i var(L_i) (one frame). */
 	for (i = 0; i < a->n_pix; i++)
 		if ((!mask || mask[i] == STRAY_PIX_OK) && a->n[i] >= 2)
 			v_ind += a->m2[i] / (a->n[i] - 1.0);
-	p->num += dof * (g->m2 / dof - v_ind);
-	p->den += dof * g->mean * g->mean;
-	p->n_groups++;
-	p->dof += g->n - 1;
+	s2 = g->mean * g->mean;
+	*est = (g->m2 / dof - v_ind) / s2;
+	*ind = v_ind / s2;
+	return g->n - 1;
 }
 
-double stray_common_rel_var(const struct stray_common_pool *p)
+double stray_common_fit(const double *est, const double *ind,
+			const size_t *dof, size_t n)
 {
-	return p->den > 0.0 && p->num > 0.0 ? p->num / p->den : 0.0;
+	double s2 = 0.0;
+	int it;
+	size_t i;
+
+	for (it = 0; it < 30; it++) {
+		double sw = 0.0, swe = 0.0;
+
+		for (i = 0; i < n; i++) {
+			double w, d = s2 + ind[i];
+
+			if (dof[i] == 0 || !(d > 0.0))
+				continue;
+			w = (double)dof[i] / (d * d);
+			sw += w;
+			swe += w * est[i];
+		}
+		s2 = sw > 0.0 && swe > 0.0 ? swe / sw : 0.0;
+	}
+	return s2;
 }

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "stray/errfmt.h"
+#include "stray/reduce_angle.h"
 #include "stray/reduce_common.h"
 #include "stray/sweep_store.h"
 #include "stray/reduce_sweep.h"
@@ -27,6 +28,10 @@ struct visit_plan {
 	 * their frame counts (reduce_common.h). */
 	double tot[2];
 	size_t n_tot[2];
+	double c_est[2], c_ind[2];	/* their stray_common_group_stats */
+	size_t c_dof[2];
+	double rb_sum;		/* ANGLERB (else ANGLE) over its light frames */
+	size_t n_rb;
 };
 
 struct workspace {
@@ -41,7 +46,6 @@ struct workspace {
 	uint8_t *mask;
 	struct stray_accum full, amb;
 	struct stray_common_group cg[2];	/* FULL, AMBIENT totals */
-	struct stray_common_pool common;
 	void *acc_mem[2];
 	float *j, *var_j;
 	double *prof_var, *ghost_scratch;
@@ -427,7 +431,7 @@ static int light_buffers(struct workspace *w,
 }
 
 /* Stream one visit's frames into the FULL and AMBIENT accumulators. */
-static int accumulate_visit(struct workspace *w, const struct visit_plan *p,
+static int accumulate_visit(struct workspace *w, struct visit_plan *p,
 			    struct stray_reduce_sweep_result *res, struct stray_error *err)
 {
 	struct stray_frame f;
@@ -445,6 +449,10 @@ static int accumulate_visit(struct workspace *w, const struct visit_plan *p,
 			if (e->type == STRAY_SWEEP_DARK)
 				continue;
 			rc = load_frame(w, e, &f, err);
+			if (rc == STRAY_OK) {
+				p->rb_sum += w->fits.h.angle_rb_deg;
+				p->n_rb++;
+			}
 			if (rc == STRAY_OK)
 				rc = at_frame(w, e, stray_accum_add(
 					e->type == STRAY_SWEEP_FULL ? &w->full : &w->amb,
@@ -502,8 +510,10 @@ static int reduce_visit(struct workspace *w, size_t v,
 	vis->power = s.power;
 	vis->var_power = s.var_power;
 	vis->sigma = s.sigma;
-	stray_common_pool_add(&w->common, &w->cg[0], &w->full, w->mask);
-	stray_common_pool_add(&w->common, &w->cg[1], &w->amb, w->mask);
+	p->c_dof[0] = stray_common_group_stats(&w->cg[0], &w->full, w->mask,
+					       &p->c_est[0], &p->c_ind[0]);
+	p->c_dof[1] = stray_common_group_stats(&w->cg[1], &w->amb, w->mask,
+					       &p->c_est[1], &p->c_ind[1]);
 	p->tot[0] = w->cg[0].mean;
 	p->tot[1] = w->cg[1].mean;
 	p->n_tot[0] = w->cg[0].n;
@@ -575,22 +585,64 @@ static int track_ghosts(struct workspace *w,
 }
 
 /* Frame-common noise (reduce_common.h): s^2 P_group^2 / n per group. */
-static void add_common(struct workspace *w,
-		       struct stray_reduce_sweep_result *res)
+static int add_common(struct workspace *w,
+		      struct stray_reduce_sweep_result *res,
+		      struct stray_error *err)
 {
-	double s2 = stray_common_rel_var(&w->common);
-	size_t v, g;
+	size_t n = 2 * res->n_visits, v, g;
+	double *est = malloc(n * sizeof(*est)), *ind = malloc(n * sizeof(*ind));
+	size_t *dof = malloc(n * sizeof(*dof));
+	double s2;
 
+	if (!est || !ind || !dof) {
+		free(est);
+		free(ind);
+		free(dof);
+		return stray_error_set(err, STRAY_ENOMEM, "curve", "no memory");
+	}
+	res->common_dof = 0;
+	for (v = 0; v < res->n_visits; v++)
+		for (g = 0; g < 2; g++) {
+			est[2 * v + g] = w->plan[v].c_est[g];
+			ind[2 * v + g] = w->plan[v].c_ind[g];
+			dof[2 * v + g] = w->plan[v].c_dof[g];
+			res->common_dof += w->plan[v].c_dof[g];
+		}
+	s2 = stray_common_fit(est, ind, dof, n);
+	free(est);
+	free(ind);
+	free(dof);
 	res->common_rel_sigma = sqrt(s2);
-	res->common_dof = w->common.dof;
 	if (w->o->no_common)
-		return;
+		return STRAY_OK;
 	for (v = 0; v < res->n_visits; v++)
 		for (g = 0; g < 2; g++)
 			if (w->plan[v].n_tot[g] > 0)
 				res->visits[v].var_power += s2 *
 					w->plan[v].tot[g] * w->plan[v].tot[g] /
 					(double)w->plan[v].n_tot[g];
+	return STRAY_OK;
+}
+
+/* Visits taken off their commanded angle (ANGLERB, reduce_angle.h):
+ * carried there along the curve; 1 when the curve must be redone. */
+static int to_commanded(struct workspace *w,
+			struct stray_reduce_sweep_result *res)
+{
+	double *rb = malloc(res->n_visits * sizeof(*rb));
+	size_t v;
+
+	if (!rb || w->o->no_angle_rb) {
+		free(rb);
+		return 0;
+	}
+	for (v = 0; v < res->n_visits; v++)
+		rb[v] = w->plan[v].n_rb ? w->plan[v].rb_sum /
+			(double)w->plan[v].n_rb : res->visits[v].theta_deg;
+	res->angle_rb_max_deg = stray_visits_to_commanded(res->visits,
+		res->n_visits, rb, res->points, res->n_points);
+	free(rb);
+	return res->angle_rb_max_deg > 0.0;
 }
 
 static int reduce_all(struct workspace *w,
@@ -608,12 +660,17 @@ static int reduce_all(struct workspace *w,
 	for (v = 0; v < res->n_visits; v++)
 		if ((rc = reduce_visit(w, v, res, err)) != STRAY_OK)
 			return rc;
-	add_common(w, res);
+	if ((rc = add_common(w, res, err)) != STRAY_OK)
+		return rc;
 	res->points = calloc(res->n_visits, sizeof(*res->points));
 	if (!res->points)
 		return stray_error_set(err, STRAY_ENOMEM, "curve", "no memory");
 	rc = stray_reduce_curve(res->visits, res->n_visits, res->points,
 				&res->n_points, &res->drift, err);
+	if (rc == STRAY_OK && to_commanded(w, res))
+		rc = stray_reduce_curve(res->visits, res->n_visits,
+					res->points, &res->n_points,
+					&res->drift, err);
 	if (rc != STRAY_OK)
 		return stray_error_at(err, rc, w->dir, 0, 0, 0);
 	res->p0 = res->drift.p0;

@@ -27,13 +27,6 @@ struct stray_common_group {
 	int incomplete;		/* a sample saturated: totals not comparable */
 };
 
-/* Pooled excess over the groups: sum (n-1)(var_S - var_ind), and
- * sum (n-1) mean_S^2. */
-struct stray_common_pool {
-	double num, den;
-	size_t n_groups, dof;
-};
-
 void stray_common_group_reset(struct stray_common_group *g);
 
 /* Add one frame's total over the unmasked pixels (mask may be NULL). */
@@ -42,12 +35,24 @@ int stray_common_group_add(struct stray_common_group *g,
 			   const struct stray_frame *f, const uint8_t *mask,
 			   struct stray_error *err);
 
-/* Pool a finished group, given its accumulator (the same frames). */
-void stray_common_pool_add(struct stray_common_pool *p,
-			   const struct stray_common_group *g,
-			   const struct stray_accum *a, const uint8_t *mask);
+/*
+ * A finished group, given its accumulator (the same frames): *est, the
+ * excess relative variance of its frame totals (var_S - var_ind) / S^2,
+ * and *ind, var_ind / S^2, what independent pixels give.  Returns its
+ * degrees of freedom, n - 1 (0: unusable, fewer than 2 frames or a
+ * saturated sample).
+ */
+size_t stray_common_group_stats(const struct stray_common_group *g,
+				const struct stray_accum *a,
+				const uint8_t *mask, double *est,
+				double *ind);
 
-/* The relative variance s^2 per frame (0 when none is seen). */
-double stray_common_rel_var(const struct stray_common_pool *p);
+/*
+ * The relative variance s^2 per frame pooled over n groups, each
+ * weighted by the inverse variance of its estimate, dof / (s^2 + ind)^2
+ * (iterated); 0 when none is seen.
+ */
+double stray_common_fit(const double *est, const double *ind,
+			const size_t *dof, size_t n);
 
 #endif /* STRAY_REDUCE_COMMON_H */
