@@ -15,10 +15,10 @@ void stray_common_group_reset(struct stray_common_group *g)
 int stray_common_group_add(struct stray_common_group *g,
 			   const struct stray_dark_model *d,
 			   const struct stray_frame *f, const uint8_t *mask,
-			   struct stray_error *err)
+			   double x, struct stray_error *err)
 {
 	const struct stray_dark_level *l;
-	double s = 0.0, inv, delta;
+	double s = 0.0, inv;
 	size_t r, c, li;
 	int rc;
 
@@ -44,31 +44,57 @@ int stray_common_group_add(struct stray_common_group *g,
 			s += (row[c] - lvl[c & 3]) * inv;
 		}
 	}
+	if (g->n == 0) {
+		g->s0 = s;
+		g->x0 = x;
+	}
+	s -= g->s0;
+	x -= g->x0;
 	g->n++;
-	delta = s - g->mean;
-	g->mean += delta / (double)g->n;
-	g->m2 += delta * (s - g->mean);
+	g->ss += s;
+	g->sss += s * s;
+	g->sx += x;
+	g->sxx += x * x;
+	g->sxs += x * s;
 	return STRAY_OK;
 }
 
-size_t stray_common_group_stats(const struct stray_common_group *g,
-				const struct stray_accum *a,
-				const uint8_t *mask, double *est,
-				double *ind)
+void stray_common_group_finish(struct stray_common_group *g,
+			       const struct stray_accum *a,
+			       const uint8_t *mask)
 {
-	double v_ind = 0.0, dof = (double)g->n - 1.0, s2;
 	size_t i;
 
-	*est = *ind = 0.0;
-	if (g->n < 2 || g->incomplete || !(g->mean != 0.0))
-		return 0;
-	/* What independent pixels give: sum_i var(L_i) (one frame). */
+	g->v_ind = 0.0;
 	for (i = 0; i < a->n_pix; i++)
 		if ((!mask || mask[i] == STRAY_PIX_OK) && a->n[i] >= 2)
-			v_ind += a->m2[i] / (a->n[i] - 1.0);
-	s2 = g->mean * g->mean;
-	*est = (g->m2 / dof - v_ind) / s2;
-	*ind = v_ind / s2;
+			g->v_ind += a->m2[i] / (a->n[i] - 1.0);
+}
+
+double stray_common_group_mean(const struct stray_common_group *g)
+{
+	return g->n ? g->s0 + g->ss / (double)g->n : 0.0;
+}
+
+size_t stray_common_group_stats(const struct stray_common_group *g,
+				double beta, double *est, double *ind)
+{
+	double n = (double)g->n, mean = stray_common_group_mean(g);
+	double vss, vxs, vxx, b, var_r, s2;
+
+	*est = *ind = 0.0;
+	if (g->n < 2 || g->incomplete || !(mean != 0.0))
+		return 0;
+	/* centred sums of squares and products */
+	vss = g->sss - g->ss * g->ss / n;
+	vxs = g->sxs - g->sx * g->ss / n;
+	vxx = g->sxx - g->sx * g->sx / n;
+	/* residuals S_k - Sbar beta (x_k - xbar): the drift taken out */
+	b = mean * beta;
+	var_r = (vss - 2.0 * b * vxs + b * b * vxx) / (n - 1.0);
+	s2 = mean * mean;
+	*est = (var_r - g->v_ind) / s2;
+	*ind = g->v_ind / s2;
 	return g->n - 1;
 }
 

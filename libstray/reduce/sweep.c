@@ -24,12 +24,9 @@ struct visit_plan {
 	size_t n_full, n_amb;
 	size_t n_peaks;
 	struct stray_ghost_peak peaks[STRAY_GHOST_PEAKS_MAX];
-	/* Mean frame totals of its FULL [0] and AMBIENT [1] groups and
-	 * their frame counts (reduce_common.h). */
-	double tot[2];
-	size_t n_tot[2];
-	double c_est[2], c_ind[2];	/* their stray_common_group_stats */
-	size_t c_dof[2];
+	/* Frame totals of its FULL [0] and AMBIENT [1] groups
+	 * (reduce_common.h). */
+	struct stray_common_group cg[2];
 	double rb_sum;		/* ANGLERB (else ANGLE) over its light frames */
 	size_t n_rb;
 };
@@ -45,7 +42,6 @@ struct workspace {
 	struct stray_dark_model dark;
 	uint8_t *mask;
 	struct stray_accum full, amb;
-	struct stray_common_group cg[2];	/* FULL, AMBIENT totals */
 	void *acc_mem[2];
 	float *j, *var_j;
 	double *prof_var, *ghost_scratch;
@@ -440,8 +436,8 @@ static int accumulate_visit(struct workspace *w, struct visit_plan *p,
 
 	stray_accum_reset(&w->full);
 	stray_accum_reset(&w->amb);
-	stray_common_group_reset(&w->cg[0]);
-	stray_common_group_reset(&w->cg[1]);
+	stray_common_group_reset(&p->cg[0]);
+	stray_common_group_reset(&p->cg[1]);
 	for (r = 0; r < p->n_runs; r++)
 		for (i = p->first[r]; i <= p->last[r] && rc == STRAY_OK; i++) {
 			const struct stray_sweep_entry *e = &w->man.e[i];
@@ -459,8 +455,9 @@ static int accumulate_visit(struct workspace *w, struct visit_plan *p,
 					&w->dark, &f, err), err);
 			if (rc == STRAY_OK)
 				rc = at_frame(w, e, stray_common_group_add(
-					&w->cg[e->type != STRAY_SWEEP_FULL],
-					&w->dark, &f, w->mask, err), err);
+					&p->cg[e->type != STRAY_SWEEP_FULL],
+					&w->dark, &f, w->mask, (double)i,
+					err), err);
 			res->has_monitor |= w->fits.h.has_monitor;
 		}
 	return rc;
@@ -510,14 +507,8 @@ static int reduce_visit(struct workspace *w, size_t v,
 	vis->power = s.power;
 	vis->var_power = s.var_power;
 	vis->sigma = s.sigma;
-	p->c_dof[0] = stray_common_group_stats(&w->cg[0], &w->full, w->mask,
-					       &p->c_est[0], &p->c_ind[0]);
-	p->c_dof[1] = stray_common_group_stats(&w->cg[1], &w->amb, w->mask,
-					       &p->c_est[1], &p->c_ind[1]);
-	p->tot[0] = w->cg[0].mean;
-	p->tot[1] = w->cg[1].mean;
-	p->n_tot[0] = w->cg[0].n;
-	p->n_tot[1] = w->cg[1].n;
+	stray_common_group_finish(&p->cg[0], &w->full, w->mask);
+	stray_common_group_finish(&p->cg[1], &w->amb, w->mask);
 	vis->n_pix = s.n_pix;
 	res->n_sat_samples += w->full.n_sat + w->amb.n_sat;
 	res->n_sat_pixels += s.n_sat_pix;
@@ -584,15 +575,37 @@ static int track_ghosts(struct workspace *w,
 	return STRAY_OK;
 }
 
-/* Frame-common noise (reduce_common.h): s^2 P_group^2 / n per group. */
+/* The fitted source drift per manifest row, relative (0: none fitted). */
+static double drift_per_row(const struct stray_reduce_sweep_result *res)
+{
+	double lo = HUGE_VAL, hi = -HUGE_VAL;
+	size_t v;
+
+	if (!res->drift.fitted)
+		return 0.0;
+	for (v = 0; v < res->n_visits; v++)
+		if (fabs(res->visits[v].theta_deg) <= STRAY_THETA_TOL_DEG) {
+			lo = fmin(lo, res->visits[v].order);
+			hi = fmax(hi, res->visits[v].order);
+		}
+	return hi > lo ? res->drift.rel_change / (hi - lo) : 0.0;
+}
+
+/*
+ * Frame-common noise (reduce_common.h), measured with the drift of the
+ * first curve taken out of each group, then s^2 Sbar^2 / n of every group
+ * added to its visit's var(P); *redo when the curve must be redone.
+ */
 static int add_common(struct workspace *w,
-		      struct stray_reduce_sweep_result *res,
+		      struct stray_reduce_sweep_result *res, int *redo,
 		      struct stray_error *err)
 {
 	size_t n = 2 * res->n_visits, v, g;
 	double *est = malloc(n * sizeof(*est)), *ind = malloc(n * sizeof(*ind));
 	size_t *dof = malloc(n * sizeof(*dof));
-	double s2;
+	double s2, beta = drift_per_row(res);
+
+	*redo = 0;
 
 	if (!est || !ind || !dof) {
 		free(est);
@@ -603,24 +616,29 @@ static int add_common(struct workspace *w,
 	res->common_dof = 0;
 	for (v = 0; v < res->n_visits; v++)
 		for (g = 0; g < 2; g++) {
-			est[2 * v + g] = w->plan[v].c_est[g];
-			ind[2 * v + g] = w->plan[v].c_ind[g];
-			dof[2 * v + g] = w->plan[v].c_dof[g];
-			res->common_dof += w->plan[v].c_dof[g];
+			size_t k = 2 * v + g;
+
+			dof[k] = stray_common_group_stats(&w->plan[v].cg[g],
+				beta, &est[k], &ind[k]);
+			res->common_dof += dof[k];
 		}
 	s2 = stray_common_fit(est, ind, dof, n);
 	free(est);
 	free(ind);
 	free(dof);
 	res->common_rel_sigma = sqrt(s2);
-	if (w->o->no_common)
+	if (w->o->no_common || !(s2 > 0.0))
 		return STRAY_OK;
 	for (v = 0; v < res->n_visits; v++)
-		for (g = 0; g < 2; g++)
-			if (w->plan[v].n_tot[g] > 0)
-				res->visits[v].var_power += s2 *
-					w->plan[v].tot[g] * w->plan[v].tot[g] /
-					(double)w->plan[v].n_tot[g];
+		for (g = 0; g < 2; g++) {
+			const struct stray_common_group *c = &w->plan[v].cg[g];
+			double m = stray_common_group_mean(c);
+
+			if (c->n > 0)
+				res->visits[v].var_power +=
+					s2 * m * m / (double)c->n;
+		}
+	*redo = 1;
 	return STRAY_OK;
 }
 
@@ -650,7 +668,7 @@ static int reduce_all(struct workspace *w,
 		      struct stray_error *err)
 {
 	size_t v;
-	int rc;
+	int rc, redo = 0;
 
 	if ((rc = setup(w, err)) || (rc = dark_levels(w, res, err)) ||
 	    (rc = dark_pixels(w, res, err)) ||
@@ -660,13 +678,16 @@ static int reduce_all(struct workspace *w,
 	for (v = 0; v < res->n_visits; v++)
 		if ((rc = reduce_visit(w, v, res, err)) != STRAY_OK)
 			return rc;
-	if ((rc = add_common(w, res, err)) != STRAY_OK)
-		return rc;
 	res->points = calloc(res->n_visits, sizeof(*res->points));
 	if (!res->points)
 		return stray_error_set(err, STRAY_ENOMEM, "curve", "no memory");
 	rc = stray_reduce_curve(res->visits, res->n_visits, res->points,
 				&res->n_points, &res->drift, err);
+	if (rc == STRAY_OK && (rc = add_common(w, res, &redo, err)) ==
+	    STRAY_OK && redo)
+		rc = stray_reduce_curve(res->visits, res->n_visits,
+					res->points, &res->n_points,
+					&res->drift, err);
 	if (rc == STRAY_OK && to_commanded(w, res))
 		rc = stray_reduce_curve(res->visits, res->n_visits,
 					res->points, &res->n_points,

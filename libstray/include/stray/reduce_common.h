@@ -20,32 +20,44 @@
 
 #include "stray/reduce_response.h"
 
-/* The frame totals of one group (Welford), and whether any was cut. */
+/* The frame totals S_k of one group and their places x_k in the
+ * acquisition order (sums shifted by the first, for precision). */
 struct stray_common_group {
 	size_t n;
-	double mean, m2;
+	double s0, x0;		/* the first total and place */
+	double ss, sss, sx, sxx, sxs;	/* sums of S', S'^2, x', x'^2, x'S' */
+	double v_ind;		/* sum_i var(L_i): independent pixels */
 	int incomplete;		/* a sample saturated: totals not comparable */
 };
 
 void stray_common_group_reset(struct stray_common_group *g);
 
-/* Add one frame's total over the unmasked pixels (mask may be NULL). */
+/* Add one frame's total over the unmasked pixels (mask may be NULL),
+ * taken at place x in the acquisition order. */
 int stray_common_group_add(struct stray_common_group *g,
 			   const struct stray_dark_model *d,
 			   const struct stray_frame *f, const uint8_t *mask,
-			   struct stray_error *err);
+			   double x, struct stray_error *err);
+
+/* Close a group with its accumulator (the same frames): what
+ * independent pixels give to the scatter of its totals. */
+void stray_common_group_finish(struct stray_common_group *g,
+			       const struct stray_accum *a,
+			       const uint8_t *mask);
+
+/* The mean total of a closed group. */
+double stray_common_group_mean(const struct stray_common_group *g);
 
 /*
- * A finished group, given its accumulator (the same frames): *est, the
- * excess relative variance of its frame totals (var_S - var_ind) / S^2,
- * and *ind, var_ind / S^2, what independent pixels give.  Returns its
- * degrees of freedom, n - 1 (0: unusable, fewer than 2 frames or a
- * saturated sample).
+ * A closed group's excess relative variance *est = (var_S - var_ind) /
+ * Sbar^2 and *ind = var_ind / Sbar^2, with the totals first detrended by
+ * a source drifting by the fraction beta per unit of place (the sweep's
+ * fitted drift: a known change, not noise).  Returns the degrees of
+ * freedom, n - 1 (0: unusable, fewer than 2 frames or a saturated
+ * sample).
  */
 size_t stray_common_group_stats(const struct stray_common_group *g,
-				const struct stray_accum *a,
-				const uint8_t *mask, double *est,
-				double *ind);
+				double beta, double *est, double *ind);
 
 /*
  * The relative variance s^2 per frame pooled over n groups, each
