@@ -99,7 +99,7 @@ int rig_lab_open(struct rig_lab *lab, const struct rig_config *cfg,
 	memset(lab, 0, sizeof(*lab));
 	lab->cfg = cfg;
 	lab->hal = hal;
-	lab->theta_deg = NAN;
+	lab->theta_deg = lab->theta_rb_deg = NAN;
 	/* Lines first, so the lab is made safe before anything moves. */
 	rc = open_dev(lab, RIG_DEV_GPIO, err);
 	if (rc == RIG_OK)
@@ -147,7 +147,7 @@ int rig_lab_reconnect(struct rig_lab *lab, int dev, struct rig_error *err)
 	rig_error_clear(&tmp);
 	rc = open_dev(lab, dev, &tmp);
 	if (rc == RIG_OK && dev == RIG_DEV_STAGE) {
-		lab->theta_deg = NAN;
+		lab->theta_deg = lab->theta_rb_deg = NAN;
 		rc = rig_stage_home(&lab->stage, &tmp);
 	}
 	if (rc != RIG_OK)
@@ -195,8 +195,10 @@ int rig_lab_home(struct rig_lab *lab, struct rig_error *err)
 {
 	int rc = with_retries(lab, RIG_DEV_STAGE, home_op, NULL, err);
 
-	if (rc == RIG_OK)
+	if (rc == RIG_OK) {
 		lab->theta_deg = 0;
+		lab->theta_rb_deg = NAN;	/* no position read on homing */
+	}
 	return rc;
 }
 
@@ -225,10 +227,12 @@ int rig_lab_move(struct rig_lab *lab, double theta_deg, struct rig_error *err)
 		return rig_error_set(err, RIG_EINTERLOCK,
 			"stage: angle %g deg outside limits [%g, %g] deg",
 			theta_deg, s->min_deg, s->max_deg);
-	lab->theta_deg = NAN;
+	lab->theta_deg = lab->theta_rb_deg = NAN;
 	rc = with_retries(lab, RIG_DEV_STAGE, move_op, &theta_deg, err);
-	if (rc == RIG_OK)
+	if (rc == RIG_OK) {
 		lab->theta_deg = theta_deg;
+		lab->theta_rb_deg = lab->stage.readback_deg;
+	}
 	return rc;
 }
 

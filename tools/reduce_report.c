@@ -190,6 +190,9 @@ cJSON *reduce_json(const struct stray_reduce_sweep_result *r,
 	/* The normalisation's share of every sigma: their correlation. */
 	cJSON_AddItemToObject(o, "p0_rel_sigma",
 			      cli_json_number(r->drift.p0_rel_sigma));
+	/* Frame-common noise (reduce_common.h), in every sigma. */
+	cJSON_AddItemToObject(o, "common_rel_sigma",
+			      cli_json_number(r->common_rel_sigma));
 	cJSON_AddNumberToObject(o, "hot_pixel_count", (double)r->mask.n_hot);
 	cJSON_AddNumberToObject(o, "dead_pixel_count", (double)r->mask.n_dead);
 	cJSON_AddItemToObject(o, "hot_pixels", pixels_json(r, STRAY_PIX_HOT));
@@ -219,6 +222,8 @@ void reduce_print(FILE *out, const struct stray_reduce_sweep_result *r,
 			" from %zu on-axis visits%s\n",
 			100.0 * r->drift.rel_change, r->drift.z, r->drift.n_ref,
 			r->drift.detected ? ": DETECTED, corrected" : "");
+	fprintf(out, "frame-common noise: %.3g%% per frame (%zu dof), in "
+		"every sigma\n", 100.0 * r->common_rel_sigma, r->common_dof);
 	fprintf(out, "%10s %14s %12s %12s\n", "theta_deg", "alpha", "sigma",
 		"noise_floor");
 	for (i = 0; i < r->n_points; i++)

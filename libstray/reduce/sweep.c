@@ -21,6 +21,8 @@
 #include <string.h>
 
 #include "stray/errfmt.h"
+#include "stray/reduce_angle.h"
+#include "stray/reduce_common.h"
 #include "stray/sweep_store.h"
 #include "stray/reduce_sweep.h"
 #include "bigmem.h"
@@ -37,6 +39,11 @@ struct visit_plan {
 	size_t n_full, n_amb;
 	size_t n_peaks;
 	struct stray_ghost_peak peaks[STRAY_GHOST_PEAKS_MAX];
+	/* Frame totals of its FULL [0] and AMBIENT [1] groups
+	 * (reduce_common.h). */
+	struct stray_common_group cg[2];
+	double rb_sum;		/* ANGLERB (else ANGLE) over its light frames */
+	size_t n_rb;
 };
 
 struct workspace {
@@ -516,7 +523,7 @@ static int light_buffers(struct workspace *w,
 }
 
 /* Stream one visit's frames into the FULL and AMBIENT accumulators. */
-static int accumulate_visit(struct workspace *w, const struct visit_plan *p,
+static int accumulate_visit(struct workspace *w, struct visit_plan *p,
 			    struct stray_reduce_sweep_result *res, struct stray_error *err)
 {
 	struct stray_frame f;
@@ -525,6 +532,8 @@ static int accumulate_visit(struct workspace *w, const struct visit_plan *p,
 
 	stray_accum_reset(&w->full);
 	stray_accum_reset(&w->amb);
+	stray_common_group_reset(&p->cg[0]);
+	stray_common_group_reset(&p->cg[1]);
 	for (r = 0; r < p->n_runs; r++)
 		for (i = p->first[r]; i <= p->last[r] && rc == STRAY_OK; i++) {
 			const struct stray_sweep_entry *e = &w->man.e[i];
@@ -532,10 +541,19 @@ static int accumulate_visit(struct workspace *w, const struct visit_plan *p,
 			if (e->type == STRAY_SWEEP_DARK)
 				continue;
 			rc = load_frame(w, e, &f, w->pix, err);
+			if (rc == STRAY_OK) {
+				p->rb_sum += w->fits.h.angle_rb_deg;
+				p->n_rb++;
+			}
 			if (rc == STRAY_OK)
 				rc = at_frame(w, e, stray_accum_add(
 					e->type == STRAY_SWEEP_FULL ? &w->full : &w->amb,
 					&w->dark, &f, err), err);
+			if (rc == STRAY_OK)
+				rc = at_frame(w, e, stray_common_group_add(
+					&p->cg[e->type != STRAY_SWEEP_FULL],
+					&w->dark, &f, w->mask, (double)i,
+					err), err);
 			res->has_monitor |= w->fits.h.has_monitor;
 		}
 	return rc;
@@ -585,6 +603,8 @@ static int reduce_visit(struct workspace *w, size_t v,
 	vis->power = s.power;
 	vis->var_power = s.var_power;
 	vis->sigma = s.sigma;
+	stray_common_group_finish(&p->cg[0], &w->full, w->mask);
+	stray_common_group_finish(&p->cg[1], &w->amb, w->mask);
 	vis->n_pix = s.n_pix;
 	res->n_sat_samples += w->full.n_sat + w->amb.n_sat;
 	res->n_sat_pixels += s.n_sat_pix;
@@ -681,12 +701,100 @@ static void start_reading(struct workspace *w,
 	stray_prefetch_start(&w->pf, w->dir, seq, n, 1);	/* owns seq */
 }
 
+/* The fitted source drift per manifest row, relative (0: none fitted). */
+static double drift_per_row(const struct stray_reduce_sweep_result *res)
+{
+	double lo = HUGE_VAL, hi = -HUGE_VAL;
+	size_t v;
+
+	if (!res->drift.fitted)
+		return 0.0;
+	for (v = 0; v < res->n_visits; v++)
+		if (fabs(res->visits[v].theta_deg) <= STRAY_THETA_TOL_DEG) {
+			lo = fmin(lo, res->visits[v].order);
+			hi = fmax(hi, res->visits[v].order);
+		}
+	return hi > lo ? res->drift.rel_change / (hi - lo) : 0.0;
+}
+
+/*
+ * Frame-common noise (reduce_common.h), measured with the drift of the
+ * first curve taken out of each group, then s^2 Sbar^2 / n of every group
+ * added to its visit's var(P); *redo when the curve must be redone.
+ */
+static int add_common(struct workspace *w,
+		      struct stray_reduce_sweep_result *res, int *redo,
+		      struct stray_error *err)
+{
+	size_t n = 2 * res->n_visits, v, g;
+	double *est = malloc(n * sizeof(*est)), *ind = malloc(n * sizeof(*ind));
+	size_t *dof = malloc(n * sizeof(*dof));
+	double s2, beta = drift_per_row(res);
+
+	*redo = 0;
+
+	if (!est || !ind || !dof) {
+		free(est);
+		free(ind);
+		free(dof);
+		return stray_error_set(err, STRAY_ENOMEM, "curve", "no memory");
+	}
+	res->common_dof = 0;
+	for (v = 0; v < res->n_visits; v++)
+		for (g = 0; g < 2; g++) {
+			size_t k = 2 * v + g;
+
+			dof[k] = stray_common_group_stats(&w->plan[v].cg[g],
+				beta, &est[k], &ind[k]);
+			res->common_dof += dof[k];
+		}
+	s2 = stray_common_fit(est, ind, dof, n);
+	free(est);
+	free(ind);
+	free(dof);
+	res->common_rel_sigma = sqrt(s2);
+	if (w->o->no_common || !(s2 > 0.0))
+		return STRAY_OK;
+	for (v = 0; v < res->n_visits; v++)
+		for (g = 0; g < 2; g++) {
+			const struct stray_common_group *c = &w->plan[v].cg[g];
+			double m = stray_common_group_mean(c);
+
+			if (c->n > 0)
+				res->visits[v].var_power +=
+					s2 * m * m / (double)c->n;
+		}
+	*redo = 1;
+	return STRAY_OK;
+}
+
+/* Visits taken off their commanded angle (ANGLERB, reduce_angle.h):
+ * carried there along the curve; 1 when the curve must be redone. */
+static int to_commanded(struct workspace *w,
+			struct stray_reduce_sweep_result *res)
+{
+	double *rb = malloc(res->n_visits * sizeof(*rb));
+	size_t v;
+
+	if (!rb || w->o->no_angle_rb) {
+		free(rb);
+		return 0;
+	}
+	for (v = 0; v < res->n_visits; v++)
+		rb[v] = w->plan[v].n_rb ? w->plan[v].rb_sum /
+			(double)w->plan[v].n_rb : res->visits[v].theta_deg;
+	res->angle_rb_max_deg = stray_visits_to_commanded(res->visits,
+		res->n_visits, rb, res->points, res->n_points);
+	free(rb);
+	return res->angle_rb_max_deg > 0.0;
+}
+
 static int reduce_all(struct workspace *w,
 		      struct stray_reduce_sweep_result *res,
 		      struct stray_error *err)
 {
 	size_t v;
-	int rc;
+	int rc, redo = 0;
 
 	if ((rc = setup(w, err)) || (rc = plan_visits(w, res, err)))
 		return rc;
@@ -705,6 +813,15 @@ static int reduce_all(struct workspace *w,
 		return stray_error_set(err, STRAY_ENOMEM, "curve", "no memory");
 	rc = stray_reduce_curve(res->visits, res->n_visits, res->points,
 				&res->n_points, &res->drift, err);
+	if (rc == STRAY_OK && (rc = add_common(w, res, &redo, err)) ==
+	    STRAY_OK && redo)
+		rc = stray_reduce_curve(res->visits, res->n_visits,
+					res->points, &res->n_points,
+					&res->drift, err);
+	if (rc == STRAY_OK && to_commanded(w, res))
+		rc = stray_reduce_curve(res->visits, res->n_visits,
+					res->points, &res->n_points,
+					&res->drift, err);
 	if (rc != STRAY_OK)
 		return stray_error_at(err, rc, w->dir, 0, 0, 0);
 	res->p0 = res->drift.p0;

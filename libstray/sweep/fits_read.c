@@ -1,7 +1,7 @@
 /*
  * fits_read.c - a lab frame read through cfitsio (sweep_store.h): header
  * keywords FRAMETYP, ANGLE, EXPTIME, NDTRANS, SEQNUM, ROWS, COL0, ROW0,
- * SATLEVEL (and the optional MONITOR), then the 16-bit image.
+ * SATLEVEL (and the optional MONITOR and ANGLERB), then the 16-bit image.
  */
 #include <errno.h>
 #include <fitsio.h>
@@ -220,6 +220,20 @@ static int read_header(struct stray_sweep_fits *f, struct stray_error *err)
 				 "is not a number", status,
 				 err);
 	fits_clear_errmsg();
+	status = 0;
+	h->has_angle_rb = 0;
+	h->angle_rb_deg = h->angle_deg;
+	if (key_number(f, STRAY_SWEEP_KEY_ANGLERB, &h->angle_rb_deg,
+		       &status) == 0)
+		h->has_angle_rb = 1;
+	else if (status != KEY_NO_EXIST)
+		return fits_fail(f->path, STRAY_SWEEP_KEY_ANGLERB,
+				 "is not a number", status, err);
+	fits_clear_errmsg();
+	if (h->has_angle_rb && !isfinite(h->angle_rb_deg))
+		return stray_error_at(err, STRAY_EPARSE, f->path, 0,
+				      STRAY_SWEEP_KEY_ANGLERB,
+				      "must be finite");
 	if (!(h->exptime_s > 0.0))
 		return stray_error_at(err, STRAY_EPARSE, f->path, 0,
 				      STRAY_SWEEP_KEY_EXPTIME,

@@ -164,6 +164,7 @@ int rig_stage_move(struct rig_stage *s, double theta_deg,
 		rc = rig_stage_position(s, &at, err);
 	if (rc != RIG_OK)
 		return rc;
+	s->readback_deg = at;
 	if (fabs(at - theta_deg) > s->cfg->tol_deg)
 		return rig_error_set(err, RIG_ETARGET,
 			"stage: stopped at %.4f deg, target %.4f deg", at,

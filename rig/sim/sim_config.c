@@ -122,6 +122,10 @@ static int parse_sim(struct rig_sim_config *sc, const cJSON *o,
 	static const struct rig_cfg_field tab[] = {
 		{ "real_delay_s", K_NUM,
 		  offsetof(struct rig_sim_config, real_delay_s), 0, 10 },
+		{ "monitor_noise", K_NUM,
+		  offsetof(struct rig_sim_config, monitor_noise), 0, 0.1 },
+		{ "stage_error_deg", K_NUM,
+		  offsetof(struct rig_sim_config, stage_error_deg), 0, 1 },
 		{ NULL, 0, 0, 0, 0 }
 	};
 	const cJSON *fl = cJSON_GetObjectItemCaseSensitive(o, "faults");
@@ -147,6 +151,7 @@ void rig_sim_config_defaults(struct rig_sim_config *sc)
 {
 	memset(sc, 0, sizeof(*sc));
 	rig_vlab_defaults(&sc->vlab);
+	sc->monitor_noise = 5e-4;
 }
 
 int rig_sim_config_parse(struct rig_sim_config *sc, const void *vlab,

@@ -1,9 +1,9 @@
 /*
  * sim_monitor.c - device side of the lamp monitor photodiode
  * (monitor_report.h): answers each READ with the photocurrent of the
- * virtual lamp, nominal_pa times the lamp's drift factor, with 0.05 %
- * noise, or a 50 pA dark current when the lamp is off.  A timeout fault
- * drops the answer.
+ * virtual lamp, nominal_pa times the lamp's drift factor, with +-0.05 %
+ * noise (sim.monitor_noise), or a 50 pA dark current when the lamp is
+ * off.  A timeout fault drops the answer.
  */
 #include <math.h>
 #include <string.h>
@@ -14,15 +14,22 @@
 #include "rig/vlab.h"
 
 #define DARK_PA 50.0
-#define NOISE_FRAC 5e-4
 
-/* Deterministic small noise from the read count (a hash, not an RNG). */
-static double noise(uint32_t n)
+/*
+ * Deterministic small noise from the lab seed and the read count: a
+ * splitmix64 hash of both, so successive reads are independent (white,
+ * as a photodiode's read noise is) and sweeps of other seeds differ.
+ * (A multiplicative hash of the count alone drifted smoothly from read
+ * to read and was the same for every seed.)
+ */
+static double noise(uint64_t seed, uint32_t n, double frac)
 {
-	uint32_t h = n * 2654435761u;
+	uint64_t z = seed * 0x9E3779B97F4A7C15ull + n;
 
-	h ^= h >> 16;
-	return ((double)(h & 0xffff) / 65535.0 - 0.5) * 2 * NOISE_FRAC;
+	z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+	z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+	z ^= z >> 31;
+	return ((double)(z >> 11) / 9007199254740992.0 - 0.5) * 2 * frac;
 }
 
 int rig_sim_monitor_write(struct sim_monitor *m, struct rig_sim_core *core,
@@ -45,7 +52,8 @@ int rig_sim_monitor_write(struct sim_monitor *m, struct rig_sim_core *core,
 			       rig_vlab_lamp_factor(&core->cfg->sim.vlab,
 						    core->t_s)
 		     : DARK_PA;
-	pa *= 1 + noise(++m->reads);
+	pa *= 1 + noise(core->cfg->sim.vlab.seed, ++m->reads,
+			core->cfg->sim.monitor_noise);
 	memset(&in, 0, sizeof(in));
 	in.seq = seq;
 	in.current_pa = pa >= 4294967295.0 ? 0xffffffffu

@@ -66,6 +66,26 @@ static void start_motion(struct sim_stage *s,
 	s->moving = 1;
 }
 
+/* Where a move settles off its target (sim.stage_error_deg, uniform,
+ * 0 by default): a hash of the lab seed and the move count, in counts.
+ * The position counter reads the settled position, as an encoder does. */
+static int32_t settle_error(struct sim_stage *s,
+			    const struct rig_sim_core *core)
+{
+	const struct rig_sim_config *sc = &core->cfg->sim;
+	uint64_t z = sc->vlab.seed * 0xD1B54A32D192ED03ull + ++s->moves;
+	double u;
+
+	if (!(sc->stage_error_deg > 0))
+		return 0;
+	z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+	z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+	z ^= z >> 31;
+	u = (double)(z >> 11) / 9007199254740992.0 * 2 - 1;
+	return (int32_t)lround(u * sc->stage_error_deg *
+			       core->cfg->stage.counts_per_deg);
+}
+
 static void handle_move(struct sim_stage *s, struct rig_sim_core *core,
 			const struct rig_apt_msg *m)
 {
@@ -75,6 +95,7 @@ static void handle_move(struct sim_stage *s, struct rig_sim_core *core,
 
 	if (kind == RIG_FAULT_MISS)
 		to -= (int32_t)lround(miss * core->cfg->stage.counts_per_deg);
+	to += settle_error(s, core);
 	s->homing = 0;
 	s->stalled = kind == RIG_FAULT_STALL || kind == RIG_FAULT_TIMEOUT;
 	start_motion(s, core, to);

@@ -32,6 +32,10 @@ struct stray_reduce_sweep_opts {
 	int verify_sha256;
 	int keep_image;		/* keep J at image_theta_deg */
 	double image_theta_deg;
+	int no_common;		/* leave frame-common noise out of var(P)
+				 * (reduce_common.h); it is still measured */
+	int no_angle_rb;	/* keep visits at their read-back angles
+				 * (ANGLERB ignored, reduce_angle.h) */
 };
 
 void stray_reduce_sweep_opts_default(struct stray_reduce_sweep_opts *o);
@@ -66,6 +70,13 @@ struct stray_reduce_sweep_result {
 	float *image;
 	double image_theta_deg;
 	size_t workspace_bytes;	/* per-pixel buffers, for the bound */
+	/* Frame-common relative noise per frame (reduce_common.h), added to
+	 * every var(P), and the degrees of freedom it was measured on. */
+	double common_rel_sigma;
+	size_t common_dof;
+	/* Largest |commanded - read-back| angle (ANGLERB) a visit was
+	 * carried over (reduce_angle.h), deg. */
+	double angle_rb_max_deg;
 };
 
 /* Reduce DIR; res is zeroed first and must be freed. */

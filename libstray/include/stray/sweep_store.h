@@ -49,6 +49,9 @@ enum stray_sweep_frametyp {
 #define STRAY_SWEEP_KEY_ROW0 "ROW0"
 #define STRAY_SWEEP_KEY_SATLEVEL "SATLEVEL"	/* [DN] */
 #define STRAY_SWEEP_KEY_MONITOR "MONITOR"	/* optional, 1 = nominal */
+/* optional [deg]: the stage's read-back angle (position counter) for
+ * the frame, where ANGLE is the commanded one */
+#define STRAY_SWEEP_KEY_ANGLERB "ANGLERB"
 
 #define STRAY_SWEEP_FILE_MAX 256
 #define STRAY_SWEEP_DIR_MAX 1024
@@ -207,6 +210,8 @@ struct stray_sweep_header {
 	double angle_deg, exptime_s, ndtrans;
 	double monitor;		/* MONITOR, 1 when absent */
 	int has_monitor;
+	double angle_rb_deg;	/* ANGLERB, ANGLE when absent */
+	int has_angle_rb;
 	long seqnum, col0, row0, satlevel;
 	size_t n_rows, n_cols;	/* NAXIS2, NAXIS1 */
 	int has_rows;		/* ROWS present (row-sampled frame) */

@@ -47,6 +47,7 @@ struct rig_stage {
 	uint8_t rx[1024];	/* APT bytes received, FTDI status stripped */
 	size_t rx_len;
 	int homed;
+	double readback_deg;	/* position counter after the last move */
 };
 
 int rig_stage_open(struct rig_stage *s, const struct rig_hal *hal,

@@ -20,6 +20,7 @@ struct rig_lab {
 	struct rig_monitor monitor;
 	int open_mask;		/* bit per enum rig_device */
 	double theta_deg;	/* last commanded and verified; NAN unknown */
+	double theta_rb_deg;	/* the stage's read-back there; NAN unknown */
 	unsigned recoveries;	/* faults survived by retry or reconnect */
 	unsigned crc_rereads;	/* of camera connections already closed */
 };

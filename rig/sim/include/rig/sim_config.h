@@ -36,6 +36,10 @@ struct rig_fault {
 struct rig_sim_config {
 	struct rig_vlab_cfg vlab;
 	double real_delay_s;	/* real sleep per simulated frame */
+	double monitor_noise;	/* lamp monitor read noise, +- fraction
+				 * (uniform; 5e-4 by default) */
+	double stage_error_deg;	/* stage settles up to +- this off its
+				 * target, within tol_deg (0 by default) */
 	int n_faults;
 	struct rig_fault faults[RIG_FAULTS_MAX];
 };

@@ -24,6 +24,7 @@
 struct sim_stage {
 	int32_t pos, from, target;
 	double t0, t1;		/* motion start and end, virtual s */
+	uint32_t moves;		/* absolute moves so far (stage_error_deg) */
 	int moving, homing, stalled, open;
 	uint8_t in[256];
 	size_t in_len;
