@@ -24,6 +24,9 @@ struct truth_config {
 	double floor;			/* additive background */
 	double leak_level, leak_lo_deg, leak_hi_deg;	/* 0: none */
 	double dip_factor, dip_lo_deg, dip_hi_deg;	/* 0: none */
+	const char *group;		/* a surface group's reflectance */
+	double group_factor;		/*   times this (0: none) */
+	const char *lens;		/* lens table (system curve), or NULL */
 	double rel_noise;		/* photometer noise, relative */
 	double floor_sigma;		/* measurement floor, absolute */
 	uint64_t seed, n_paths;

@@ -23,6 +23,7 @@ struct diag_eval {
 	const char *sets[DIAG_SETS_MAX];
 	int n_sets;
 	int parametric;		/* scene is the built-in baffle */
+	const char *lens;	/* lens table (system curve), or NULL */
 	uint64_t n_paths, seed;
 	int threads;
 	const struct tracer_runner *runner;	/* runs every trace */
