@@ -11,7 +11,8 @@ extern const struct diag_cause diag_cause_reflectance,
 	diag_cause_knife_edge_radius, diag_cause_abg_scatter,
 	diag_cause_acceptance_cone, diag_cause_angle_offset,
 	diag_cause_pivot_offset, diag_cause_floor, diag_cause_light_leak,
-	diag_cause_bevel_face, diag_cause_scale;
+	diag_cause_bevel_face, diag_cause_scale, diag_cause_lens_scale,
+	diag_cause_lens_ghost;
 
 const struct diag_cause *const diag_causes[] = {
 	&diag_cause_reflectance,
@@ -24,6 +25,8 @@ const struct diag_cause *const diag_causes[] = {
 	&diag_cause_light_leak,
 	&diag_cause_bevel_face,
 	&diag_cause_scale,
+	&diag_cause_lens_scale,
+	&diag_cause_lens_ghost,
 	NULL
 };
 
@@ -47,4 +50,5 @@ void diag_state_nominal(struct diag_state *s)
 	s->geo[DIAG_GEO_ABG_G] = NAN;
 	s->geo[DIAG_GEO_PIVOT] = NAN;
 	s->leak_log10 = -INFINITY;
+	s->ghost_log10 = -INFINITY;
 }

@@ -20,6 +20,7 @@ static const char usage[] =
 	"usage: stray diagnose MEASURED.csv --scene SCENE [--rays N]\n"
 	"                      [--seed K] [--threads T] [--set key=value]...\n"
 	"                      [--plot F.png] [--causes] [--json]\n"
+	"                      [--lens L.csv] [--surfaces] [--write-model M.json]\n"
 	"\n"
 	"Compares a measured attenuation curve (CSV with a sigma column) with\n"
 	"the traced model of SCENE, fits each registered physical cause and\n"
@@ -34,13 +35,22 @@ static const char usage[] =
 	"  --threads T       tracer threads (default 1)\n"
 	"  --set key=value   the scene as built (repeatable)\n"
 	"  --plot F.png      measured vs model (F.png) and residuals (F-resid.png)\n"
+	"  --lens L.csv      a system curve (baffle + lens): the trace includes\n"
+	"                    the lens table, as `stray trace --lens`; lens causes\n"
+	"                    (lens_scale, lens_ghost) join the registry\n"
+	"  --surfaces        localise per surface group (reflectance / ABg scale\n"
+	"                    factors by re-weighting the path table, few groups,\n"
+	"                    BIC) even when the registry explains the curve\n"
+	"                    (it runs anyway when a significant residual is left)\n"
+	"  --write-model M.json  the extended model as a scene file (and M.obj),\n"
+	"                    for `stray trace --scene M.json`\n"
 	"  --causes          list the registered causes and exit\n"
 	"  --json            machine-readable output\n";
 
 struct diag_args {
-	const char *measured, *scene, *plot;
+	const char *measured, *scene, *plot, *lens, *model;
 	const char *sets[DIAG_SETS_MAX];
-	int n_sets, list;
+	int n_sets, list, surfaces;
 	double rays, seed, threads;
 };
 
@@ -54,6 +64,9 @@ static int parse_args(int argc, char **argv, struct diag_args *a)
 		{ "set", required_argument, NULL, 'S' },
 		{ "plot", required_argument, NULL, 'p' },
 		{ "causes", no_argument, NULL, 'c' },
+		{ "lens", required_argument, NULL, 'L' },
+		{ "surfaces", no_argument, NULL, 'G' },
+		{ "write-model", required_argument, NULL, 'W' },
 		{ "json", no_argument, NULL, 'j' },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 }
@@ -65,6 +78,9 @@ static int parse_args(int argc, char **argv, struct diag_args *a)
 		case 's': a->scene = optarg; break;
 		case 'p': a->plot = optarg; break;
 		case 'c': a->list = 1; break;
+		case 'L': a->lens = optarg; break;
+		case 'G': a->surfaces = 1; break;
+		case 'W': a->model = optarg; break;
 		case 'j': cli.json = 1; break;
 		case 'n': rc = cli_parse_double("diagnose", "rays", optarg, &a->rays); break;
 		case 'k': rc = cli_parse_double("diagnose", "seed", optarg, &a->seed); break;
@@ -119,8 +135,31 @@ static void list_causes(void)
 	}
 }
 
+/* The surface at fault (diagnose/diag_surfaces.h): localise, confirm by
+ * a re-trace of the model, write it where the user asked. */
+static int surfaces(struct diag_eval *e, const struct diag_data *d,
+		    const char *model, struct diag_surfaces *s,
+		    struct stray_error *err)
+{
+	struct diag_surf_table *t = NULL;
+	int rc;
+
+	log_line("surface at fault: re-weighting per surface group");
+	rc = diag_surf_table_trace(e, &t, err);
+	if (!rc)
+		rc = diag_surfaces_fit(t, d, s, err);
+	diag_surf_table_free(t);
+	if (!rc)
+		rc = diag_surfaces_confirm(e, d, s, err);
+	if (!rc && model)
+		rc = diag_surfaces_write_model(e, s, model, err);
+	return rc;
+}
+
 int cmd_diagnose(int argc, char **argv, const struct tracer_runner *runner)
 {
+	struct diag_surfaces surf;
+	int with_surf = 0;
 	struct diag_args a = { .rays = 200000, .seed = 1, .threads = 1 };
 	struct stray_error err;
 	struct diag_data d;
@@ -142,19 +181,28 @@ int cmd_diagnose(int argc, char **argv, const struct tracer_runner *runner)
 	e.n_paths = (uint64_t)a.rays;
 	e.seed = (uint64_t)a.seed;
 	e.threads = (int)a.threads;
+	e.lens = a.lens;
 	for (i = 0; i < a.n_sets; i++)
 		e.sets[e.n_sets++] = a.sets[i];
 	memset(&r, 0, sizeof(r));
 	rc = diag_eval_prepare(&e, &err);
 	if (!rc)
 		rc = diag_run(&e, &d, &r, log_line, &err);
+	with_surf = a.surfaces || a.model || (r.significant && !r.explained);
+	if (!rc && with_surf)
+		rc = surfaces(&e, &d, a.model, &surf, &err);
 	if (!rc && a.plot)
 		rc = diag_plot(a.plot, &d, &r, &err);
 	if (!rc) {
 		if (cli.json)
-			rc = diag_report_json(&d, &e, &r);
-		else
+			rc = diag_report_json_surf(&d, &e, &r,
+						   with_surf ? &surf : NULL,
+						   a.model);
+		else {
 			diag_report_text(&d, &e, &r);
+			if (with_surf)
+				diag_report_surfaces_text(&surf, a.model);
+		}
 	} else {
 		rc = cli_fail("diagnose", &err);
 	}

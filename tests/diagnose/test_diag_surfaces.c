@@ -54,7 +54,7 @@ static void localise(const struct truth_config *c, struct diag_surfaces *s,
 	if (model) {
 		assert_int_equal(diag_surfaces_write_model(&e, s, model, &err),
 				 0);
-		if (diag_surfaces_confirm(&e, &d, s, model, &err))
+		if (diag_surfaces_confirm(&e, &d, s, &err))
 			fail_msg("re-trace of %s: %s (%s)", model,
 				 err.reason ? err.reason : "",
 				 err.field ? err.field : "");

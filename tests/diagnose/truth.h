@@ -11,7 +11,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#define TRUTH_SETS_MAX 8
+#define TRUTH_SETS_MAX 16
 
 struct truth_config {
 	const double *theta_deg;	/* logged angles, 0 first */

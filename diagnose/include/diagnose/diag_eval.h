@@ -36,6 +36,9 @@ struct diag_eval {
 	size_t n_traces;
 	double trace_seconds;
 	double *direct_share;	/* nominal direct / total at theta_i */
+	double *direct_alpha;	/* nominal direct alpha at theta_i */
+	unsigned char *lens_out;	/* theta_i beyond the lens's field
+					 * (table < half its on-axis value) */
 };
 
 #define DIAG_SUB 9		/* fine-grid points per angle: -4..4 steps */

@@ -54,16 +54,17 @@ int diag_surfaces_fit(const struct diag_surf_table *t,
 		      struct stray_error *err);
 
 /* Write the extended model: path (JSON scene file) and its mesh beside it
- * (path with .obj for .json), every group's material as the scene's, the
+ * (path with .obj for .json; through the atomic writer: in place when
+ * the run's outputs are, stray_file_finish), every group's material as the scene's, the
  * named groups' factors applied. */
 int diag_surfaces_write_model(const struct diag_eval *e,
 			      const struct diag_surfaces *s, const char *path,
 			      struct stray_error *err);
 
-/* Confirm: trace the written model at the measured angles (through e's
- * runner, same paths and seed) and fill chi2_retrace, rms_retrace. */
+/* Confirm: write the model (a private copy, in a temporary directory),
+ * trace it at the measured angles (through e's runner, same paths and
+ * seed) and fill chi2_retrace, rms_retrace. */
 int diag_surfaces_confirm(struct diag_eval *e, const struct diag_data *d,
-			  struct diag_surfaces *s, const char *model_path,
-			  struct stray_error *err);
+			  struct diag_surfaces *s, struct stray_error *err);
 
 #endif /* DIAGNOSE_DIAG_SURFACES_H */
