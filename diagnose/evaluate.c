@@ -17,7 +17,7 @@
 
 #include "trace_cache.h"
 #include "stray/errfmt.h"
-#include "tracer/detector.h"
+#include "lens.h"
 
 #define LEAK_EDGE_DEG 0.2	/* soft window edge, so the fit has a slope */
 
@@ -35,46 +35,6 @@ void diag_eval_init(struct diag_eval *e, const char *scene,
 	e->theta_deg = theta_deg;
 	e->n = n;
 	e->sub_step_deg = DIAG_OFFSET_MAX_DEG / (DIAG_SUB / 2);
-}
-
-/* System curves (cause_lens_*.c): the nominal direct alpha at each
- * measured angle (it does not depend on any reflectance) and whether the
- * angle lies beyond the lens's field (table below half its value at 0). */
-static int lens_prepare(struct diag_eval *e, const struct diag_trace *t,
-			struct stray_error *err)
-{
-	struct tracer_lens lens = { 0, NULL, NULL };
-	double *p, *var, t0;
-	size_t i;
-	int rc = STRAY_OK;
-
-	if (!e->lens)
-		return STRAY_OK;
-	e->direct_alpha = malloc((e->n ? e->n : 1) * sizeof(double));
-	e->lens_out = malloc(e->n ? e->n : 1);
-	p = malloc(2 * t->n_theta * sizeof(*p));
-	if (!e->direct_alpha || !e->lens_out || !p) {
-		free(p);
-		return stray_error_set(err, STRAY_ENOMEM, "diagnose",
-				       "out of memory");
-	}
-	var = p + t->n_theta;
-	rc = tracer_lens_load(e->lens, &lens, err);
-	if (!rc) {
-		diag_trace_power(t, NAN, p, var);
-		t0 = tracer_lens_transmission(&lens, 0.0);
-		for (i = 0; i < e->n; i++) {
-			size_t j = t->idx[i * DIAG_SUB + DIAG_SUB / 2];
-
-			e->direct_alpha[i] = p[t->ref] > 0.0 ?
-				t->direct[j] * p[j] / p[t->ref] : 0.0;
-			e->lens_out[i] = tracer_lens_transmission(&lens,
-				fabs(e->theta_deg[i])) < 0.5 * t0;
-		}
-	}
-	tracer_lens_free(&lens);
-	free(p);
-	return rc;
 }
 
 int diag_eval_prepare(struct diag_eval *e, struct stray_error *err)
@@ -96,7 +56,20 @@ int diag_eval_prepare(struct diag_eval *e, struct stray_error *err)
 	for (i = 0; i < e->n; i++)
 		e->direct_share[i] = t->direct[t->idx[i * DIAG_SUB +
 						       DIAG_SUB / 2]];
-	return lens_prepare(e, t, err);
+	if (e->lens) {	/* system curves: diagnose/lens.c */
+		struct diag_state s0;
+		double *a0 = malloc(2 * (e->n ? e->n : 1) * sizeof(double));
+
+		if (!a0)
+			return stray_error_set(err, STRAY_ENOMEM, "diagnose",
+					       "out of memory");
+		diag_state_nominal(&s0);
+		rc = diag_eval_model(e, &s0, a0, a0 + e->n, NULL, err);
+		if (!rc)
+			rc = diag_lens_prepare(e, a0, err);
+		free(a0);
+	}
+	return rc;
 }
 
 void diag_eval_free(struct diag_eval *e)
@@ -104,10 +77,7 @@ void diag_eval_free(struct diag_eval *e)
 	diag_trace_cache_free(e);
 	free(e->direct_share);
 	e->direct_share = NULL;
-	free(e->direct_alpha);
-	free(e->lens_out);
-	e->direct_alpha = NULL;
-	e->lens_out = NULL;
+	diag_lens_free(e);
 }
 
 /* The retrace cause of an axis (its nodes and nominal), or NULL. */
@@ -334,22 +304,7 @@ int diag_eval_model(struct diag_eval *e, const struct diag_state *s,
 
 		if (s->angle_offset_deg != 0.0)
 			a *= factor[i];
-		if (e->direct_alpha && (s->lens_log10 != 0.0 ||
-					isfinite(s->ghost_log10))) {
-			/* cause_lens_scale.c, cause_lens_ghost.c */
-			double dir = fmin(e->direct_alpha[i], a);
-			double k = pow(10.0, s->lens_log10);
-
-			if (e->lens_out[i])
-				a *= k;
-			else
-				a = dir + k * (a - dir);
-			if (isfinite(s->ghost_log10))
-				a += (e->lens_out[i] ? k : 1.0) * dir *
-				     (pow(10.0, s->ghost_log10) - 1.0) *
-				     window(th, s->ghost_lo_deg,
-					    s->ghost_hi_deg);
-		}
+		a = diag_lens_apply(e, s, i, a);	/* cause_lens_*.c */
 		a *= pow(10.0, s->scale_log10);	/* cause_scale.c */
 		g = a;		/* the traced part carries the MC error */
 		a += s->floor;

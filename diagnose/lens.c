@@ -1,0 +1,218 @@
+/*
+ * lens.c - system curves (`stray diagnose --lens`, issue 17 item 3;
+ * thesis §4.2): where the light arrives at the lens, so that the lens
+ * causes (cause_lens_scale.c, cause_lens_ghost.c) change the lens table
+ * only where they act.
+ *
+ * The system power is linear in the lens table T(phi) (phi the incidence
+ * at the pupil): P(theta) = sum_paths c T(phi_path).  Beyond the lens's
+ * field (T below half its on-axis value) the incidences are cut into bins
+ * of DIAG_LENS_BIN_DEG from the field edge (edges at half degrees, so that
+ * the usual integer angles of a sweep, where direct light arrives, sit
+ * inside a bin; the first bin from the edge to the next half degree) up to
+ * DIAG_LENS_BIN_TOP, and one bin beyond.  One trace per bin with the
+ * table T times the bin's indicator (same seed and paths: common random
+ * numbers) gives S_b(theta) = the light arriving in bin b, relative to
+ * the on-axis power of a trace with the whole table.  Then
+ *   lens_scale k:  alpha' = alpha + (k - 1) r sum_b S_b
+ *   ghost g [lo, hi]: alpha' += k (10^g - 1) r sum_b overlap_b S_b
+ * with overlap_b the fraction of bin b inside [lo, hi] (continuous in the
+ * edges) and r = alpha(state) / alpha(nominal) at that angle (the state's
+ * other causes scale the lens's part as they scale the whole: first
+ * order).  The bin traces use a quarter of the paths.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lens.h"
+#include "stray/errfmt.h"
+#include "tracer/integrator.h"
+#include "tracer/runner.h"
+#include "tracer/scene_load.h"
+
+static int oom(struct stray_error *err)
+{
+	return stray_error_set(err, STRAY_ENOMEM, "diagnose", "out of memory");
+}
+
+/* told times the indicator of [lo, hi) (all of it when lo > hi). */
+static int bin_lens(const struct tracer_lens *told, double lo, double hi,
+		    struct tracer_lens *out)
+{
+	size_t k, n = 0, cap = told->n + 6;
+
+	out->theta_deg = malloc(cap * sizeof(double));
+	out->t = malloc(cap * sizeof(double));
+	if (!out->theta_deg || !out->t)
+		return -1;
+#define PUT(a, v) do { out->theta_deg[n] = (a); out->t[n] = (v); n++; } \
+	while (0)
+	if (lo > 0.0) {
+		PUT(0.0, 0.0);
+		PUT(lo - 1e-6, 0.0);
+	}
+	PUT(lo, tracer_lens_transmission(told, lo));
+	for (k = 0; k < told->n; k++)
+		if (told->theta_deg[k] > lo && told->theta_deg[k] < hi)
+			PUT(told->theta_deg[k], told->t[k]);
+	PUT(hi, tracer_lens_transmission(told, hi));
+	if (hi < 180.0) {
+		PUT(hi + 1e-6, 0.0);
+		PUT(180.0, 0.0);
+	}
+#undef PUT
+	out->n = n;
+	return 0;
+}
+
+static int trace_with(struct diag_eval *e, const struct tracer_lens *lens,
+		      const double *theta, size_t n_theta,
+		      struct tracer_result *r, struct stray_error *err)
+{
+	struct tracer_scene_spec spec = { e->scene, e->sets, e->n_sets,
+					  e->lens, 0.0, 0.0 };
+	struct tracer_trace_opts o;
+	struct tracer_scene s;
+	int rc;
+
+	memset(r, 0, sizeof(*r));
+	tracer_scene_init(&s);
+	rc = tracer_scene_load(e->scene, e->sets, e->n_sets, &s, err);
+	if (!rc)
+		rc = tracer_scene_commit(&s, err);
+	if (!rc) {
+		tracer_trace_defaults(&o);
+		o.theta_deg = theta;
+		o.n_theta = n_theta;
+		o.n_paths = (e->n_paths + 3) / 4;
+		o.seed = e->seed;
+		o.threads = e->threads;
+		o.lens = lens;
+		rc = tracer_run(e->runner, &spec, &s, &o, r, err);
+	}
+	if (!rc) {
+		e->trace_seconds += r->seconds;
+		e->n_traces++;
+	}
+	tracer_scene_free(&s);
+	return rc;
+}
+
+int diag_lens_prepare(struct diag_eval *e, const double *alpha_nominal,
+		      struct stray_error *err)
+{
+	struct tracer_lens told = { 0, NULL, NULL };
+	struct tracer_result r;
+	double *theta = NULL, t0, field = 0.0, p0 = 0.0, pw, sg;
+	size_t i, b;
+	int rc;
+
+	if (!e->lens)
+		return STRAY_OK;
+	rc = tracer_lens_load(e->lens, &told, err);
+	theta = malloc((e->n + 1) * sizeof(*theta));
+	e->lens_alpha_nom = malloc((e->n ? e->n : 1) * sizeof(double));
+	if (!rc && (!theta || !e->lens_alpha_nom))
+		rc = oom(err);
+	if (rc)
+		goto out;
+	memcpy(e->lens_alpha_nom, alpha_nominal, e->n * sizeof(double));
+	theta[0] = 0.0;
+	for (i = 0; i < e->n; i++)
+		theta[i + 1] = fmin(fabs(e->theta_deg[i]), 180.0);
+	/* the field edge: the first angle where the table is below half */
+	t0 = tracer_lens_transmission(&told, 0.0);
+	for (field = 0.0; field < 90.0 &&
+	     tracer_lens_transmission(&told, field) >= 0.5 * t0;
+	     field += 0.05)
+		;
+	/* bins: [field, next half degree), then whole degrees from half to
+	 * half, then one to 180 */
+	e->lens_bin_lo = field;
+	e->lens_bin_first = floor(field - 0.5) + 1.5;
+	if (e->lens_bin_first - field < 0.05)
+		e->lens_bin_first += DIAG_LENS_BIN_DEG;
+	e->n_lens_bins = 2 + (int)ceil((DIAG_LENS_BIN_TOP -
+					e->lens_bin_first) / DIAG_LENS_BIN_DEG);
+	if (e->n_lens_bins > DIAG_LENS_BINS_MAX)
+		e->n_lens_bins = DIAG_LENS_BINS_MAX;
+	e->lens_bin = calloc((size_t)e->n_lens_bins * (e->n ? e->n : 1),
+			     sizeof(double));
+	if (!e->lens_bin) {
+		rc = oom(err);
+		goto out;
+	}
+	/* the normalisation: the whole table, same paths and seed */
+	rc = trace_with(e, &told, theta, e->n + 1, &r, err);
+	if (!rc)
+		tracer_result_power(&r, 0, -1, &p0, &sg);
+	tracer_result_free(&r);
+	for (b = 0; !rc && b < (size_t)e->n_lens_bins; b++) {
+		struct tracer_lens bl = { 0, NULL, NULL };
+		double lo, hi;
+
+		diag_lens_bin_edges(e, (int)b, &lo, &hi);
+		if (bin_lens(&told, lo, hi, &bl)) {
+			tracer_lens_free(&bl);
+			rc = oom(err);
+			break;
+		}
+		rc = trace_with(e, &bl, theta, e->n + 1, &r, err);
+		for (i = 0; !rc && i < e->n; i++) {
+			tracer_result_power(&r, i + 1, -1, &pw, &sg);
+			e->lens_bin[b * e->n + i] = p0 > 0.0 ? pw / p0 : 0.0;
+		}
+		tracer_result_free(&r);
+		tracer_lens_free(&bl);
+	}
+out:
+	free(theta);
+	tracer_lens_free(&told);
+	return rc;
+}
+
+void diag_lens_bin_edges(const struct diag_eval *e, int b, double *lo,
+			 double *hi)
+{
+	*lo = b == 0 ? e->lens_bin_lo :
+		e->lens_bin_first + (b - 1) * DIAG_LENS_BIN_DEG;
+	*hi = b + 1 == e->n_lens_bins ? 180.0 :
+		e->lens_bin_first + b * DIAG_LENS_BIN_DEG;
+}
+
+double diag_lens_apply(const struct diag_eval *e, const struct diag_state *s,
+		       size_t i, double a)
+{
+	double k = pow(10.0, s->lens_log10), sum = 0.0, ghost = 0.0, r;
+	int b;
+
+	if (!e->lens_bin || (s->lens_log10 == 0.0 && !isfinite(s->ghost_log10)))
+		return a;
+	r = e->lens_alpha_nom[i] > 0.0 ? a / e->lens_alpha_nom[i] : 1.0;
+	for (b = 0; b < e->n_lens_bins; b++) {
+		double lo, hi, v = e->lens_bin[(size_t)b * e->n + i], ov;
+
+		diag_lens_bin_edges(e, b, &lo, &hi);
+		sum += v;
+		if (!isfinite(s->ghost_log10))
+			continue;
+		ov = (fmin(hi, s->ghost_hi_deg) - fmax(lo, s->ghost_lo_deg)) /
+		     (hi - lo);
+		if (ov > 0.0)
+			ghost += ov * v;
+	}
+	a += (k - 1.0) * r * sum;
+	if (isfinite(s->ghost_log10))
+		a += k * (pow(10.0, s->ghost_log10) - 1.0) * r * ghost;
+	return a > 0.0 ? a : 0.0;
+}
+
+void diag_lens_free(struct diag_eval *e)
+{
+	free(e->lens_bin);
+	free(e->lens_alpha_nom);
+	e->lens_bin = NULL;
+	e->lens_alpha_nom = NULL;
+	e->n_lens_bins = 0;
+}
