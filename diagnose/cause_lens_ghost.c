@@ -2,10 +2,12 @@
  * cause_lens_ghost.c - a ghost of the lens that its table does not hold:
  * a bump in the lens curve over a range of incidence angles (a
  * reflection between lens surfaces reaching the detector only for those
- * angles, thesis §3.4.4).  Post-processing (evaluate.c): the direct light
- * at angles inside the window times the bump; scattered light, arriving
- * at other incidences than the source's, is left as traced (the
- * approximation, stated in the report).  Only with `--lens`.
+ * angles, thesis §3.4.4).  Post-processing (diagnose/lens.c): the light
+ * arriving at the pupil at incidences inside the window - the direct beam
+ * when the source is there, scattered light from the vanes whatever the
+ * source angle - times the bump, from the per-incidence-bin traces
+ * (1 deg bins beyond the lens's field: a ghost inside the field is not
+ * resolved).  Only with `--lens`.
  */
 #include "diagnose/diag_cause.h"
 
@@ -44,10 +46,11 @@ const struct diag_cause diag_cause_lens_ghost = {
 	.explanation =
 	"The lens has a ghost its measured table lacks: for a range of "
 	"incidence angles a reflection between its surfaces reaches the "
-	"detector, a bump in the lens curve. The system curve rises by the "
-	"bump's factor where the direct beam still passes the baffle and "
-	"its angle is inside the range, and nowhere else. A lens cause, not "
-	"the baffle's.",
+	"detector, a bump in the lens curve. The system curve rises where "
+	"the direct beam still passes the baffle with its angle inside the "
+	"range, and wherever scattered light reaches the lens at such "
+	"angles (the vanes seen from the pupil), in proportion to how much "
+	"does. A lens cause, not the baffle's.",
 	.n_params = 3,
 	.param = { { "log10_bump", "log10(factor)", 0.0, -1.0, 2.0, 0 },
 		   { "theta_lo_deg", "deg", 0.0, -1.0, 91.0, 0 },

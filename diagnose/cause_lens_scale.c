@@ -1,12 +1,11 @@
 /*
  * cause_lens_scale.c - a system curve (baffle + lens, thesis §4.2) whose
  * lens passes more (or less) light from outside its field than the lens
- * table the model was given: the table's out-of-field part times a
- * factor.  Post-processing (evaluate.c): the direct light at angles
- * beyond the lens's field and all scattered light (it reaches the pupil
- * from outside the field in a vane baffle whose apertures sit on the
- * field cone: tracer/README.md) scale by the factor; direct light inside
- * the field does not.  Only with `--lens`.
+ * table the model was given: the table's out-of-field part (below half
+ * its on-axis value) times a factor.  Post-processing (diagnose/lens.c):
+ * the light that arrives at the pupil from beyond the lens's field,
+ * direct or scattered, traced per incidence bin, scales by the factor;
+ * light arriving inside the field does not.  Only with `--lens`.
  */
 #include "diagnose/diag_cause.h"
 
@@ -24,9 +23,9 @@ const struct diag_cause diag_cause_lens_scale = {
 	"lens curve is off by one factor beyond the field (a sweep of "
 	"another unit, a different filter, a cleaned or dusty front "
 	"element). Everything the baffle sends in from outside the field - "
-	"the direct beam past the field edge and all scattered light - "
-	"scales by it; the in-field direct light does not. A lens cause, "
-	"not the baffle's.",
+	"the direct beam past the field edge and the scattered light that "
+	"arrives at oblique incidence - scales by it; light arriving inside "
+	"the field does not. A lens cause, not the baffle's.",
 	.n_params = 1,
 	.param = { { "log10_factor", "log10(factor)", 0.0, -2.0, 2.0, 9 } },
 	.k_bic = 1,
