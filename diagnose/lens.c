@@ -19,11 +19,15 @@
  * with overlap_b the fraction of bin b inside [lo, hi] (continuous in the
  * edges) and r = alpha(state) / alpha(nominal) at that angle (the state's
  * other causes scale the lens's part as they scale the whole: first
- * order).  The bin traces use a quarter of the paths.
+ * order).  The bin traces use a quarter of the paths; each bin's table
+ * is a file in a temporary directory, named in the runner's spec, so
+ * that stray-mpi's ranks trace behind the same table.
  */
 #include <math.h>
 #include <stdlib.h>
+#include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "lens.h"
 #include "stray/errfmt.h"
@@ -48,8 +52,8 @@ static int bin_lens(const struct tracer_lens *told, double lo, double hi,
 		return -1;
 #define PUT(a, v) do { out->theta_deg[n] = (a); out->t[n] = (v); n++; } \
 	while (0)
-	if (lo > 0.0) {
-		PUT(0.0, 0.0);
+	if (lo > 0.0) {	/* not at 0: a curve file has alpha(0) = 1 */
+		PUT(1e-9, 0.0);	/* and the table is clamped below */
 		PUT(lo - 1e-6, 0.0);
 	}
 	PUT(lo, tracer_lens_transmission(told, lo));
@@ -66,19 +70,25 @@ static int bin_lens(const struct tracer_lens *told, double lo, double hi,
 	return 0;
 }
 
-static int trace_with(struct diag_eval *e, const struct tracer_lens *lens,
+/* Trace the nominal scene behind the lens table in file lens_path (a
+ * file, so that stray-mpi's ranks, which rebuild the scene from the spec,
+ * trace behind the same table). */
+static int trace_with(struct diag_eval *e, const char *lens_path,
 		      const double *theta, size_t n_theta,
 		      struct tracer_result *r, struct stray_error *err)
 {
 	struct tracer_scene_spec spec = { e->scene, e->sets, e->n_sets,
-					  e->lens, 0.0, 0.0 };
+					  lens_path, 0.0, 0.0 };
 	struct tracer_trace_opts o;
 	struct tracer_scene s;
+	struct tracer_lens lens;
 	int rc;
 
 	memset(r, 0, sizeof(*r));
 	tracer_scene_init(&s);
-	rc = tracer_scene_load(e->scene, e->sets, e->n_sets, &s, err);
+	rc = tracer_lens_load(lens_path, &lens, err);
+	if (!rc)
+		rc = tracer_scene_load(e->scene, e->sets, e->n_sets, &s, err);
 	if (!rc)
 		rc = tracer_scene_commit(&s, err);
 	if (!rc) {
@@ -88,7 +98,7 @@ static int trace_with(struct diag_eval *e, const struct tracer_lens *lens,
 		o.n_paths = (e->n_paths + 3) / 4;
 		o.seed = e->seed;
 		o.threads = e->threads;
-		o.lens = lens;
+		o.lens = &lens;
 		rc = tracer_run(e->runner, &spec, &s, &o, r, err);
 	}
 	if (!rc) {
@@ -96,7 +106,25 @@ static int trace_with(struct diag_eval *e, const struct tracer_lens *lens,
 		e->n_traces++;
 	}
 	tracer_scene_free(&s);
+	tracer_lens_free(&lens);
 	return rc;
+}
+
+static int write_lens(const struct tracer_lens *l, const char *path,
+		      struct stray_error *err)
+{
+	FILE *f = fopen(path, "w");
+	size_t k;
+
+	if (!f)
+		return stray_error_set(err, STRAY_EIO, "diagnose",
+				       "cannot write a lens bin table");
+	fprintf(f, "theta_deg,alpha\n");
+	for (k = 0; k < l->n; k++)
+		fprintf(f, "%.17g,%.17g\n", l->theta_deg[k], l->t[k]);
+	return fclose(f) == 0 ? STRAY_OK :
+		stray_error_set(err, STRAY_EIO, "diagnose",
+				"cannot write a lens bin table");
 }
 
 int diag_lens_prepare(struct diag_eval *e, const double *alpha_nominal,
@@ -104,9 +132,10 @@ int diag_lens_prepare(struct diag_eval *e, const double *alpha_nominal,
 {
 	struct tracer_lens told = { 0, NULL, NULL };
 	struct tracer_result r;
+	char dir[] = "/tmp/stray_lensbins_XXXXXX", bin_path[64];
 	double *theta = NULL, t0, field = 0.0, p0 = 0.0, pw, sg;
 	size_t i, b;
-	int rc;
+	int rc, have_dir = 0;
 
 	if (!e->lens)
 		return STRAY_OK;
@@ -143,8 +172,15 @@ int diag_lens_prepare(struct diag_eval *e, const double *alpha_nominal,
 		rc = oom(err);
 		goto out;
 	}
+	if (!mkdtemp(dir)) {
+		rc = stray_error_set(err, STRAY_EIO, "diagnose",
+				     "no temporary directory for the lens bins");
+		goto out;
+	}
+	have_dir = 1;
+	snprintf(bin_path, sizeof(bin_path), "%s/bin.csv", dir);
 	/* the normalisation: the whole table, same paths and seed */
-	rc = trace_with(e, &told, theta, e->n + 1, &r, err);
+	rc = trace_with(e, e->lens, theta, e->n + 1, &r, err);
 	if (!rc)
 		tracer_result_power(&r, 0, -1, &p0, &sg);
 	tracer_result_free(&r);
@@ -158,7 +194,9 @@ int diag_lens_prepare(struct diag_eval *e, const double *alpha_nominal,
 			rc = oom(err);
 			break;
 		}
-		rc = trace_with(e, &bl, theta, e->n + 1, &r, err);
+		rc = write_lens(&bl, bin_path, err);
+		if (!rc)
+			rc = trace_with(e, bin_path, theta, e->n + 1, &r, err);
 		for (i = 0; !rc && i < e->n; i++) {
 			tracer_result_power(&r, i + 1, -1, &pw, &sg);
 			e->lens_bin[b * e->n + i] = p0 > 0.0 ? pw / p0 : 0.0;
@@ -167,6 +205,10 @@ int diag_lens_prepare(struct diag_eval *e, const double *alpha_nominal,
 		tracer_lens_free(&bl);
 	}
 out:
+	if (have_dir) {
+		unlink(bin_path);
+		rmdir(dir);
+	}
 	free(theta);
 	tracer_lens_free(&told);
 	return rc;
