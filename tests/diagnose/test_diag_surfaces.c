@@ -17,6 +17,9 @@
 #include <string.h>
 #include <unistd.h>
 
+#include <cJSON.h>
+
+#include "tools/run_cli.h"
 #include "diagnose/diag_data.h"
 #include "diagnose/diag_eval.h"
 #include "diagnose/diag_surfaces.h"
@@ -115,11 +118,67 @@ static void test_nothing_changed(void **state)
 	assert_int_equal(s.n_named, 0);
 }
 
+/* As a user: `stray diagnose --surfaces --write-model M.json --json`, then
+ * `stray trace --scene M.json` traces the written model. */
+static void test_cli_write_model(void **state)
+{
+	static struct cli_run r;
+	char path[] = "/tmp/stray_surf_cli_XXXXXX.csv";
+	char dir[] = "/tmp/stray_surf_dir_XXXXXX", model[64], obj[64], out[64];
+	struct truth_config c;
+	char *diag[] = { "stray", "diagnose", path, "--scene", "ref4",
+			 "--rays", "100000", "--threads", "2", "--surfaces",
+			 "--write-model", model, "--json", NULL };
+	char *trace[] = { "stray", "trace", "--scene", model, "--angles",
+			  "0,30,60", "--rays", "5000", "--out", out, NULL };
+	const cJSON *g;
+	cJSON *j;
+	int fd = mkstemps(path, 4);
+
+	(void)state;
+	assert_true(fd >= 0 && mkdtemp(dir) != NULL);
+	close(fd);
+	snprintf(model, sizeof(model), "%s/M.json", dir);
+	snprintf(obj, sizeof(obj), "%s/M.obj", dir);
+	snprintf(out, sizeof(out), "%s/c.csv", dir);
+	truth_defaults(&c, theta, N);
+	c.group = "vane3_bevel";
+	c.group_factor = 3.0;
+	assert_int_equal(truth_write(&c, path), 0);
+	run_stray(&r, diag);
+	unlink(path);
+	if (r.status != 0)
+		fprintf(stderr, "stray diagnose: %s\n", r.err);
+	assert_int_equal(r.status, 0);
+	j = cJSON_Parse(r.out);
+	assert_non_null(j);
+	g = cJSON_GetArrayItem(cJSON_GetObjectItem(cJSON_GetObjectItem(j,
+		"surfaces"), "groups"), 0);
+	assert_non_null(g);
+	printf("cli: %s x%.3f, re-traced rms %.4f\n",
+	       cJSON_GetObjectItem(g, "group")->valuestring,
+	       cJSON_GetObjectItem(g, "factor")->valuedouble,
+	       cJSON_GetObjectItem(cJSON_GetObjectItem(j, "surfaces"),
+				   "rms_retrace")->valuedouble);
+	assert_string_equal(cJSON_GetObjectItem(g, "group")->valuestring,
+			    "vane3_bevel");
+	cJSON_Delete(j);
+	run_stray(&r, trace);
+	if (r.status != 0)
+		fprintf(stderr, "stray trace: %s\n", r.err);
+	assert_int_equal(r.status, 0);
+	unlink(model);
+	unlink(obj);
+	unlink(out);
+	rmdir(dir);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_vane3_bevel_x3),
 		cmocka_unit_test(test_nothing_changed),
+		cmocka_unit_test(test_cli_write_model),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
