@@ -27,7 +27,7 @@ const struct diag_cause diag_cause_lens_scale = {
 	"arrives at oblique incidence - scales by it; light arriving inside "
 	"the field does not. A lens cause, not the baffle's.",
 	.n_params = 1,
-	.param = { { "log10_factor", "log10(factor)", 0.0, -2.0, 2.0, 9 } },
+	.param = { { "log10_factor", "log10(factor)", 0.0, -3.0, 2.0, 11 } },
 	.k_bic = 1,
 	.apply = apply,
 	.needs_lens = 1,

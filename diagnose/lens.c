@@ -12,14 +12,14 @@
  * inside a bin; the first bin from the edge to the next half degree) up to
  * DIAG_LENS_BIN_TOP, and one bin beyond.  One trace per bin with the
  * table T times the bin's indicator (same seed and paths: common random
- * numbers) gives S_b(theta) = the light arriving in bin b, relative to
- * the on-axis power of a trace with the whole table.  Then
- *   lens_scale k:  alpha' = alpha + (k - 1) r sum_b S_b
- *   ghost g [lo, hi]: alpha' += k (10^g - 1) r sum_b overlap_b S_b
+ * numbers) gives f_b(theta) = the fraction of the light at theta that
+ * arrives in bin b (over a trace with the whole table, same paths and
+ * seed, so that the fractions of one angle sum to at most 1).  Then
+ *   lens_scale k:  alpha' = alpha (1 + (k - 1) sum_b f_b)
+ *   ghost g [lo, hi]: alpha' += alpha k (10^g - 1) sum_b overlap_b f_b
  * with overlap_b the fraction of bin b inside [lo, hi] (continuous in the
- * edges) and r = alpha(state) / alpha(nominal) at that angle (the state's
- * other causes scale the lens's part as they scale the whole: first
- * order).  The bin traces use a quarter of the paths; each bin's table
+ * edges); the state's other causes are taken to leave the fractions as
+ * they are (first order).  The bin traces use a quarter of the paths; each bin's table
  * is a file in a temporary directory, named in the runner's spec, so
  * that stray-mpi's ranks trace behind the same table.
  */
@@ -133,7 +133,7 @@ int diag_lens_prepare(struct diag_eval *e, const double *alpha_nominal,
 	struct tracer_lens told = { 0, NULL, NULL };
 	struct tracer_result r;
 	char dir[] = "/tmp/stray_lensbins_XXXXXX", bin_path[64];
-	double *theta = NULL, t0, field = 0.0, p0 = 0.0, pw, sg;
+	double *theta = NULL, *whole = NULL, t0, field = 0.0, pw, sg;
 	size_t i, b;
 	int rc, have_dir = 0;
 
@@ -141,8 +141,9 @@ int diag_lens_prepare(struct diag_eval *e, const double *alpha_nominal,
 		return STRAY_OK;
 	rc = tracer_lens_load(e->lens, &told, err);
 	theta = malloc((e->n + 1) * sizeof(*theta));
+	whole = malloc((e->n + 1) * sizeof(*whole));
 	e->lens_alpha_nom = malloc((e->n ? e->n : 1) * sizeof(double));
-	if (!rc && (!theta || !e->lens_alpha_nom))
+	if (!rc && (!theta || !whole || !e->lens_alpha_nom))
 		rc = oom(err);
 	if (rc)
 		goto out;
@@ -181,8 +182,8 @@ int diag_lens_prepare(struct diag_eval *e, const double *alpha_nominal,
 	snprintf(bin_path, sizeof(bin_path), "%s/bin.csv", dir);
 	/* the normalisation: the whole table, same paths and seed */
 	rc = trace_with(e, e->lens, theta, e->n + 1, &r, err);
-	if (!rc)
-		tracer_result_power(&r, 0, -1, &p0, &sg);
+	for (i = 0; !rc && i < e->n; i++)
+		tracer_result_power(&r, i + 1, -1, &whole[i], &sg);
 	tracer_result_free(&r);
 	for (b = 0; !rc && b < (size_t)e->n_lens_bins; b++) {
 		struct tracer_lens bl = { 0, NULL, NULL };
@@ -199,10 +200,19 @@ int diag_lens_prepare(struct diag_eval *e, const double *alpha_nominal,
 			rc = trace_with(e, bin_path, theta, e->n + 1, &r, err);
 		for (i = 0; !rc && i < e->n; i++) {
 			tracer_result_power(&r, i + 1, -1, &pw, &sg);
-			e->lens_bin[b * e->n + i] = p0 > 0.0 ? pw / p0 : 0.0;
+			e->lens_bin[b * e->n + i] = whole[i] > 0.0 ?
+				pw / whole[i] : 0.0;
 		}
 		tracer_result_free(&r);
 		tracer_lens_free(&bl);
+	}
+	for (i = 0; !rc && i < e->n; i++) {	/* fractions: at most all */
+		double sum = 0.0;
+
+		for (b = 0; b < (size_t)e->n_lens_bins; b++)
+			sum += e->lens_bin[b * e->n + i];
+		for (b = 0; sum > 1.0 && b < (size_t)e->n_lens_bins; b++)
+			e->lens_bin[b * e->n + i] /= sum;
 	}
 out:
 	if (have_dir) {
@@ -210,6 +220,7 @@ out:
 		rmdir(dir);
 	}
 	free(theta);
+	free(whole);
 	tracer_lens_free(&told);
 	return rc;
 }
@@ -226,12 +237,11 @@ void diag_lens_bin_edges(const struct diag_eval *e, int b, double *lo,
 double diag_lens_apply(const struct diag_eval *e, const struct diag_state *s,
 		       size_t i, double a)
 {
-	double k = pow(10.0, s->lens_log10), sum = 0.0, ghost = 0.0, r;
+	double k = pow(10.0, s->lens_log10), sum = 0.0, ghost = 0.0, r = a;
 	int b;
 
 	if (!e->lens_bin || (s->lens_log10 == 0.0 && !isfinite(s->ghost_log10)))
 		return a;
-	r = e->lens_alpha_nom[i] > 0.0 ? a / e->lens_alpha_nom[i] : 1.0;
 	for (b = 0; b < e->n_lens_bins; b++) {
 		double lo, hi, v = e->lens_bin[(size_t)b * e->n + i], ov;
 

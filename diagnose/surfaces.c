@@ -283,6 +283,8 @@ struct sfit {
 	double *p, *var;	/* per traced angle */
 	int n_free, free_c[DIAG_SURF_NAMED_MAX];	/* groups fitted */
 	double f[DIAG_SURF_MAX];	/* current factors, 1 = scene */
+	const double *base;	/* per measured point, the registry's model
+				 * over the nominal (NULL: 1) */
 	int fixed_k;		/* profile: this free index fixed, -1 none */
 	double fixed_x;
 	size_t evals;
@@ -318,6 +320,7 @@ static void residuals(struct sfit *x, double *r)
 		size_t i = x->pt[m], j = x->jm[i];
 		double a = p0 > 0.0 ? x->p[j] / p0 : 0.0, rm, rs, s;
 
+		a *= x->base ? x->base[i] : 1.0;
 		a = a > 1e-30 ? a : 1e-30;
 		rm = d->sigma[i] / d->alpha[i];
 		rs = x->p[j] > 0.0 ? x->var[j] / (x->p[j] * x->p[j]) + v0 : 0.0;
@@ -428,7 +431,8 @@ static double rms_of(const struct sfit *x, const double *r)
 	(void)r;
 	for (m = 0; m < x->n_fit; m++) {
 		size_t i = x->pt[m];
-		double a = p0 > 0.0 ? x->p[x->jm[i]] / p0 : 0.0;
+		double a = (p0 > 0.0 ? x->p[x->jm[i]] / p0 : 0.0) *
+			   (x->base ? x->base[i] : 1.0);
 		double l = log10(d->alpha[i] / (a > 1e-30 ? a : 1e-30));
 
 		s += l * l;
@@ -456,6 +460,13 @@ int diag_surfaces_fit(const struct diag_surf_table *t,
 		      const struct diag_data *d, struct diag_surfaces *s,
 		      struct stray_error *err)
 {
+	return diag_surfaces_fit_on(t, d, NULL, s, err);
+}
+
+int diag_surfaces_fit_on(const struct diag_surf_table *t,
+			 const struct diag_data *d, const double *base,
+			 struct diag_surfaces *s, struct stray_error *err)
+{
 	struct sfit x;
 	double *r, best[DIAG_SURF_NAMED_MAX] = { 0 }, chi2, ln_n;
 	struct timespec t0, t1;
@@ -476,6 +487,8 @@ int diag_surfaces_fit(const struct diag_surf_table *t,
 	}
 	x.t = t;
 	x.d = d;
+	x.base = base;
+	s->base = base;
 	x.fixed_k = -1;
 	x.jm = malloc(d->n * sizeof(*x.jm));
 	x.pt = malloc(d->n * sizeof(*x.pt));
@@ -756,6 +769,7 @@ int diag_surfaces_confirm(struct diag_eval *e, const struct diag_data *d,
 				continue;
 			tracer_result_alpha(&r, find_theta(&t, d->theta_deg[i]),
 					    0, -1, &a, &sa);
+			a *= s->base ? s->base[i] : 1.0;
 			a = a > 1e-30 ? a : 1e-30;
 			l = log10(d->alpha[i] / a);
 			sr = sqrt(pow(d->sigma[i] / d->alpha[i], 2) +

@@ -138,16 +138,42 @@ static void list_causes(void)
 /* The surface at fault (diagnose/diag_surfaces.h): localise, confirm by
  * a re-trace of the model, write it where the user asked. */
 static int surfaces(struct diag_eval *e, const struct diag_data *d,
-		    const char *model, struct diag_surfaces *s,
+		    const struct diag_result *r, const char *model,
+		    struct diag_surfaces *s, double *base,
 		    struct stray_error *err)
 {
 	struct diag_surf_table *t = NULL;
-	int rc;
+	const struct diag_fit *f = r->named.n_causes ? &r->named :
+		&r->tentative;
+	struct diag_state st;
+	int rc = STRAY_OK, on = 0, c, o = 0;
+	size_t i;
 
+	/* the baffle's surfaces after the lens's causes the registry named
+	 * (or its tentative model holds): those are applied first */
+	diag_state_nominal(&st);
+	for (c = 0; c < f->n_causes; o += f->cause[c]->n_params, c++)
+		if (f->cause[c]->needs_lens) {
+			f->cause[c]->apply(f->p + o, &st);
+			on = 1;
+		}
+	if (on) {
+		double *sig = malloc((d->n ? d->n : 1) * sizeof(*sig));
+
+		rc = sig ? diag_eval_model(e, &st, base, sig, NULL, err) :
+			stray_error_set(err, STRAY_ENOMEM, "diagnose",
+					"out of memory");
+		for (i = 0; !rc && i < d->n; i++)
+			base[i] = r->model_before[i] > 0.0 ?
+				base[i] / r->model_before[i] : 1.0;
+		free(sig);
+		if (rc)
+			return rc;
+	}
 	log_line("surface at fault: re-weighting per surface group");
 	rc = diag_surf_table_trace(e, &t, err);
 	if (!rc)
-		rc = diag_surfaces_fit(t, d, s, err);
+		rc = diag_surfaces_fit_on(t, d, on ? base : NULL, s, err);
 	diag_surf_table_free(t);
 	if (!rc)
 		rc = diag_surfaces_confirm(e, d, s, err);
@@ -159,6 +185,7 @@ static int surfaces(struct diag_eval *e, const struct diag_data *d,
 int cmd_diagnose(int argc, char **argv, const struct tracer_runner *runner)
 {
 	struct diag_surfaces surf;
+	double *base = NULL;
 	int with_surf = 0;
 	struct diag_args a = { .rays = 200000, .seed = 1, .threads = 1 };
 	struct stray_error err;
@@ -189,8 +216,12 @@ int cmd_diagnose(int argc, char **argv, const struct tracer_runner *runner)
 	if (!rc)
 		rc = diag_run(&e, &d, &r, log_line, &err);
 	with_surf = a.surfaces || a.model || (r.significant && !r.explained);
-	if (!rc && with_surf)
-		rc = surfaces(&e, &d, a.model, &surf, &err);
+	if (!rc && with_surf) {
+		base = malloc((d.n ? d.n : 1) * sizeof(*base));
+		rc = base ? surfaces(&e, &d, &r, a.model, &surf, base, &err) :
+			stray_error_set(&err, STRAY_ENOMEM, "diagnose",
+					"out of memory");
+	}
 	if (!rc && a.plot)
 		rc = diag_plot(a.plot, &d, &r, &err);
 	if (!rc) {
@@ -206,6 +237,7 @@ int cmd_diagnose(int argc, char **argv, const struct tracer_runner *runner)
 	} else {
 		rc = cli_fail("diagnose", &err);
 	}
+	free(base);
 	diag_result_free(&r);
 	diag_eval_free(&e);
 	diag_data_free(&d);

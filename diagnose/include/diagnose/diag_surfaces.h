@@ -38,6 +38,9 @@ struct diag_surfaces {
 	size_t n_rows;		/* path-table rows re-weighted */
 	size_t n_evals;		/* model evaluations of the fit */
 	double fit_seconds;	/* the localisation alone (no trace) */
+	const double *base;	/* the registry's model over the nominal, per
+				 * measured point, applied on top (NULL: none;
+				 * the caller's array) */
 	double trace_seconds;
 };
 
@@ -53,6 +56,13 @@ int diag_surfaces_fit(const struct diag_surf_table *t,
 		      const struct diag_data *d, struct diag_surfaces *s,
 		      struct stray_error *err);
 
+/* The same on top of the registry's model: base[i] = its alpha over the
+ * nominal alpha at measured point i (the causes it named, or its
+ * tentative model), so that the groups explain what it leaves. */
+int diag_surfaces_fit_on(const struct diag_surf_table *t,
+			 const struct diag_data *d, const double *base,
+			 struct diag_surfaces *s, struct stray_error *err);
+
 /* Write the extended model: path (JSON scene file) and its mesh beside it
  * (path with .obj for .json; through the atomic writer: in place when
  * the run's outputs are, stray_file_finish), every group's material as the scene's, the
@@ -63,7 +73,7 @@ int diag_surfaces_write_model(const struct diag_eval *e,
 
 /* Confirm: write the model (a private copy, in a temporary directory),
  * trace it at the measured angles (through e's runner, same paths and
- * seed) and fill chi2_retrace, rms_retrace. */
+ * seed), times s->base when set, and fill chi2_retrace, rms_retrace. */
 int diag_surfaces_confirm(struct diag_eval *e, const struct diag_data *d,
 			  struct diag_surfaces *s, struct stray_error *err);
 
