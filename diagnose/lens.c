@@ -12,11 +12,12 @@
  * inside a bin; the first bin from the edge to the next half degree) up to
  * DIAG_LENS_BIN_TOP, and one bin beyond.  One trace per bin with the
  * table T times the bin's indicator (same seed and paths: common random
- * numbers) gives f_b(theta) = the fraction of the light at theta that
- * arrives in bin b (over a trace with the whole table, same paths and
- * seed, so that the fractions of one angle sum to at most 1).  Then
- *   lens_scale k:  alpha' = alpha (1 + (k - 1) sum_b f_b)
- *   ghost g [lo, hi]: alpha' += alpha k (10^g - 1) sum_b overlap_b f_b
+ * numbers) gives the light at theta that arrives in bin b; one more
+ * trace, the table inside the field, the light that arrives there
+ * (traced, not the difference of two noisy sums, which a lens factor of
+ * 1e-2 would expose).  f_b, f_in: their fractions of the sum.  Then
+ *   alpha' = alpha (f_in + k sum_b f_b (1 + (10^g - 1) overlap_b))
+ * (lens_scale k, ghost g between lo and hi)
  * with overlap_b the fraction of bin b inside [lo, hi] (continuous in the
  * edges); the state's other causes are taken to leave the fractions as
  * they are (first order).  The bin traces use a quarter of the paths; each bin's table
@@ -167,7 +168,7 @@ int diag_lens_prepare(struct diag_eval *e, const double *alpha_nominal,
 					e->lens_bin_first) / DIAG_LENS_BIN_DEG);
 	if (e->n_lens_bins > DIAG_LENS_BINS_MAX)
 		e->n_lens_bins = DIAG_LENS_BINS_MAX;
-	e->lens_bin = calloc((size_t)e->n_lens_bins * (e->n ? e->n : 1),
+	e->lens_bin = calloc((size_t)(e->n_lens_bins + 1) * (e->n ? e->n : 1),
 			     sizeof(double));
 	if (!e->lens_bin) {
 		rc = oom(err);
@@ -185,11 +186,14 @@ int diag_lens_prepare(struct diag_eval *e, const double *alpha_nominal,
 	for (i = 0; !rc && i < e->n; i++)
 		tracer_result_power(&r, i + 1, -1, &whole[i], &sg);
 	tracer_result_free(&r);
-	for (b = 0; !rc && b < (size_t)e->n_lens_bins; b++) {
+	/* the bins, then (b = n_lens_bins) the field itself, traced too:
+	 * not the difference of two noisy sums */
+	for (b = 0; !rc && b <= (size_t)e->n_lens_bins; b++) {
 		struct tracer_lens bl = { 0, NULL, NULL };
-		double lo, hi;
+		double lo = 0.0, hi = e->lens_bin_lo;
 
-		diag_lens_bin_edges(e, (int)b, &lo, &hi);
+		if (b < (size_t)e->n_lens_bins)
+			diag_lens_bin_edges(e, (int)b, &lo, &hi);
 		if (bin_lens(&told, lo, hi, &bl)) {
 			tracer_lens_free(&bl);
 			rc = oom(err);
@@ -206,12 +210,13 @@ int diag_lens_prepare(struct diag_eval *e, const double *alpha_nominal,
 		tracer_result_free(&r);
 		tracer_lens_free(&bl);
 	}
-	for (i = 0; !rc && i < e->n; i++) {	/* fractions: at most all */
+	for (i = 0; !rc && i < e->n; i++) {	/* fractions: of the sum */
 		double sum = 0.0;
 
 		for (b = 0; b < (size_t)e->n_lens_bins; b++)
 			sum += e->lens_bin[b * e->n + i];
-		for (b = 0; sum > 1.0 && b < (size_t)e->n_lens_bins; b++)
+		sum += e->lens_bin[(size_t)e->n_lens_bins * e->n + i];
+		for (b = 0; sum > 0.0 && b <= (size_t)e->n_lens_bins; b++)
 			e->lens_bin[b * e->n + i] /= sum;
 	}
 out:
@@ -237,26 +242,26 @@ void diag_lens_bin_edges(const struct diag_eval *e, int b, double *lo,
 double diag_lens_apply(const struct diag_eval *e, const struct diag_state *s,
 		       size_t i, double a)
 {
-	double k = pow(10.0, s->lens_log10), sum = 0.0, ghost = 0.0, r = a;
+	double k = pow(10.0, s->lens_log10), g = 0.0, in, out = 0.0;
 	int b;
 
 	if (!e->lens_bin || (s->lens_log10 == 0.0 && !isfinite(s->ghost_log10)))
 		return a;
+	if (isfinite(s->ghost_log10))
+		g = pow(10.0, s->ghost_log10) - 1.0;
+	in = e->lens_bin[(size_t)e->n_lens_bins * e->n + i];
 	for (b = 0; b < e->n_lens_bins; b++) {
-		double lo, hi, v = e->lens_bin[(size_t)b * e->n + i], ov;
+		double lo, hi, v = e->lens_bin[(size_t)b * e->n + i], ov = 0.0;
 
 		diag_lens_bin_edges(e, b, &lo, &hi);
-		sum += v;
-		if (!isfinite(s->ghost_log10))
-			continue;
-		ov = (fmin(hi, s->ghost_hi_deg) - fmax(lo, s->ghost_lo_deg)) /
-		     (hi - lo);
-		if (ov > 0.0)
-			ghost += ov * v;
+		if (g != 0.0)
+			ov = fmax(0.0, (fmin(hi, s->ghost_hi_deg) -
+					fmax(lo, s->ghost_lo_deg)) / (hi - lo));
+		out += v * (1.0 + g * ov);
 	}
-	a += (k - 1.0) * r * sum;
-	if (isfinite(s->ghost_log10))
-		a += k * (pow(10.0, s->ghost_log10) - 1.0) * r * ghost;
+	if (in + out <= 0.0)	/* no light traced here: as it is */
+		return a;
+	a *= in + k * out;	/* the fractions sum to 1 */
 	return a > 0.0 ? a : 0.0;
 }
 
