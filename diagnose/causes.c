@@ -13,7 +13,7 @@ extern const struct diag_cause diag_cause_reflectance,
 	diag_cause_pivot_offset, diag_cause_floor, diag_cause_light_leak,
 	diag_cause_bevel_face, diag_cause_scale,
 	diag_cause_spectral_slope, diag_cause_beam_divergence,
-	diag_cause_beam_profile;
+	diag_cause_beam_profile, diag_cause_lens_scale, diag_cause_lens_ghost;
 
 const struct diag_cause *const diag_causes[] = {
 	&diag_cause_reflectance,
@@ -29,6 +29,8 @@ const struct diag_cause *const diag_causes[] = {
 	&diag_cause_spectral_slope,
 	&diag_cause_beam_divergence,
 	&diag_cause_beam_profile,
+	&diag_cause_lens_scale,
+	&diag_cause_lens_ghost,
 	NULL
 };
 
@@ -52,4 +54,5 @@ void diag_state_nominal(struct diag_state *s)
 	s->geo[DIAG_GEO_ABG_G] = NAN;
 	s->geo[DIAG_GEO_PIVOT] = NAN;
 	s->leak_log10 = -INFINITY;
+	s->ghost_log10 = -INFINITY;
 }

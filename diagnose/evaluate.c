@@ -18,6 +18,7 @@
 #include "trace_cache.h"
 #include "tracer/scene_file.h"
 #include "stray/errfmt.h"
+#include "lens.h"
 
 #define LEAK_EDGE_DEG 0.2	/* soft window edge, so the fit has a slope */
 #define BEAM_RINGS 8		/* the beam disk's quadrature */
@@ -60,7 +61,20 @@ int diag_eval_prepare(struct diag_eval *e, struct stray_error *err)
 	for (i = 0; i < e->n; i++)
 		e->direct_share[i] = t->direct[t->idx[i * DIAG_SUB +
 						       DIAG_SUB / 2]];
-	return STRAY_OK;
+	if (e->lens) {	/* system curves: diagnose/lens.c */
+		struct diag_state s0;
+		double *a0 = malloc(2 * (e->n ? e->n : 1) * sizeof(double));
+
+		if (!a0)
+			return stray_error_set(err, STRAY_ENOMEM, "diagnose",
+					       "out of memory");
+		diag_state_nominal(&s0);
+		rc = diag_eval_model(e, &s0, a0, a0 + e->n, NULL, err);
+		if (!rc)
+			rc = diag_lens_prepare(e, a0, err);
+		free(a0);
+	}
+	return rc;
 }
 
 void diag_eval_free(struct diag_eval *e)
@@ -68,6 +82,7 @@ void diag_eval_free(struct diag_eval *e)
 	diag_trace_cache_free(e);
 	free(e->direct_share);
 	e->direct_share = NULL;
+	diag_lens_free(e);
 }
 
 /* The retrace cause of an axis (its nodes and nominal), or NULL. */
@@ -443,6 +458,7 @@ int diag_eval_model(struct diag_eval *e, const struct diag_state *s,
 			a *= factor[i];
 		if (s->beam_half_deg > 0.0)
 			a *= bfac[i];
+		a = diag_lens_apply(e, s, i, a);	/* cause_lens_*.c */
 		a *= pow(10.0, s->scale_log10);	/* cause_scale.c */
 		g = a;		/* the traced part carries the MC error */
 		a += s->floor;

@@ -56,3 +56,12 @@ $(B)/bench/bench_diagnose: $(B)/obj/tests/diagnose/bench_diagnose.o \
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_BASE) -o $@ $< $(DIAG_TRUTH) $(TRACER_LIB) \
 		$(STRAY_LIB) -lcjson $(TRACER_LDLIBS) $(STRAY_LDLIBS)
+
+# make bench: per-surface-group localisation (issue 17 item 4), >= 20
+# groups, re-weighting only, against the one trace it needs.
+BENCHES += $(B)/bench/bench_surfaces
+$(B)/bench/bench_surfaces: $(B)/obj/tests/diagnose/bench_surfaces.o \
+		$(DIAG_TRUTH) $(DIAG_LIB) $(TRACER_LIB) $(STRAY_LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_BASE) -o $@ $< $(DIAG_TRUTH) $(DIAG_LIB) $(TRACER_LIB) \
+		$(STRAY_LIB) -lcjson $(TRACER_LDLIBS) $(STRAY_LDLIBS)

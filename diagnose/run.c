@@ -98,6 +98,8 @@ static int usable(const struct diag_eval *e, const struct diag_cause *c)
 {
 	size_t i;
 
+	if (c->needs_lens && !e->lens)
+		return 0;
 	for (i = 0; c->needs_unnormalised && i < e->n; i++)
 		if (e->theta_deg[i] == 0.0)
 			return 0;

@@ -257,7 +257,9 @@ static int trace_geometry(struct diag_eval *e, struct diag_trace *t,
 	/* the ABg lobe (cause_abg_scatter.c) and the beam axis through the
 	 * pivot (cause_pivot_offset.c) are edits after loading: in the spec
 	 * too, so that stray-mpi's ranks build this scene */
-	struct tracer_scene_spec spec = { e->scene, sets, n, NULL, 0.0, 0.0 };
+	struct tracer_scene_spec spec = { e->scene, sets, n, e->lens,
+					  0.0, 0.0 };
+	struct tracer_lens lens = { 0, NULL, NULL };	/* system curve */
 
 	if (!isnan(t->geo[DIAG_GEO_ABG_G]) && t->geo[DIAG_GEO_ABG_G] > 0.0)
 		spec.abg_g = t->geo[DIAG_GEO_ABG_G];
@@ -266,6 +268,8 @@ static int trace_geometry(struct diag_eval *e, struct diag_trace *t,
 	memset(&r, 0, sizeof(r));
 	tracer_scene_init(&s);
 	rc = tracer_scene_load(e->scene, sets, n, &s, err);
+	if (!rc && e->lens)
+		rc = tracer_lens_load(e->lens, &lens, err);
 	if (!rc)
 		tracer_scene_spec_edit(&spec, &s);
 	if (!rc)
@@ -278,6 +282,7 @@ static int trace_geometry(struct diag_eval *e, struct diag_trace *t,
 		o.seed = e->seed;
 		o.threads = e->threads;
 		o.record_paths = 1;
+		o.lens = e->lens ? &lens : NULL;
 		rc = tracer_run(e->runner, &spec, &s, &o, &r, err);
 	}
 	if (!rc) {
@@ -290,6 +295,7 @@ static int trace_geometry(struct diag_eval *e, struct diag_trace *t,
 		rc = batch_covariance(e, t, &r, err);
 	tracer_result_free(&r);
 	tracer_scene_free(&s);
+	tracer_lens_free(&lens);
 	return rc;
 }
 

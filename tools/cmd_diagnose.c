@@ -22,6 +22,7 @@ static const char usage[] =
 	"                      [--seed K] [--threads T] [--set key=value]...\n"
 	"                      [--spectrum S] [--response R]\n"
 	"                      [--plot F.png] [--causes] [--json]\n"
+	"                      [--lens L.csv] [--surfaces] [--write-model M.json]\n"
 	"\n"
 	"Compares a measured attenuation curve (CSV with a sigma column) with\n"
 	"the traced model of SCENE, fits each registered physical cause and\n"
@@ -41,13 +42,23 @@ static const char usage[] =
 	"  --response R      the detector's spectral response (a photometer's\n"
 	"                    own; default builtin:qe_mt9p031_approx)\n"
 	"  --plot F.png      measured vs model (F.png) and residuals (F-resid.png)\n"
+	"  --lens L.csv      a system curve (baffle + lens): the trace includes\n"
+	"                    the lens table, as `stray trace --lens`; lens causes\n"
+	"                    (lens_scale, lens_ghost) join the registry\n"
+	"  --surfaces        localise per surface group (reflectance / ABg scale\n"
+	"                    factors by re-weighting the path table, few groups,\n"
+	"                    BIC) even when the registry explains the curve\n"
+	"                    (it runs anyway when a significant residual is left)\n"
+	"  --write-model M.json  the extended model as a scene file (and M.obj),\n"
+	"                    for `stray trace --scene M.json`\n"
 	"  --causes          list the registered causes and exit\n"
 	"  --json            machine-readable output\n";
 
 struct diag_args {
-	const char *measured, *scene, *plot, *spectrum, *response;
+	const char *measured, *scene, *plot, *spectrum, *response, *lens;
+	const char *model;
 	const char *sets[DIAG_SETS_MAX];
-	int n_sets, list;
+	int n_sets, list, surfaces;
 	double rays, seed, threads;
 };
 
@@ -60,9 +71,12 @@ static int parse_args(int argc, char **argv, struct diag_args *a)
 		{ "threads", required_argument, NULL, 't' },
 		{ "set", required_argument, NULL, 'S' },
 		{ "plot", required_argument, NULL, 'p' },
-		{ "spectrum", required_argument, NULL, 'L' },
+		{ "spectrum", required_argument, NULL, 'Q' },
 		{ "response", required_argument, NULL, 'R' },
 		{ "causes", no_argument, NULL, 'c' },
+		{ "lens", required_argument, NULL, 'L' },
+		{ "surfaces", no_argument, NULL, 'G' },
+		{ "write-model", required_argument, NULL, 'W' },
 		{ "json", no_argument, NULL, 'j' },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 }
@@ -73,9 +87,12 @@ static int parse_args(int argc, char **argv, struct diag_args *a)
 		switch (opt) {
 		case 's': a->scene = optarg; break;
 		case 'p': a->plot = optarg; break;
-		case 'L': a->spectrum = optarg; break;
+		case 'Q': a->spectrum = optarg; break;
 		case 'R': a->response = optarg; break;
 		case 'c': a->list = 1; break;
+		case 'L': a->lens = optarg; break;
+		case 'G': a->surfaces = 1; break;
+		case 'W': a->model = optarg; break;
 		case 'j': cli.json = 1; break;
 		case 'n': rc = cli_parse_double("diagnose", "rays", optarg, &a->rays); break;
 		case 'k': rc = cli_parse_double("diagnose", "seed", optarg, &a->seed); break;
@@ -130,8 +147,58 @@ static void list_causes(void)
 	}
 }
 
+/* The surface at fault (diagnose/diag_surfaces.h): localise, confirm by
+ * a re-trace of the model, write it where the user asked. */
+static int surfaces(struct diag_eval *e, const struct diag_data *d,
+		    const struct diag_result *r, const char *model,
+		    struct diag_surfaces *s, double *base,
+		    struct stray_error *err)
+{
+	struct diag_surf_table *t = NULL;
+	const struct diag_fit *f = r->named.n_causes ? &r->named :
+		&r->tentative;
+	struct diag_state st;
+	int rc = STRAY_OK, on = 0, c, o = 0;
+	size_t i;
+
+	/* the baffle's surfaces after the lens's causes the registry named
+	 * (or its tentative model holds): those are applied first */
+	diag_state_nominal(&st);
+	for (c = 0; c < f->n_causes; o += f->cause[c]->n_params, c++)
+		if (f->cause[c]->needs_lens) {
+			f->cause[c]->apply(f->p + o, &st);
+			on = 1;
+		}
+	if (on) {
+		double *sig = malloc((d->n ? d->n : 1) * sizeof(*sig));
+
+		rc = sig ? diag_eval_model(e, &st, base, sig, NULL, err) :
+			stray_error_set(err, STRAY_ENOMEM, "diagnose",
+					"out of memory");
+		for (i = 0; !rc && i < d->n; i++)
+			base[i] = r->model_before[i] > 0.0 ?
+				base[i] / r->model_before[i] : 1.0;
+		free(sig);
+		if (rc)
+			return rc;
+	}
+	log_line("surface at fault: re-weighting per surface group");
+	rc = diag_surf_table_trace(e, &t, err);
+	if (!rc)
+		rc = diag_surfaces_fit_on(t, d, on ? base : NULL, s, err);
+	diag_surf_table_free(t);
+	if (!rc)
+		rc = diag_surfaces_confirm(e, d, s, err);
+	if (!rc && model)
+		rc = diag_surfaces_write_model(e, s, model, err);
+	return rc;
+}
+
 int cmd_diagnose(int argc, char **argv, const struct tracer_runner *runner)
 {
+	struct diag_surfaces surf;
+	double *base = NULL;
+	int with_surf = 0;
 	struct diag_args a = { .rays = 200000, .seed = 1, .threads = 1 };
 	struct stray_error err;
 	struct diag_data d;
@@ -156,22 +223,36 @@ int cmd_diagnose(int argc, char **argv, const struct tracer_runner *runner)
 	e.n_paths = (uint64_t)a.rays;
 	e.seed = (uint64_t)a.seed;
 	e.threads = (int)a.threads;
+	e.lens = a.lens;
 	for (i = 0; i < a.n_sets; i++)
 		e.sets[e.n_sets++] = a.sets[i];
 	memset(&r, 0, sizeof(r));
 	rc = diag_eval_prepare(&e, &err);
 	if (!rc)
 		rc = diag_run(&e, &d, &r, log_line, &err);
+	with_surf = a.surfaces || a.model || (r.significant && !r.explained);
+	if (!rc && with_surf) {
+		base = malloc((d.n ? d.n : 1) * sizeof(*base));
+		rc = base ? surfaces(&e, &d, &r, a.model, &surf, base, &err) :
+			stray_error_set(&err, STRAY_ENOMEM, "diagnose",
+					"out of memory");
+	}
 	if (!rc && a.plot)
 		rc = diag_plot(a.plot, &d, &r, &err);
 	if (!rc) {
 		if (cli.json)
-			rc = diag_report_json(&d, &e, &r);
-		else
+			rc = diag_report_json_surf(&d, &e, &r,
+						   with_surf ? &surf : NULL,
+						   a.model);
+		else {
 			diag_report_text(&d, &e, &r);
+			if (with_surf)
+				diag_report_surfaces_text(&surf, a.model);
+		}
 	} else {
 		rc = cli_fail("diagnose", &err);
 	}
+	free(base);
 	diag_result_free(&r);
 	diag_eval_free(&e);
 	diag_data_free(&d);

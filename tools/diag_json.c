@@ -19,6 +19,8 @@ static cJSON *fit_json(const struct diag_fit *f)
 		cJSON *ci = cJSON_CreateObject();
 
 		cJSON_AddStringToObject(it, "name", cs->name);
+		cJSON_AddStringToObject(it, "side", cs->needs_lens ? "lens" :
+					"baffle or measurement");
 		for (k = 0; k < cs->n_params; k++, o++) {
 			cJSON *pair = cJSON_CreateArray();
 
@@ -49,8 +51,53 @@ static cJSON *regions_json(const double *rms, const int *count)
 	return o;
 }
 
+static cJSON *surfaces_json(const struct diag_surfaces *s, const char *model)
+{
+	cJSON *o = cJSON_CreateObject(), *list = cJSON_CreateArray();
+	int k;
+
+	for (k = 0; k < s->n_named; k++) {
+		cJSON *it = cJSON_CreateObject(), *ci = cJSON_CreateArray();
+		int c = s->named[k];
+
+		cJSON_AddStringToObject(it, "group", s->name[c]);
+		cJSON_AddStringToObject(it, "knob", s->abg[c] ? "abg_a_scale" :
+					"reflectance_factor");
+		cJSON_AddItemToObject(it, "factor",
+				      cli_json_number(pow(10.0, s->log10_f[k])));
+		cJSON_AddItemToArray(ci, cli_json_number(pow(10.0, s->ci_lo[k])));
+		cJSON_AddItemToArray(ci, cli_json_number(pow(10.0, s->ci_hi[k])));
+		cJSON_AddItemToObject(it, "interval", ci);
+		cJSON_AddItemToObject(it, "reflectance",
+				      cli_json_number(s->rho[c] *
+						      pow(10.0, s->log10_f[k])));
+		cJSON_AddItemToArray(list, it);
+	}
+	cJSON_AddItemToObject(o, "groups", list);
+	cJSON_AddNumberToObject(o, "candidates", s->n_cand);
+	cJSON_AddItemToObject(o, "chi2_before", cli_json_number(s->chi2_before));
+	cJSON_AddItemToObject(o, "chi2_after", cli_json_number(s->chi2_after));
+	cJSON_AddItemToObject(o, "rms_before", cli_json_number(s->rms_before));
+	cJSON_AddItemToObject(o, "rms_after", cli_json_number(s->rms_after));
+	cJSON_AddItemToObject(o, "chi2_retrace",
+			      cli_json_number(s->chi2_retrace));
+	cJSON_AddItemToObject(o, "rms_retrace", cli_json_number(s->rms_retrace));
+	cJSON_AddItemToObject(o, "fit_seconds", cli_json_number(s->fit_seconds));
+	if (model)
+		cJSON_AddStringToObject(o, "model", model);
+	return o;
+}
+
 int diag_report_json(const struct diag_data *d, const struct diag_eval *e,
 		     const struct diag_result *r)
+{
+	return diag_report_json_surf(d, e, r, NULL, NULL);
+}
+
+int diag_report_json_surf(const struct diag_data *d,
+			  const struct diag_eval *e,
+			  const struct diag_result *r,
+			  const struct diag_surfaces *sf, const char *model)
 {
 	cJSON *o = cJSON_CreateObject(), *single = cJSON_CreateObject();
 	int i;
@@ -94,6 +141,10 @@ int diag_report_json(const struct diag_data *d, const struct diag_eval *e,
 		cJSON_AddItemToObject(single, r->single[i].cause[0]->name, s);
 	}
 	cJSON_AddItemToObject(o, "single", single);
+	if (e->lens)
+		cJSON_AddStringToObject(o, "lens", e->lens);
+	if (sf)
+		cJSON_AddItemToObject(o, "surfaces", surfaces_json(sf, model));
 	cJSON_AddNumberToObject(o, "traces", (double)e->n_traces);
 	cJSON_AddItemToObject(o, "trace_seconds",
 			      cli_json_number(e->trace_seconds));

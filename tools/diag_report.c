@@ -15,9 +15,11 @@ static void print_fit_params(const struct diag_fit *f)
 	for (c = 0; c < f->n_causes; c++) {
 		const struct diag_cause *cs = f->cause[c];
 
-		printf("  %s (%s)\n", cs->name, cs->kind == DIAG_REWEIGHT ?
+		printf("  %s (%s; %s)\n", cs->name, cs->kind == DIAG_REWEIGHT ?
 		       "re-weighted paths" : cs->kind == DIAG_RETRACE ?
-		       "re-traced geometry" : "measurement model");
+		       "re-traced geometry" : "measurement model",
+		       cs->needs_lens ? "the lens's side" :
+		       "the baffle's or the measurement's side");
 		if (cs->n_params == 0)
 			printf("    (no continuous parameter)\n");
 		for (k = 0; k < cs->n_params; k++, o++)
@@ -139,4 +141,32 @@ void diag_report_text(const struct diag_data *d, const struct diag_eval *e,
 	       "traced nodes; angle offset and beam average from the nominal "
 	       "geometry's fine grid; spectral coating over the source x "
 	       "response band.\n");
+}
+
+void diag_report_surfaces_text(const struct diag_surfaces *s,
+			       const char *model)
+{
+	int k;
+
+	printf("\nSurface at fault (per-group factors by re-weighting the "
+	       "path table, %d groups, greedy BIC):\n", s->n_cand);
+	if (s->n_named == 0)
+		printf("  no surface group lowers BIC by more than %.0f\n",
+		       DIAG_BIC_MARGIN);
+	for (k = 0; k < s->n_named; k++) {
+		int c = s->named[k];
+
+		printf("  %-16s %s x %.3g  [%.3g, %.3g] (%.4g)\n", s->name[c],
+		       s->abg[c] ? "ABg A" : "reflectance",
+		       pow(10.0, s->log10_f[k]), pow(10.0, s->ci_lo[k]),
+		       pow(10.0, s->ci_hi[k]),
+		       s->rho[c] * pow(10.0, s->log10_f[k]));
+	}
+	printf("  RMS log10 residual %.3f -> %.3f (re-weighted), %.3f "
+	       "(re-traced); chi2 %.1f -> %.1f, re-traced %.1f\n",
+	       s->rms_before, s->rms_after, s->rms_retrace, s->chi2_before,
+	       s->chi2_after, s->chi2_retrace);
+	if (model)
+		printf("  extended model written: %s (trace it with "
+		       "`stray trace --scene %s`)\n", model, model);
 }

@@ -247,8 +247,9 @@ static void connect_vertex(struct worker_ctx *w, struct path_state *ps,
 			ps->acc[jk * TRACER_ORDERS + order] += c;
 			add_to_map(w, ps, jk, c);
 			add_to_focal(w, ps, jk, c, ps->focal_cell);
-			if (ps->path_c) {
-				if (ps->path_c[jk] == 0.0)
+			if (ps->path_c) {	/* c = 0 (a lens table of zeros):
+						 * not touched, or listed twice */
+				if (ps->path_c[jk] == 0.0 && c != 0.0)
 					ps->touched[ps->n_touched++] = jk;
 				ps->path_c[jk] += c;
 			}

@@ -145,12 +145,33 @@ static void test_cause_list(void **state)
 	}
 }
 
+/* --lens (system curves): a bad lens table is bad input, named. */
+static void test_bad_lens(void **state)
+{
+	char path[64], lens[64];
+	char *argv[] = { "stray", "diagnose", path, "--scene", "ref4",
+			 "--lens", lens, "--rays", "2000", NULL };
+
+	(void)state;
+	write_csv(path, "theta_deg,alpha,sigma\n0,1,0.01\n10,0.9,0.01\n"
+		  "40,1e-5,1e-6\n");
+	write_csv(lens, "theta_deg,alpha\n0,1\n10,abc\n");
+	run_stray(&r, argv);
+	unlink(path);
+	unlink(lens);
+	assert_int_equal(r.status, 2);
+	assert_int_equal(r.err_lines, 1);
+	if (!strstr(r.err, lens) || !strstr(r.err, "abc"))
+		fail_msg("stderr '%s' lacks the lens file or value", r.err);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_no_sigma_column),
 		cmocka_unit_test(test_non_positive_alpha),
 		cmocka_unit_test(test_angle_out_of_range),
+		cmocka_unit_test(test_bad_lens),
 		cmocka_unit_test(test_nan),
 		cmocka_unit_test(test_missing_file_and_usage),
 		cmocka_unit_test(test_bad_band),

@@ -250,6 +250,7 @@ static int trace_truth(const struct truth_config *c, double *alpha,
 	struct tracer_trace_opts o;
 	struct tracer_result r;
 	struct stray_error err;
+	struct tracer_lens lens = { 0, NULL, NULL };
 	double th[256];
 	size_t i;
 	int rc;
@@ -266,6 +267,11 @@ static int trace_truth(const struct truth_config *c, double *alpha,
 			       c->n_sets, &s, &err);
 	if (!rc && c->abg_g > 0.0)
 		make_abg(&s, c->abg_g);
+	for (i = 0; !rc && c->group && i < s.mesh.n_group; i++)
+		if (strcmp(s.mesh.group_name[i], c->group) == 0)
+			s.material[i].rho *= c->group_factor;
+	if (!rc && c->lens)
+		rc = tracer_lens_load(c->lens, &lens, &err);
 	/* the stage turns about a point behind the aperture: in the baffle's
 	 * frame the beam axis passes through it at every angle */
 	if (!rc)
@@ -284,6 +290,7 @@ static int trace_truth(const struct truth_config *c, double *alpha,
 		o.n_paths = c->n_paths;
 		o.seed = c->seed;
 		o.threads = 2;
+		o.lens = c->lens ? &lens : NULL;
 		rc = tracer_trace(&s, &o, &r, &err);
 	}
 	for (i = 0; !rc && i < c->n; i++)
@@ -293,6 +300,7 @@ static int trace_truth(const struct truth_config *c, double *alpha,
 			err.field ? err.field : "");
 	tracer_result_free(&r);
 	tracer_scene_free(&s);
+	tracer_lens_free(&lens);
 	return rc;
 }
 

@@ -11,7 +11,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#define TRUTH_SETS_MAX 8
+#define TRUTH_SETS_MAX 16
 
 struct truth_config {
 	const char *scene;		/* NULL: ref4; else a scene file */
@@ -33,6 +33,9 @@ struct truth_config {
 					 * two-band coating over the Sun x QE
 					 * band (issue 17): rho_blue below
 					 * split, rho_red above */
+	const char *group;		/* a surface group's reflectance */
+	double group_factor;		/*   times this (0: none) */
+	const char *lens;		/* lens table (system curve), or NULL */
 	double rel_noise;		/* photometer noise, relative */
 	double floor_sigma;		/* measurement floor, absolute */
 	uint64_t seed, n_paths;

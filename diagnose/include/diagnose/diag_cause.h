@@ -54,6 +54,11 @@ struct diag_state {
 	/* ... with a Gaussian fall-off of this 1/e^2 radius (deg) inside it
 	 * (0: uniform over the disk) */
 	double beam_gauss_deg;
+	/* system curves (--lens): the lens table's out-of-field part x
+	 * 10^lens_log10 (0: none); a ghost, the table x 10^ghost_log10
+	 * between ghost_lo_deg and ghost_hi_deg (-inf: none) */
+	double lens_log10;
+	double ghost_log10, ghost_lo_deg, ghost_hi_deg;
 };
 
 void diag_state_nominal(struct diag_state *s);
@@ -86,6 +91,9 @@ struct diag_cause {
 	 * one is normalised by it, its scale is not free (a flight curve,
 	 * `stray flightcheck --out`, is absolute and has none). */
 	int needs_unnormalised;
+	/* Lens causes: only for system curves (`--lens`); named on the
+	 * lens's side of the report. */
+	int needs_lens;
 	/* Optional starting points (rows of n_params) from the angles;
 	 * NULL: the product grid of each parameter's n_start values. */
 	int (*start_grid)(const double *theta_deg, size_t n,

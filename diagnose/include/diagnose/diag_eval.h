@@ -14,6 +14,7 @@
 #include "stray/error.h"
 
 #define DIAG_SETS_MAX 32	/* user --set overrides */
+#define DIAG_LENS_BINS_MAX 64
 
 struct tracer_runner;
 struct diag_trace;	/* a cached trace (diagnose/trace_cache.h) */
@@ -23,6 +24,7 @@ struct diag_eval {
 	const char *sets[DIAG_SETS_MAX];
 	int n_sets;
 	int parametric;		/* scene is the built-in baffle */
+	const char *lens;	/* lens table (system curve), or NULL */
 	uint64_t n_paths, seed;
 	int threads;
 	const struct tracer_runner *runner;	/* runs every trace */
@@ -35,6 +37,11 @@ struct diag_eval {
 	size_t n_traces;
 	double trace_seconds;
 	double *direct_share;	/* nominal direct / total at theta_i */
+	/* system curves (diagnose/lens.c): light arriving per incidence bin
+	 * beyond the lens's field, [bin][measured], and the nominal model */
+	int n_lens_bins;
+	double lens_bin_lo, lens_bin_first;	/* field edge, 2nd bin */
+	double *lens_bin, *lens_alpha_nom;
 };
 
 #define DIAG_SUB 9		/* fine-grid points per angle: -4..4 steps */
