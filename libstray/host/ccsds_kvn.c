@@ -235,3 +235,44 @@ int stray_kvn_next(const char *buf, size_t len, size_t *pos, long *lineno,
 	line->kind = line->n_field == 1 ? STRAY_KVN_WORD : STRAY_KVN_DATA;
 	return 1;
 }
+
+#define KVN_LINE_MAX 1024
+
+int stray_kvn_each(const char *buf, size_t len, const char *file,
+		   long *lineno,
+		   int (*fn)(void *ctx, const struct stray_kvn_line *line),
+		   void *ctx, struct stray_error *err)
+{
+	struct stray_kvn_line l;
+	char scratch[KVN_LINE_MAX];
+	size_t pos = 0;
+	int rc = STRAY_OK, got;
+
+	while (rc == STRAY_OK &&
+	       (got = stray_kvn_next(buf, len, &pos, lineno, scratch,
+				     sizeof(scratch), &l, file, err)) != 0) {
+		if (got < 0)
+			rc = STRAY_EPARSE;
+		else if (l.kind != STRAY_KVN_BLANK &&
+			 l.kind != STRAY_KVN_COMMENT)
+			rc = fn(ctx, &l);
+	}
+	return rc;
+}
+
+int stray_kvn_header_key(const char *key)
+{
+	return strcmp(key, "CREATION_DATE") == 0 ||
+	       strcmp(key, "ORIGINATOR") == 0 ||
+	       strcmp(key, "MESSAGE_ID") == 0;
+}
+
+int stray_kvn_fail(struct stray_error *err, const char *file, long line,
+		   const char *key, const char *why, const char *text)
+{
+	/* the keyword is named at run time: the line buffer does not last */
+	stray_error_at(err, STRAY_EPARSE, file, line, "keyword", why);
+	stray_error_column(err, key);
+	stray_error_text(err, text);
+	return STRAY_EPARSE;
+}

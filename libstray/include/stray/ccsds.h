@@ -56,4 +56,23 @@ int stray_kvn_next(const char *buf, size_t len, size_t *pos, long *lineno,
 		   struct stray_kvn_line *line, const char *file,
 		   struct stray_error *err);
 
+/*
+ * Feed each line of buf[0 .. len) but blank and COMMENT ones to
+ * fn(ctx, line), in order, until fn returns other than STRAY_OK;
+ * *lineno counts lines (for fn's own messages).  Returns STRAY_OK, what
+ * fn returned, or STRAY_EPARSE for a line stray_kvn_next refuses.
+ */
+int stray_kvn_each(const char *buf, size_t len, const char *file,
+		   long *lineno,
+		   int (*fn)(void *ctx, const struct stray_kvn_line *line),
+		   void *ctx, struct stray_error *err);
+
+/* A keyword of the message header the readers pass over (CREATION_DATE,
+ * ORIGINATOR, MESSAGE_ID): 1, else 0. */
+int stray_kvn_header_key(const char *key);
+
+/* Sets err to "file:line: keyword `key`: why" with text; STRAY_EPARSE. */
+int stray_kvn_fail(struct stray_error *err, const char *file, long line,
+		   const char *key, const char *why, const char *text);
+
 #endif /* STRAY_CCSDS_H */
