@@ -29,6 +29,9 @@ int stray_ccsds_inertial_frame(const char *text);
  */
 int stray_ccsds_epoch(const char *text, int ts, double *t_tt);
 
+/* Days from 2000-01-01 to the civil date y-m-d (negative before). */
+long stray_ccsds_days_from_2000(long y, long m, long d);
+
 /* The inverse for writing: t_tt to "YYYY-MM-DDThh:mm:ss.ffffff" in ts. */
 void stray_ccsds_format_epoch(double t_tt, int ts, char *buf, size_t size);
 
