@@ -140,28 +140,35 @@ static int forward(struct diag_eval *e, const struct diag_data *d,
 	return rc;
 }
 
+/* f: cur without its cause i, the others' parameters kept (in order). */
+static void without(const struct diag_fit *cur, int i, struct diag_fit *f)
+{
+	int j, k, o = 0, q = 0;
+
+	memset(f, 0, sizeof(*f));
+	for (j = 0; j < cur->n_causes; j++) {
+		int np = cur->cause[j]->n_params;
+
+		if (j != i) {
+			f->cause[f->n_causes++] = cur->cause[j];
+			for (k = 0; k < np; k++)
+				f->p[q++] = cur->p[o + k];
+		}
+		o += np;
+	}
+}
+
 /* Drop causes the others make redundant (BIC not worse by the margin). */
 static int backward(struct diag_eval *e, const struct diag_data *d,
 		    struct diag_fit *cur, void (*log)(const char *),
 		    struct stray_error *err)
 {
-	int i, j, rc = STRAY_OK;
+	int i, rc = STRAY_OK;
 
 	for (i = 0; cur->n_causes > 1 && i < cur->n_causes && !rc; i++) {
 		struct diag_fit f;
-		int k, o = 0, q = 0;
 
-		memset(&f, 0, sizeof(f));
-		for (j = 0; j < cur->n_causes; j++) {
-			int np = cur->cause[j]->n_params;
-
-			if (j != i) {
-				f.cause[f.n_causes++] = cur->cause[j];
-				for (k = 0; k < np; k++)
-					f.p[q++] = cur->p[o + k];
-			}
-			o += np;
-		}
+		without(cur, i, &f);
 		/* the last kept cause restarts from its grid */
 		rc = diag_fit_run(e, d, &f, 1, err);
 		if (!rc && f.bic - cur->bic < DIAG_BIC_MARGIN) {
@@ -180,27 +187,16 @@ static int simplify(struct diag_eval *e, const struct diag_data *d,
 		    struct diag_fit *cur, void (*log)(const char *),
 		    struct stray_error *err)
 {
-	int i, j, rc = STRAY_OK;
+	int i, rc = STRAY_OK;
 
 	for (i = 0; i < cur->n_causes && !rc; i++) {
 		const struct diag_cause *c = cur->cause[i], *s;
 		struct diag_fit f;
-		int k, o = 0, q = 0;
 
 		s = c->nests ? diag_cause_find(c->nests) : NULL;
 		if (!s || uses(cur, s) || !usable(e, s))
 			continue;
-		memset(&f, 0, sizeof(f));
-		for (j = 0; j < cur->n_causes; j++) {
-			int np = cur->cause[j]->n_params;
-
-			if (j != i) {
-				f.cause[f.n_causes++] = cur->cause[j];
-				for (k = 0; k < np; k++)
-					f.p[q++] = cur->p[o + k];
-			}
-			o += np;
-		}
+		without(cur, i, &f);
 		f.cause[f.n_causes++] = s;	/* from its grid */
 		rc = diag_fit_run(e, d, &f, 1, err);
 		if (!rc && f.bic - cur->bic < DIAG_BIC_MARGIN) {

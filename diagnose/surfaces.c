@@ -29,6 +29,7 @@
 #include "diagnose/diag_fit.h"
 #include "diagnose/diag_result.h"
 #include "diagnose/diag_surfaces.h"
+#include "path_rows.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"
 #include "tracer/integrator.h"
@@ -54,27 +55,6 @@ static int oom(struct stray_error *err)
 	return stray_error_set(err, STRAY_ENOMEM, "diagnose", "out of memory");
 }
 
-static int is_candidate(const struct tracer_scene *s, int g)
-{
-	const struct tracer_brdf *m = &s->material[g];
-
-	return g < (int)s->mesh.n_group && m->ops &&
-	       (m->ops == &tracer_brdf_lambert_ops ||
-		m->ops == &tracer_brdf_abg_ops);
-}
-
-static int cmp_entry(const void *a, const void *b)
-{
-	const struct tracer_path_entry *x =
-		*(const struct tracer_path_entry *const *)a;
-	const struct tracer_path_entry *y =
-		*(const struct tracer_path_entry *const *)b;
-
-	if (x->theta_index != y->theta_index)
-		return x->theta_index < y->theta_index ? -1 : 1;
-	return (x->seq > y->seq) - (x->seq < y->seq);
-}
-
 /* Rows of the path table (key order, so sums do not depend on the hash
  * layout) and the direct light (order 0, no group) per angle. */
 static int build_rows(struct diag_surf_table *t, const struct tracer_result *r,
@@ -93,25 +73,21 @@ static int build_rows(struct diag_surf_table *t, const struct tracer_result *r,
 	t->c = malloc(cap * sizeof(*t->c));
 	t->v = malloc(cap * sizeof(*t->v));
 	t->var = malloc(cap * sizeof(*t->var));
-	sorted = malloc((pt->n + 1) * sizeof(*sorted));
+	sorted = diag_paths_sorted(pt, &n_used);
 	if (!t->j || !t->n_c || !t->c || !t->v || !t->var || !sorted) {
 		free(sorted);
 		return oom(err);
 	}
-	for (i = 0; i < pt->cap; i++)
-		if (pt->e[i].used && n_used < pt->n)
-			sorted[n_used++] = &pt->e[i];
-	qsort(sorted, n_used, sizeof(*sorted), cmp_entry);
 	for (i = 0; i < n_used; i++) {
 		const struct tracer_path_entry *pe = sorted[i];
 		int n = tracer_seq_unpack(pe->seq, g), nc = 0;
-		double prod = 1.0, var;
+		double prod = 1.0;
 
 		for (k = 0; k < n; k++) {
 			if (g[k] < 0 || g[k] >= TRACER_GROUP_MAX)
 				continue;
 			prod *= s->material[g[k]].rho;
-			if (!is_candidate(s, g[k]))
+			if (!diag_group_interior(s, (size_t)g[k]))
 				continue;
 			if (cand_of[g[k]] < 0) {
 				int c = t->n_cand++;
@@ -126,33 +102,19 @@ static int build_rows(struct diag_surf_table *t, const struct tracer_result *r,
 			}
 			t->c[m][nc++] = (unsigned char)cand_of[g[k]];
 		}
-		var = B > 1 ? B / (B - 1.0) *
-			(pe->value_b2 - pe->value * pe->value / B) : 0.0;
 		t->j[m] = pe->theta_index;
 		t->n_c[m] = (unsigned char)nc;
 		t->v[m] = pe->value * prod;
-		t->var[m] = (var > 0.0 ? var : 0.0) * prod * prod;
+		t->var[m] = diag_batch_var(pe->value, pe->value_b2, B) *
+			    prod * prod;
 		m++;
 	}
 	free(sorted);
 	for (i = 0; i < r->n_theta; i++) {	/* direct light */
-		double sum = 0.0, s2 = 0.0, var;
-		int b;
-
-		for (b = 0; b < r->n_batches; b++) {
-			double x = r->power[((size_t)b * r->n_theta + i) *
-					    TRACER_ORDERS];
-
-			sum += x;
-			s2 += x * x;
-		}
-		if (sum <= 0.0)
+		if (!diag_direct_row(r, i, &t->v[m], &t->var[m]))
 			continue;
-		var = B > 1 ? B / (B - 1.0) * (s2 - sum * sum / B) : 0.0;
 		t->j[m] = (unsigned)i;
 		t->n_c[m] = 0;
-		t->v[m] = sum;
-		t->var[m] = var > 0.0 ? var : 0.0;
 		m++;
 	}
 	t->n_rows = m;

@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "path_rows.h"
 #include "trace_cache.h"
 #include "stray/errfmt.h"
 #include "tracer/integrator.h"
@@ -57,14 +58,10 @@ static void classify_groups(const struct tracer_scene *s, int *interior,
 
 	*base_rho = NAN;
 	for (k = 0; k < TRACER_GROUP_MAX; k++) {
-		const struct tracer_brdf *m = &s->material[k];
-
-		interior[k] = k < s->mesh.n_group && m->ops &&
-			(m->ops == &tracer_brdf_lambert_ops ||
-			 m->ops == &tracer_brdf_abg_ops);
-		rho[k] = k < s->mesh.n_group ? m->rho : 0.0;
+		interior[k] = diag_group_interior(s, k);
+		rho[k] = k < s->mesh.n_group ? s->material[k].rho : 0.0;
 		if (interior[k] && isnan(*base_rho))
-			*base_rho = m->rho;
+			*base_rho = s->material[k].rho;
 	}
 }
 
@@ -74,42 +71,16 @@ static void classify_groups(const struct tracer_scene *s, int *interior,
 static size_t direct_rows(struct diag_trace *t, const struct tracer_result *r,
 			  size_t m)
 {
-	double B = r->n_batches;
 	size_t j;
-	int b;
 
 	for (j = 0; j < r->n_theta; j++) {
-		double s = 0.0, s2 = 0.0, var;
-
-		for (b = 0; b < r->n_batches; b++) {
-			double x = r->power[((size_t)b * r->n_theta + j) *
-					    TRACER_ORDERS];
-
-			s += x;
-			s2 += x * x;
-		}
-		if (s <= 0.0)
+		if (!diag_direct_row(r, j, &t->v[m], &t->var[m]))
 			continue;
-		var = B > 1 ? B / (B - 1.0) * (s2 - s * s / B) : 0.0;
 		t->j[m] = (unsigned)j;
 		t->n_int[m] = 0;
-		t->v[m] = s;
-		t->var[m] = var > 0.0 ? var : 0.0;
 		m++;
 	}
 	return m;
-}
-
-static int cmp_entry(const void *a, const void *b)
-{
-	const struct tracer_path_entry *x =
-		*(const struct tracer_path_entry *const *)a;
-	const struct tracer_path_entry *y =
-		*(const struct tracer_path_entry *const *)b;
-
-	if (x->theta_index != y->theta_index)
-		return x->theta_index < y->theta_index ? -1 : 1;
-	return (x->seq > y->seq) - (x->seq < y->seq);
 }
 
 /*
@@ -133,20 +104,16 @@ static int reduce_paths(struct diag_trace *t, const struct tracer_result *r,
 	t->n_int = malloc(cap * sizeof(*t->n_int));
 	t->v = malloc(cap * sizeof(*t->v));
 	t->var = malloc(cap * sizeof(*t->var));
-	sorted = malloc((pt->n + 1) * sizeof(*sorted));
+	sorted = diag_paths_sorted(pt, &n_used);
 	if (!t->j || !t->n_int || !t->v || !t->var || !sorted) {
 		free(sorted);
 		return stray_error_set(err, STRAY_ENOMEM, "diagnose",
 				       "out of memory for the path table");
 	}
-	for (i = 0; i < pt->cap; i++)
-		if (pt->e[i].used && n_used < pt->n)
-			sorted[n_used++] = &pt->e[i];
-	qsort(sorted, n_used, sizeof(*sorted), cmp_entry);
 	for (i = 0; i < n_used; i++) {
 		const struct tracer_path_entry *pe = sorted[i];
 		int n, k, n_int = 0;
-		double ext = 1.0, var;
+		double ext = 1.0;
 
 		n = tracer_seq_unpack(pe->seq, g);
 		for (k = 0; k < n; k++) {
@@ -162,13 +129,12 @@ static int reduce_paths(struct diag_trace *t, const struct tracer_result *r,
 			else if (g[k] >= 0 && g[k] < TRACER_GROUP_MAX)
 				ext *= rho[g[k]];
 		}
-		/* variance of the all-batch sum from the batch sums */
-		var = B > 1 ? B / (B - 1.0) *
-			(pe->value_b2 - pe->value * pe->value / B) : 0.0;
 		t->j[m] = pe->theta_index;
 		t->n_int[m] = (unsigned char)n_int;
 		t->v[m] = pe->value * ext;
-		t->var[m] = (var > 0.0 ? var : 0.0) * ext * ext;
+		/* variance of the all-batch sum from the batch sums */
+		t->var[m] = diag_batch_var(pe->value, pe->value_b2, B) *
+			    ext * ext;
 		m++;
 	}
 	free(sorted);

@@ -12,6 +12,7 @@
 #include "fdrfw/earth.h"
 #include "fdrfw/ephem.h"
 #include "fdrfw/vec.h"
+#include "flight_table.h"
 #include "orbit.h"
 #include "stray/ccsds.h"
 #include "stray/errfmt.h"
@@ -133,23 +134,6 @@ static int vec3(const cJSON *o, const char *key, double out[3])
 	return sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2]) > 1e-9;
 }
 
-static int load_table(const char *path, struct fdrfw_table *t,
-		      struct stray_error *err)
-{
-	char *buf;
-	size_t len;
-	int rc = stray_file_read(path, &buf, &len, err);
-
-	if (rc != STRAY_OK)
-		return rc;
-	if (fdrfw_table_parse((const uint8_t *)buf, len, t) != FDRFW_OK ||
-	    fdrfw_table_check(t) != FDRFW_OK)
-		rc = stray_error_at(err, STRAY_EPARSE, path, 0, "table",
-			"not a valid flight table (size, magic, CRC or range)");
-	free(buf);
-	return rc;
-}
-
 /* The head's frame in the body: +z the boresight, +y the image's up. */
 static int head_frame(const double bore[3], const double *up_in,
 		      double m[3][3])
@@ -239,7 +223,7 @@ static int load_heads(const char *path, struct mission *m,
 		snprintf(tpath, sizeof(tpath), "%.*s%s",
 			 tab->valuestring[0] == '/' ? 0 : (int)dirlen, path,
 			 tab->valuestring);
-		if ((rc = load_table(tpath, &hd->table, err)) != STRAY_OK)
+		if ((rc = flight_table_load(tpath, &hd->table, err)) != STRAY_OK)
 			break;
 		i++;
 	}

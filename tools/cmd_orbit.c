@@ -14,8 +14,10 @@
 #include "commands.h"
 #include "fdrfw/ephem.h"
 #include "fdrfw/fdrfw.h"
+#include "flight_table.h"
 #include "orbit.h"
 #include "plot.h"
+#include "stray/ccsds.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"
 
@@ -66,36 +68,6 @@ static const char *const flag_names[] = {
 };
 #define N_FLAGS (sizeof(flag_bits) / sizeof(flag_bits[0]))
 
-/* Days from 2000-01-01 to y-m-d (H. Hinnant's days_from_civil). */
-static long days_from_2000(int y, int m, int d)
-{
-	long era, yoe, doy, doe;
-
-	y -= m <= 2;
-	era = (y >= 0 ? y : y - 399) / 400;
-	yoe = y - era * 400;
-	doy = (153 * (m + (m > 2 ? -3 : 9)) + 2) / 5 + d - 1;
-	doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
-	return era * 146097 + doe - 719468 - 10957;
-}
-
-static int load_table(const char *path, struct fdrfw_table *t,
-		      struct stray_error *err)
-{
-	char *buf;
-	size_t len;
-	int rc = stray_file_read(path, &buf, &len, err);
-
-	if (rc != STRAY_OK)
-		return rc;
-	if (fdrfw_table_parse((const uint8_t *)buf, len, t) != FDRFW_OK ||
-	    fdrfw_table_check(t) != FDRFW_OK)
-		rc = stray_error_at(err, STRAY_EPARSE, path, 0, "table",
-			"not a valid flight table (size, magic, CRC or range)");
-	free(buf);
-	return rc;
-}
-
 static int run_alloc(struct orbit_run *r, size_t n)
 {
 	int b;
@@ -129,8 +101,8 @@ static void fly(const struct orbit_args *a, const struct fdrfw_table *t,
 	struct fdrfw_ctx ctx;
 	struct orbit orb;
 	float sun[3];
-	int32_t t0 = (int32_t)(days_from_2000(a->year, a->month, a->day) *
-			       86400L - 43200L);
+	long day0 = stray_ccsds_days_from_2000(a->year, a->month, a->day);
+	int32_t t0 = (int32_t)(day0 * 86400L - 43200L);
 	size_t i;
 
 	fdrfw_init(&ctx, t);
@@ -361,7 +333,7 @@ int cmd_orbit(int argc, char **argv)
 	if (rc != CLI_OK)
 		return rc < 0 ? CLI_OK : rc;
 	stray_error_clear(&err);
-	if (load_table(a.table, &table, &err) != STRAY_OK ||
+	if (flight_table_load(a.table, &table, &err) != STRAY_OK ||
 	    normalisation_check(&a, &table, &err) != STRAY_OK)
 		return cli_fail("orbit", &err);
 	if (!run_alloc(&run, (size_t)(a.hours * 3600.0 / a.step_s) + 1)) {

@@ -111,6 +111,15 @@ int tracer_json_fail(const struct ctx *c, int code, const char *field,
 	return fail(c, code, field, reason);
 }
 
+int tracer_json_fail_text(const struct ctx *c, int code, const char *field,
+			  const char *reason, const char *text)
+{
+	int rc = fail(c, code, field, reason);
+
+	stray_error_text(c->err, text);
+	return rc;
+}
+
 /* Path of a mesh file relative to the scene file's directory. */
 static void sibling(const char *scene, const char *file, char *out,
 		    size_t size);
@@ -225,6 +234,17 @@ int tracer_json_material(const struct ctx *c, const cJSON *m,
 	return rc ? c->err ? c->err->code : STRAY_EINVAL : STRAY_OK;
 }
 
+int tracer_json_group_material(const struct ctx *c, const cJSON *m,
+			       const char *mname, struct tracer_scene *s,
+			       size_t g)
+{
+	int rc = tracer_json_material(c, m, &s->material[g], &s->spectral[g]);
+
+	if (rc)
+		stray_error_text(c->err, mname);
+	return rc;
+}
+
 /* Path of a mesh file relative to the scene file's directory. */
 static void sibling(const char *scene, const char *file, char *out,
 		    size_t size)
@@ -292,18 +312,13 @@ static int assign(const struct ctx *c, const cJSON *root,
 			cJSON_GetObjectItemCaseSensitive(mats, mname) : NULL;
 		int rc;
 
-		if (!m) {
-			rc = fail(c, STRAY_ENOTFOUND, "groups",
-				  "surface group has no material");
-			stray_error_text(c->err, gname);
+		if (!m)
+			return tracer_json_fail_text(c, STRAY_ENOTFOUND,
+				"groups", "surface group has no material",
+				gname);
+		rc = tracer_json_group_material(c, m, mname, s, g);
+		if (rc)
 			return rc;
-		}
-		rc = tracer_json_material(c, m, &s->material[g],
-					  &s->spectral[g]);
-		if (rc) {
-			stray_error_text(c->err, mname);
-			return rc;
-		}
 	}
 	return STRAY_OK;
 }

@@ -20,10 +20,21 @@ struct tracer_json_ctx {
 int tracer_json_fail(const struct tracer_json_ctx *c, int code,
 		     const char *field, const char *reason);
 
+/* The same with text (the value at fault) added to the error. */
+int tracer_json_fail_text(const struct tracer_json_ctx *c, int code,
+			  const char *field, const char *reason,
+			  const char *text);
+
 /* One material object ({"type": "lambert", "reflectance": ...}), with
  * its "reflectance_table" (if any) into tab. */
 int tracer_json_material(const struct tracer_json_ctx *c, const cJSON *m,
 			 struct tracer_brdf *b, struct tracer_rho_table *tab);
+
+/* Material object m, named mname, into surface group g of s (its BRDF
+ * and reflectance table); an error names mname. */
+int tracer_json_group_material(const struct tracer_json_ctx *c,
+			       const cJSON *m, const char *mname,
+			       struct tracer_scene *s, size_t g);
 
 /* A "type": "vanes" file: the parametric baffle with these parameters,
  * then `key=value` sets, built into s, then the per-group materials. */

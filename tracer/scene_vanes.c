@@ -221,18 +221,13 @@ static int materials(const struct tracer_json_ctx *c, const cJSON *root,
 		if (!mname)
 			continue;
 		m = cJSON_GetObjectItemCaseSensitive(mats, mname);
-		if (!m) {
-			rc = tracer_json_fail(c, STRAY_ENOTFOUND, "groups",
-				"names a material not in \"materials\"");
-			stray_error_text(c->err, mname);
+		if (!m)
+			return tracer_json_fail_text(c, STRAY_ENOTFOUND,
+				"groups",
+				"names a material not in \"materials\"", mname);
+		rc = tracer_json_group_material(c, m, mname, s, g);
+		if (rc)
 			return rc;
-		}
-		rc = tracer_json_material(c, m, &s->material[g],
-					  &s->spectral[g]);
-		if (rc) {
-			stray_error_text(c->err, mname);
-			return rc;
-		}
 	}
 	return STRAY_OK;
 }

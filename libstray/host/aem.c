@@ -11,7 +11,6 @@
 #include "stray/errfmt.h"
 #include "stray/file.h"
 
-#define LINE_MAX_KVN 1024
 #define UNIT_TOL 1e-3
 
 enum { ST_HEADER, ST_META, ST_BETWEEN, ST_DATA };
@@ -27,16 +26,13 @@ struct aem_parse {
 	int dir;		/* -1 unset, 0 A2B, 1 B2A */
 	int qtype;		/* -1 unset, 0 FIRST, 1 LAST */
 	int have_ts, have_type;
+	int first;		/* no line read yet */
 };
 
 static int fail(struct aem_parse *p, const char *key, const char *why,
 		const char *text)
 {
-	/* the keyword is named at run time: the line buffer does not last */
-	stray_error_at(p->err, STRAY_EPARSE, p->file, p->line, "keyword", why);
-	stray_error_column(p->err, key);
-	stray_error_text(p->err, text);
-	return STRAY_EPARSE;
+	return stray_kvn_fail(p->err, p->file, p->line, key, why, text);
 }
 
 static int grow(struct aem_parse *p)
@@ -206,15 +202,13 @@ static int word(struct aem_parse *p, const char *w)
 	return fail(p, w, "out of place", w);
 }
 
-static int one_line(struct aem_parse *p, const struct stray_kvn_line *l,
-		    int *first)
+static int one_line(void *ctx, const struct stray_kvn_line *l)
 {
+	struct aem_parse *p = ctx;
 	double ver;
 
-	if (l->kind == STRAY_KVN_BLANK || l->kind == STRAY_KVN_COMMENT)
-		return STRAY_OK;
-	if (*first) {
-		*first = 0;
+	if (p->first) {
+		p->first = 0;
 		if (l->kind != STRAY_KVN_KEYVAL ||
 		    strcmp(l->key, "CCSDS_AEM_VERS") != 0)
 			return fail(p, "CCSDS_AEM_VERS", "must come first: not an AEM",
@@ -228,10 +222,7 @@ static int one_line(struct aem_parse *p, const struct stray_kvn_line *l,
 	if (l->kind == STRAY_KVN_KEYVAL) {
 		if (p->state == ST_META)
 			return meta_key(p, l->key, l->value);
-		if (p->state == ST_HEADER &&
-		    (strcmp(l->key, "CREATION_DATE") == 0 ||
-		     strcmp(l->key, "ORIGINATOR") == 0 ||
-		     strcmp(l->key, "MESSAGE_ID") == 0))
+		if (p->state == ST_HEADER && stray_kvn_header_key(l->key))
 			return STRAY_OK;
 		return fail(p, l->key, p->state == ST_DATA ?
 			    "keyword inside the attitude data" :
@@ -254,21 +245,16 @@ int stray_aem_parse(const char *buf, size_t len, const char *file,
 		    struct stray_aem *aem, struct stray_error *err)
 {
 	struct aem_parse p;
-	struct stray_kvn_line l;
-	char scratch[LINE_MAX_KVN];
-	size_t pos = 0;
-	int rc = STRAY_OK, first = 1, got;
+	int rc;
 
 	memset(aem, 0, sizeof(*aem));
 	memset(&p, 0, sizeof(p));
 	p.file = file;
 	p.err = err;
 	p.aem = aem;
-	while (rc == STRAY_OK &&
-	       (got = stray_kvn_next(buf, len, &pos, &p.line, scratch,
-				     sizeof(scratch), &l, file, err)) != 0)
-		rc = got < 0 ? STRAY_EPARSE : one_line(&p, &l, &first);
-	if (rc == STRAY_OK && first)
+	p.first = 1;
+	rc = stray_kvn_each(buf, len, file, &p.line, one_line, &p, err);
+	if (rc == STRAY_OK && p.first)
 		rc = fail(&p, "CCSDS_AEM_VERS", "missing: the file is empty", "");
 	if (rc == STRAY_OK && p.state == ST_DATA)
 		rc = fail(&p, "DATA_STOP", "missing at the end", "");

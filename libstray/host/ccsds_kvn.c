@@ -14,8 +14,8 @@
 #define TT_MINUS_TAI 32.184
 #define GPS_TAI (-19.0)
 
-/* Days from 2000-01-01 to y-m-d (H. Hinnant's days_from_civil). */
-static long days_from_2000(long y, long m, long d)
+/* H. Hinnant's days_from_civil. */
+long stray_ccsds_days_from_2000(long y, long m, long d)
 {
 	long era, yoe, doy, doe;
 
@@ -60,8 +60,8 @@ static double tai_minus_utc(long day)
 	size_t i;
 
 	for (i = N_LEAP; i > 0; i--)
-		if (day >= days_from_2000(leap_ym[i - 1] / 100,
-					  leap_ym[i - 1] % 100, 1))
+		if (day >= stray_ccsds_days_from_2000(leap_ym[i - 1] / 100,
+						      leap_ym[i - 1] % 100, 1))
 			return 10.0 + (double)i;
 	return 10.0;
 }
@@ -128,12 +128,12 @@ int stray_ccsds_epoch(const char *text, int ts, double *t_tt)
 	if (ordinal) {
 		if (a < 1 || a > 365 + leap_year(y))
 			return -1;
-		day = days_from_2000(y, 1, 1) + a - 1;
+		day = stray_ccsds_days_from_2000(y, 1, 1) + a - 1;
 	} else {
 		if (a < 1 || a > 12 || b < 1 ||
 		    b > mdays[a - 1] + (a == 2 && leap_year(y)))
 			return -1;
-		day = days_from_2000(y, a, b);
+		day = stray_ccsds_days_from_2000(y, a, b);
 	}
 	*t_tt = (double)day * 86400.0 + hh * 3600.0 + mm * 60.0 + ss +
 		to_tt(ts, day) - 43200.0;
@@ -234,4 +234,45 @@ int stray_kvn_next(const char *buf, size_t len, size_t *pos, long *lineno,
 	}
 	line->kind = line->n_field == 1 ? STRAY_KVN_WORD : STRAY_KVN_DATA;
 	return 1;
+}
+
+#define KVN_LINE_MAX 1024
+
+int stray_kvn_each(const char *buf, size_t len, const char *file,
+		   long *lineno,
+		   int (*fn)(void *ctx, const struct stray_kvn_line *line),
+		   void *ctx, struct stray_error *err)
+{
+	struct stray_kvn_line l;
+	char scratch[KVN_LINE_MAX];
+	size_t pos = 0;
+	int rc = STRAY_OK, got;
+
+	while (rc == STRAY_OK &&
+	       (got = stray_kvn_next(buf, len, &pos, lineno, scratch,
+				     sizeof(scratch), &l, file, err)) != 0) {
+		if (got < 0)
+			rc = STRAY_EPARSE;
+		else if (l.kind != STRAY_KVN_BLANK &&
+			 l.kind != STRAY_KVN_COMMENT)
+			rc = fn(ctx, &l);
+	}
+	return rc;
+}
+
+int stray_kvn_header_key(const char *key)
+{
+	return strcmp(key, "CREATION_DATE") == 0 ||
+	       strcmp(key, "ORIGINATOR") == 0 ||
+	       strcmp(key, "MESSAGE_ID") == 0;
+}
+
+int stray_kvn_fail(struct stray_error *err, const char *file, long line,
+		   const char *key, const char *why, const char *text)
+{
+	/* the keyword is named at run time: the line buffer does not last */
+	stray_error_at(err, STRAY_EPARSE, file, line, "keyword", why);
+	stray_error_column(err, key);
+	stray_error_text(err, text);
+	return STRAY_EPARSE;
 }

@@ -10,7 +10,6 @@
 #include "stray/file.h"
 #include "stray/oem.h"
 
-#define LINE_MAX_KVN 1024
 #define HERMITE_NODES_MAX 8
 
 enum { ST_HEADER, ST_META, ST_DATA, ST_COV };
@@ -23,16 +22,13 @@ struct oem_parse {
 	size_t cap;
 	int state, segments, seg_records;
 	int have_frame, have_ts, have_center, have_interp;
+	int first;		/* no line read yet */
 };
 
 static int fail(struct oem_parse *p, const char *key, const char *why,
 		const char *text)
 {
-	/* the keyword is named at run time: the line buffer does not last */
-	stray_error_at(p->err, STRAY_EPARSE, p->file, p->line, "keyword", why);
-	stray_error_column(p->err, key);
-	stray_error_text(p->err, text);
-	return STRAY_EPARSE;
+	return stray_kvn_fail(p->err, p->file, p->line, key, why, text);
 }
 
 static int grow(struct oem_parse *p)
@@ -179,13 +175,12 @@ static int first_line(struct oem_parse *p, const struct stray_kvn_line *l)
 	return STRAY_OK;
 }
 
-static int one_line(struct oem_parse *p, const struct stray_kvn_line *l,
-		    int *first)
+static int one_line(void *ctx, const struct stray_kvn_line *l)
 {
-	if (l->kind == STRAY_KVN_BLANK || l->kind == STRAY_KVN_COMMENT)
-		return STRAY_OK;
-	if (*first) {
-		*first = 0;
+	struct oem_parse *p = ctx;
+
+	if (p->first) {
+		p->first = 0;
 		return first_line(p, l);
 	}
 	if (p->state == ST_COV) {
@@ -216,10 +211,7 @@ static int one_line(struct oem_parse *p, const struct stray_kvn_line *l,
 	if (l->kind == STRAY_KVN_KEYVAL) {
 		if (p->state == ST_META)
 			return meta_key(p, l->key, l->value);
-		if (p->state == ST_HEADER &&
-		    (strcmp(l->key, "CREATION_DATE") == 0 ||
-		     strcmp(l->key, "ORIGINATOR") == 0 ||
-		     strcmp(l->key, "MESSAGE_ID") == 0))
+		if (p->state == ST_HEADER && stray_kvn_header_key(l->key))
 			return STRAY_OK;
 		return fail(p, l->key, p->state == ST_DATA ?
 			    "keyword inside the ephemeris data" :
@@ -243,27 +235,18 @@ int stray_oem_parse(const char *buf, size_t len, const char *file,
 		    struct stray_oem *oem, struct stray_error *err)
 {
 	struct oem_parse p;
-	struct stray_kvn_line l;
-	char scratch[LINE_MAX_KVN];
-	size_t pos = 0;
-	int rc = STRAY_OK, first = 1, got;
+	int rc;
 
 	memset(oem, 0, sizeof(*oem));
 	memset(&p, 0, sizeof(p));
 	p.file = file;
 	p.err = err;
 	p.oem = oem;
+	p.first = 1;
 	oem->interp = STRAY_INTERP_HERMITE;
 	oem->degree = 5;
-	while (rc == STRAY_OK &&
-	       (got = stray_kvn_next(buf, len, &pos, &p.line, scratch,
-				     sizeof(scratch), &l, file, err)) != 0) {
-		if (got < 0)
-			rc = STRAY_EPARSE;
-		else
-			rc = one_line(&p, &l, &first);
-	}
-	if (rc == STRAY_OK && first)
+	rc = stray_kvn_each(buf, len, file, &p.line, one_line, &p, err);
+	if (rc == STRAY_OK && p.first)
 		rc = fail(&p, "CCSDS_OEM_VERS", "missing: the file is empty", "");
 	if (rc == STRAY_OK && p.state == ST_META)
 		rc = fail(&p, "META_STOP", "missing at the end", "");

@@ -253,10 +253,21 @@ static int read_header(struct stray_sweep_fits *f, struct stray_error *err)
 	return STRAY_OK;
 }
 
+/* Read the header of the opened f; f closed again on an error. */
+static int header_or_close(struct stray_sweep_fits *f,
+			   struct stray_error *err)
+{
+	int rc = read_header(f, err);
+
+	if (rc != STRAY_OK)
+		stray_sweep_fits_close(f);
+	return rc;
+}
+
 int stray_sweep_fits_open(const char *path, struct stray_sweep_fits *f,
 		    struct stray_error *err)
 {
-	int status = 0, rc;
+	int status = 0;
 
 	f->path = path;
 	f->fptr = NULL;
@@ -265,17 +276,29 @@ int stray_sweep_fits_open(const char *path, struct stray_sweep_fits *f,
 	if (fits_open_image((fitsfile **)&f->fptr, path, READONLY, &status))
 		return fits_fail(path, "file", "not a readable FITS image",
 				 status, err);
-	rc = read_header(f, err);
-	if (rc != STRAY_OK)
+	return header_or_close(f, err);
+}
+
+/* Open f's image in f->mem (f->mem_size bytes) and read its header;
+ * f closed again on an error. */
+static int open_memory(struct stray_sweep_fits *f, const char *name,
+		       struct stray_error *err)
+{
+	int status = 0;
+
+	if (fits_open_memfile((fitsfile **)&f->fptr, name, READONLY, &f->mem,
+			      &f->mem_size, 0, NULL, &status)) {
 		stray_sweep_fits_close(f);
-	return rc;
+		return fits_fail(name, "file", "not a readable FITS image",
+				 status, err);
+	}
+	return header_or_close(f, err);
 }
 
 int stray_sweep_fits_open_mem(const char *name, const void *data, size_t len,
 			struct stray_sweep_fits *f, struct stray_error *err)
 {
 	size_t padded = (len + 2879) / 2880 * 2880;
-	int status = 0, rc;
 
 	f->path = name;
 	f->fptr = NULL;
@@ -289,40 +312,20 @@ int stray_sweep_fits_open_mem(const char *name, const void *data, size_t len,
 		return stray_error_at(err, STRAY_ENOMEM, name, 0, "file",
 				      "no memory for the frame");
 	memcpy(f->mem, data, len);
-	if (fits_open_memfile((fitsfile **)&f->fptr, name, READONLY, &f->mem,
-			      &f->mem_size, 0, NULL, &status)) {
-		stray_sweep_fits_close(f);
-		return fits_fail(name, "file", "not a readable FITS image",
-				 status, err);
-	}
-	rc = read_header(f, err);
-	if (rc != STRAY_OK)
-		stray_sweep_fits_close(f);
-	return rc;
+	return open_memory(f, name, err);
 }
 
 int stray_sweep_fits_open_buf(const char *name, struct stray_sweep_buf *b,
 			      struct stray_sweep_fits *f,
 			      struct stray_error *err)
 {
-	int status = 0, rc;
-
 	f->path = name;
 	f->fptr = NULL;
 	f->mem = b->data;	/* zero-padded to whole blocks */
 	f->mem_size = (b->len + 2879) / 2880 * 2880;
 	f->mem_borrowed = 1;
 	f->data_len = b->len;
-	if (fits_open_memfile((fitsfile **)&f->fptr, name, READONLY, &f->mem,
-			      &f->mem_size, 0, NULL, &status)) {
-		stray_sweep_fits_close(f);
-		return fits_fail(name, "file", "not a readable FITS image",
-				 status, err);
-	}
-	rc = read_header(f, err);
-	if (rc != STRAY_OK)
-		stray_sweep_fits_close(f);
-	return rc;
+	return open_memory(f, name, err);
 }
 
 /* Whether the image is unsigned 16-bit as the lab writes it (BITPIX 16,

@@ -24,15 +24,14 @@ static const double diag_test_theta[] = {
 #define DIAG_TEST_N (sizeof(diag_test_theta) / sizeof(diag_test_theta[0]))
 #define DIAG_TEST_RAYS "100000"
 
-/* Generate `c` into a temporary file, diagnose it; the JSON (free it). */
-static inline cJSON *diagnose_truth(const struct truth_config *c)
+/* Write `c` into path (a temporary file of fd, named in argv), run argv;
+ * the --json verdict (free it).  DIAG_TEST_KEEP keeps the file to rerun
+ * by hand (told: the lens the analysis was told, or NULL). */
+static inline cJSON *diagnose_argv(const struct truth_config *c,
+				   const char *path, int fd, char **argv,
+				   const char *told)
 {
 	static struct cli_run r;
-	char path[] = "/tmp/stray_diag_XXXXXX.csv";
-	int fd = mkstemps(path, 4);
-	char *argv[] = { "stray", "diagnose", path, "--scene", "ref4",
-			 "--rays", DIAG_TEST_RAYS, "--threads", "2", "--json",
-			 NULL };
 	cJSON *j;
 
 	assert_true(fd >= 0);
@@ -40,7 +39,8 @@ static inline cJSON *diagnose_truth(const struct truth_config *c)
 	assert_int_equal(truth_write(c, path), 0);
 	run_stray(&r, argv);
 	if (getenv("DIAG_TEST_KEEP"))	/* to rerun by hand */
-		fprintf(stderr, "kept %s\n", path);
+		fprintf(stderr, "kept %s%s%s\n", path, told ? " with " : "",
+			told ? told : "");
 	else
 		unlink(path);
 	if (r.status != 0)
@@ -51,32 +51,29 @@ static inline cJSON *diagnose_truth(const struct truth_config *c)
 	return j;
 }
 
+/* Generate `c` into a temporary file, diagnose it; the JSON (free it). */
+static inline cJSON *diagnose_truth(const struct truth_config *c)
+{
+	char path[] = "/tmp/stray_diag_XXXXXX.csv";
+	int fd = mkstemps(path, 4);
+	char *argv[] = { "stray", "diagnose", path, "--scene", "ref4",
+			 "--rays", DIAG_TEST_RAYS, "--threads", "2", "--json",
+			 NULL };
+
+	return diagnose_argv(c, path, fd, argv, NULL);
+}
+
 /* The same, the analysis told the scene `scene` (a scene file). */
 static inline cJSON *diagnose_truth_on(const struct truth_config *c,
 				       const char *scene)
 {
-	static struct cli_run r;
 	char path[] = "/tmp/stray_diag_XXXXXX.csv";
 	int fd = mkstemps(path, 4);
 	char *argv[] = { "stray", "diagnose", path, "--scene", (char *)scene,
 			 "--rays", DIAG_TEST_RAYS, "--threads", "2", "--json",
 			 NULL };
-	cJSON *j;
 
-	assert_true(fd >= 0);
-	close(fd);
-	assert_int_equal(truth_write(c, path), 0);
-	run_stray(&r, argv);
-	if (getenv("DIAG_TEST_KEEP"))
-		fprintf(stderr, "kept %s\n", path);
-	else
-		unlink(path);
-	if (r.status != 0)
-		fprintf(stderr, "stray diagnose: %s\n", r.err);
-	assert_int_equal(r.status, 0);
-	j = cJSON_Parse(r.out);
-	assert_non_null(j);
-	return j;
+	return diagnose_argv(c, path, fd, argv, NULL);
 }
 
 static inline int n_causes(const cJSON *j)

@@ -53,28 +53,13 @@ static void write_lens(const char *path, double ghost, double lo, double hi,
 
 static cJSON *diagnose_system(struct truth_config *c, const char *told)
 {
-	static struct cli_run r;
 	char path[] = "/tmp/stray_sys_XXXXXX.csv";
 	int fd = mkstemps(path, 4);
 	char *argv[] = { "stray", "diagnose", path, "--scene", "ref4",
 			 "--lens", (char *)told, "--rays", DIAG_TEST_RAYS,
 			 "--threads", "2", "--json", NULL };
-	cJSON *j;
 
-	assert_true(fd >= 0);
-	close(fd);
-	assert_int_equal(truth_write(c, path), 0);
-	run_stray(&r, argv);
-	if (getenv("DIAG_TEST_KEEP"))	/* to rerun by hand */
-		fprintf(stderr, "kept %s with %s\n", path, told);
-	else
-		unlink(path);
-	if (r.status != 0)
-		fprintf(stderr, "stray diagnose: %s\n", r.err);
-	assert_int_equal(r.status, 0);
-	j = cJSON_Parse(r.out);
-	assert_non_null(j);
-	return j;
+	return diagnose_argv(c, path, fd, argv, told);
 }
 
 static void print_causes(const char *name, const cJSON *j)

@@ -25,6 +25,7 @@
 #include "rig/lab.h"
 #include "rig/sim.h"
 #include "rig/sweep.h"
+#include "rig_child_util.h"
 #include "rig_test_util.h"
 #include "stray/reduce_sweep.h"
 
@@ -47,42 +48,6 @@ static void demo_config(struct rig_config *cfg, unsigned long seed)
 	rig_error_clear(&err);
 	assert_int_equal(rig_config_load(cfg, DEMO, &err), RIG_OK);
 	cfg->sim.vlab.seed = seed;
-}
-
-/* Child body: one sweep run, resume or fresh; exit 0 when complete. */
-static int child_sweep(const struct rig_config *cfg, const char *dir,
-		       int resume)
-{
-	struct rig_sim sim;
-	struct rig_hal hal;
-	struct rig_lab lab;
-	struct rig_sweep sw;
-	struct rig_error err;
-	int rc;
-
-	rig_error_clear(&err);
-	rig_sim_init(&sim, cfg, &hal);
-	rc = rig_lab_open(&lab, cfg, &hal, &err);
-	if (rc == RIG_OK)
-		rc = rig_sweep_open(&sw, &lab, dir, resume, &err);
-	if (rc == RIG_OK)
-		rc = rig_sweep_run(&sw, NULL, &err);
-	if (rc != RIG_OK)
-		fprintf(stderr, "child: %s\n", err.msg);
-	return rc == RIG_OK ? 0 : 1;
-}
-
-static int run_child(const struct rig_config *cfg, const char *dir,
-		     int resume)
-{
-	pid_t pid = fork();
-	int status = 0;
-
-	assert_true(pid >= 0);
-	if (pid == 0)
-		_exit(child_sweep(cfg, dir, resume));
-	assert_int_equal(waitpid(pid, &status, 0), pid);
-	return status;
 }
 
 static char *sweep_into(const char *base, const char *name,

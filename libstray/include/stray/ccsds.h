@@ -29,6 +29,9 @@ int stray_ccsds_inertial_frame(const char *text);
  */
 int stray_ccsds_epoch(const char *text, int ts, double *t_tt);
 
+/* Days from 2000-01-01 to the civil date y-m-d (negative before). */
+long stray_ccsds_days_from_2000(long y, long m, long d);
+
 /* The inverse for writing: t_tt to "YYYY-MM-DDThh:mm:ss.ffffff" in ts. */
 void stray_ccsds_format_epoch(double t_tt, int ts, char *buf, size_t size);
 
@@ -55,5 +58,24 @@ int stray_kvn_next(const char *buf, size_t len, size_t *pos, long *lineno,
 		   char *scratch, size_t scratch_size,
 		   struct stray_kvn_line *line, const char *file,
 		   struct stray_error *err);
+
+/*
+ * Feed each line of buf[0 .. len) but blank and COMMENT ones to
+ * fn(ctx, line), in order, until fn returns other than STRAY_OK;
+ * *lineno counts lines (for fn's own messages).  Returns STRAY_OK, what
+ * fn returned, or STRAY_EPARSE for a line stray_kvn_next refuses.
+ */
+int stray_kvn_each(const char *buf, size_t len, const char *file,
+		   long *lineno,
+		   int (*fn)(void *ctx, const struct stray_kvn_line *line),
+		   void *ctx, struct stray_error *err);
+
+/* A keyword of the message header the readers pass over (CREATION_DATE,
+ * ORIGINATOR, MESSAGE_ID): 1, else 0. */
+int stray_kvn_header_key(const char *key);
+
+/* Sets err to "file:line: keyword `key`: why" with text; STRAY_EPARSE. */
+int stray_kvn_fail(struct stray_error *err, const char *file, long line,
+		   const char *key, const char *why, const char *text);
 
 #endif /* STRAY_CCSDS_H */
