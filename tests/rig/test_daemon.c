@@ -17,6 +17,7 @@
 #include <sys/wait.h>
 #include <time.h>
 
+#include "rig_daemon_util.h"
 #include "rig_test_util.h"
 
 struct daemon {
@@ -27,39 +28,10 @@ struct daemon {
 
 static struct daemon dm;
 
-static void nap_ms(long ms)
-{
-	struct timespec ts = { ms / 1000, (ms % 1000) * 1000000L };
-
-	nanosleep(&ts, NULL);
-}
-
 /* One request, one response (parsed); NULL if the daemon is gone. */
 static cJSON *ask(const char *req)
 {
-	struct sockaddr_un a;
-	char buf[8192];
-	size_t n = 0;
-	ssize_t k;
-	int fd = socket(AF_UNIX, SOCK_STREAM, 0);
-
-	memset(&a, 0, sizeof(a));
-	a.sun_family = AF_UNIX;
-	strcpy(a.sun_path, dm.sock);
-	if (connect(fd, (struct sockaddr *)&a, sizeof(a)) != 0) {
-		close(fd);
-		return NULL;
-	}
-	if (write(fd, req, strlen(req)) < 0 || write(fd, "\n", 1) != 1) {
-		close(fd);
-		return NULL;
-	}
-	while (n < sizeof(buf) - 1 &&
-	       (k = read(fd, buf + n, sizeof(buf) - 1 - n)) > 0)
-		n += (size_t)k;
-	buf[n] = '\0';
-	close(fd);
-	return cJSON_Parse(buf);
+	return ask_on(dm.sock, req);
 }
 
 static int ok_of(const cJSON *r)
