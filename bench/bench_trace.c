@@ -41,6 +41,21 @@ static double now_s(void)
 	return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
+/* A random ray inside the baffle: uniform over its cross-section and
+ * length, isotropic direction (the raw rates' incoherent rays). */
+static void random_ray(struct tracer_rng *r, struct vec3 *o, struct vec3 *d)
+{
+	double rr = 19.0 * sqrt(tracer_rng_uniform(r));
+	double ph = 2.0 * M_PI * tracer_rng_uniform(r);
+	double z = -39.0 * tracer_rng_uniform(r);
+	double cz = 2.0 * tracer_rng_uniform(r) - 1.0;
+	double p2 = 2.0 * M_PI * tracer_rng_uniform(r);
+	double sz = sqrt(1.0 - cz * cz);
+
+	*o = v3(rr * cos(ph), rr * sin(ph), z);
+	*d = v3(sz * cos(p2), sz * sin(p2), cz);
+}
+
 /* Raw incoherent casts: random origins in the baffle, random directions. */
 static double raw_casts_per_s(const struct tracer_scene *s, long n)
 {
@@ -51,16 +66,10 @@ static double raw_casts_per_s(const struct tracer_scene *s, long n)
 
 	tracer_rng_init(&r, 3, 0);
 	for (i = 0; i < n; i++) {
-		double rr = 19.0 * sqrt(tracer_rng_uniform(&r));
-		double ph = 2.0 * M_PI * tracer_rng_uniform(&r);
-		double z = -39.0 * tracer_rng_uniform(&r);
-		double cz = 2.0 * tracer_rng_uniform(&r) - 1.0;
-		double p2 = 2.0 * M_PI * tracer_rng_uniform(&r);
-		double sz = sqrt(1.0 - cz * cz);
+		struct vec3 o, d;
 
-		hits += tracer_scene_intersect(s, v3(rr * cos(ph), rr * sin(ph), z),
-					       v3(sz * cos(p2), sz * sin(p2), cz),
-					       &h);
+		random_ray(&r, &o, &d);
+		hits += tracer_scene_intersect(s, o, d, &h);
 	}
 	if (hits < 0)
 		puts("");
@@ -76,16 +85,10 @@ static double raw_occluded_per_s(const struct tracer_scene *s, long n)
 
 	tracer_rng_init(&r, 3, 0);
 	for (i = 0; i < n; i++) {
-		double rr = 19.0 * sqrt(tracer_rng_uniform(&r));
-		double ph = 2.0 * M_PI * tracer_rng_uniform(&r);
-		double z = -39.0 * tracer_rng_uniform(&r);
-		double cz = 2.0 * tracer_rng_uniform(&r) - 1.0;
-		double p2 = 2.0 * M_PI * tracer_rng_uniform(&r);
-		double sz = sqrt(1.0 - cz * cz);
+		struct vec3 o, d;
 
-		hits += tracer_scene_occluded(s, v3(rr * cos(ph), rr * sin(ph), z),
-					      v3(sz * cos(p2), sz * sin(p2), cz),
-					      INFINITY);
+		random_ray(&r, &o, &d);
+		hits += tracer_scene_occluded(s, o, d, INFINITY);
 	}
 	if (hits < 0)
 		puts("");
