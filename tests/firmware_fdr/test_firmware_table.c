@@ -12,6 +12,7 @@
 #include <cmocka.h>
 #include <cJSON.h>
 
+#include "../scratch.h"
 #include "../tools/run_cli.h"
 #include "fdrfw/table_build.h"
 #include "fixture.h"
@@ -31,11 +32,8 @@ static int setup(void **state)
 
 static int teardown(void **state)
 {
-	char cmd[128];
-
 	(void)state;
-	snprintf(cmd, sizeof(cmd), "rm -rf %s", dir);
-	return system(cmd) == 0 ? 0 : -1;
+	return scratch_remove(dir);
 }
 
 static void test_help(void **state)

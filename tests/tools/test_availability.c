@@ -18,6 +18,7 @@
 #include <erfa.h>
 #include <erfam.h>
 
+#include "../scratch.h"
 #include "run_cli.h"
 
 #define CURVE "tests/vectors/fdrfw_curve.csv"
@@ -104,11 +105,8 @@ static int setup(void **state)
 
 static int teardown(void **state)
 {
-	char cmd[300];
-
 	(void)state;
-	snprintf(cmd, sizeof(cmd), "rm -rf %s", dir);
-	return system(cmd);
+	return scratch_remove(dir);
 }
 
 /* M(q) of CCSDS 504.0: (q_c^2 - e.e) I + 2 e e^T - 2 q_c [e x]. */

@@ -18,6 +18,7 @@
 #include <time.h>
 #include <cmocka.h>
 
+#include "../scratch.h"
 #include "../test_util.h"
 #include "run_cli.h"
 
@@ -97,11 +98,8 @@ static int setup(void **state)
 
 static int teardown(void **state)
 {
-	char cmd[128];
-
 	(void)state;
-	snprintf(cmd, sizeof(cmd), "rm -rf %s", dir);
-	return system(cmd);
+	return scratch_remove(dir);
 }
 
 static const char good[] = "theta_deg,alpha\n0,1\n10,0.1\n30,1e-4\n60,1e-8\n";

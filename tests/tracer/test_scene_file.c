@@ -9,6 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "../scratch.h"
 #include "tracer_test.h"
 #include "tracer/baffle.h"
 #include "tracer/mesh_import.h"
@@ -36,11 +37,8 @@ static int setup(void **state)
 
 static int teardown(void **state)
 {
-	char cmd[128];
-
 	(void)state;
-	snprintf(cmd, sizeof(cmd), "rm -rf %s", dir);
-	return system(cmd) == 0 ? 0 : -1;
+	return scratch_remove(dir);
 }
 
 static void put(const char *name, const char *text, size_t len, char *path)

@@ -21,6 +21,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "../scratch.h"
 #include "stray/photometry.h"
 #include "stray/spectrum_io.h"
 #include "tracer/integrator.h"
@@ -88,12 +89,9 @@ static int setup(void **state)
 
 static int teardown(void **state)
 {
-	char cmd[300];
-
 	(void)state;
 	tracer_scene_free(&ref4);
-	snprintf(cmd, sizeof(cmd), "rm -rf %s", dir);
-	return system(cmd) == 0 ? 0 : -1;
+	return scratch_remove(dir);
 }
 
 /* Power and sigma at each angle of a scene file (band-weighted when it
