@@ -2,8 +2,10 @@
  * bench_reduce.c - full-frame (2592 x 1944) reduction throughput beside
  * this machine's memcpy bandwidth measured in the same run: the whole
  * `stray reduce` pipeline (SHA-256, cfitsio, both dark passes, two
- * groups, eq. 3.4-3.14, ghosts) over the sweep's bytes, and the
- * accumulation step alone (eq. 3.4-3.6).
+ * groups, eq. 3.4-3.14, ghosts) over the sweep's bytes, with and
+ * without the hash check, and its two largest per-frame steps alone:
+ * the accumulation (eq. 3.4-3.6) and SHA-256.  Those two bound what two
+ * cores can reach with the check on.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,12 +13,15 @@
 #include <time.h>
 
 #include "stray/reduce_response.h"
+#include "stray/sweep_store.h"
 #include "synth_sweep.h"
 #include "stray/reduce_sweep.h"
 
 #define ROWS 1944
 #define COLS 2592
 #define RUNS 3
+#define ANGLES 4		/* 2 darks, then 2 FULL + 2 AMBIENT a visit */
+#define STREAM_BYTES ((size_t)256 << 20)	/* 8x the L3 of this VM */
 
 static double now_s(void)
 {
@@ -44,6 +49,28 @@ static double memcpy_mb_s(size_t n)
 	}
 	free(a);
 	free(b);
+	return (double)n / best / 1e6;
+}
+
+/* SHA-256 (OpenSSL, as the sweep store checks a frame) of one frame's
+ * bytes in memory, best of 5, MB/s. */
+static double sha256_mb_s(void)
+{
+	size_t n = (size_t)ROWS * COLS * 2, i;
+	unsigned char *a = malloc(n);
+	char hex[STRAY_SWEEP_SHA256_HEX];
+	double best = 1e30;
+	int k;
+
+	for (i = 0; i < n; i++)
+		a[i] = (unsigned char)(i * 2654435761u >> 24);
+	for (k = 0; k < 5; k++) {
+		double t0 = now_s();
+
+		stray_sweep_sha256_mem(a, n, hex);
+		best = best < now_s() - t0 ? best : now_s() - t0;
+	}
+	free(a);
 	return (double)n / best / 1e6;
 }
 
@@ -79,25 +106,70 @@ static double accum_mb_s(void)
 	return (double)(n * 2) / best / 1e6;
 }
 
+struct timing {
+	double best, cpu, first, cpu_first;
+	int rc;
+};
+
+/* Best of RUNS, as the memcpy baseline is a best of 5; the first run is
+ * kept too: its fresh memory is the one a single `stray reduce` pays
+ * for (on a VM the host's page zeroing makes it vary most). */
+static void time_reduce(const char *dir, int verify, struct timing *t,
+			struct stray_reduce_sweep_result *r)
+{
+	struct stray_reduce_sweep_opts o;
+	struct stray_error err;
+	int k;
+
+	stray_reduce_sweep_opts_default(&o);
+	o.verify_sha256 = verify;
+	t->best = t->cpu = 1e30;
+	t->rc = 0;
+	for (k = 0; k < RUNS; k++) {
+		double t0 = now_s(), wall, cpu;
+		clock_t c0 = clock();
+
+		stray_error_clear(&err);
+		if (k)
+			stray_reduce_sweep_result_free(r);
+		t->rc |= stray_reduce_sweep(dir, &o, r, &err);
+		wall = now_s() - t0;
+		cpu = (double)(clock() - c0) / CLOCKS_PER_SEC;
+		if (k == 0)
+			t->first = wall, t->cpu_first = cpu;
+		t->best = wall < t->best ? wall : t->best;
+		t->cpu = cpu < t->cpu ? cpu : t->cpu;
+	}
+}
+
+static void print_reduce(const char *what, const struct timing *t,
+			 double mb, double copy)
+{
+	printf("stray reduce, full frames (%s): %.0f MB/s = %.3f x memcpy "
+	       "(best of %d; %s)\n", what, mb / t->best, mb / t->best / copy,
+	       RUNS, t->rc == 0 ? "ok" : "FAILED");
+	/* on a shared machine the wall clock counts other processes too */
+	printf("  per CPU second: %.0f MB/s = %.3f x memcpy (cpu %.2f s, "
+	       "wall %.2f s); first run %.0f MB/s = %.3f x memcpy\n",
+	       mb / t->cpu, mb / t->cpu / copy, t->cpu, t->best,
+	       mb / t->first, mb / t->first / copy);
+}
+
 int main(void)
 {
 	static struct synth_truth truth;
 	struct synth_config c;
-	struct stray_reduce_sweep_opts o;
 	struct stray_reduce_sweep_result r;
-	struct stray_error err;
+	struct timing hashed, plain;
 	char dir[] = "/tmp/stray_bench_XXXXXX", cmd[64];
-	double t0, t, mb, copy, acc, cpu, t_first = 0.0, cpu_first = 0.0;
-	double t_best = 1e30, cpu_best = 1e30;
-	clock_t c0;
-	int rc = 0, k;
+	double mb, copy, stream, acc, sha, ceiling;
 
 	if (!mkdtemp(dir))
 		return 1;
 	synth_default(&c);
 	c.n_rows = ROWS;
 	c.n_cols = COLS;
-	c.n_angles = 1;		/* on axis: 2 darks, 2 FULL, 2 AMBIENT */
+	c.n_angles = ANGLES;
 	c.revisit = 0;
 	c.repeats = 2;
 	c.darks_per_exp = 2;
@@ -105,44 +177,34 @@ int main(void)
 	if (synth_write_sweep(dir, &c, &truth) != 0)
 		return 1;
 	copy = memcpy_mb_s((size_t)ROWS * COLS * 2);
+	stream = memcpy_mb_s(STREAM_BYTES);
 	acc = accum_mb_s();
-	stray_reduce_sweep_opts_default(&o);
-	/* Best of RUNS, as the memcpy baseline is a best of 5; the first run
-	 * is printed too: its fresh memory is the one a single `stray reduce`
-	 * pays for (on a VM the host's page zeroing makes it vary most). */
-	for (k = 0; k < RUNS; k++) {
-		stray_error_clear(&err);
-		if (k)
-			stray_reduce_sweep_result_free(&r);
-		t0 = now_s();
-		c0 = clock();
-		rc |= stray_reduce_sweep(dir, &o, &r, &err);
-		t = now_s() - t0;
-		cpu = (double)(clock() - c0) / CLOCKS_PER_SEC;
-		if (k == 0)
-			t_first = t, cpu_first = cpu;
-		t_best = t < t_best ? t : t_best;
-		cpu_best = cpu < cpu_best ? cpu : cpu_best;
-	}
+	sha = sha256_mb_s();
+	time_reduce(dir, 1, &hashed, &r);
+	stray_reduce_sweep_result_free(&r);
+	time_reduce(dir, 0, &plain, &r);
 	/* the sweep's bytes, each frame counted once (its 16-bit pixels):
 	 * the darks pass 2 needs come from memory, not read again */
 	mb = (double)r.n_frames * ROWS * COLS * 2 / 1e6;
-	printf("memcpy (baseline, this run):        %8.0f MB/s\n", copy);
-	printf("accumulate one frame (eq. 3.4-3.6): %8.0f MB/s = %.3f x memcpy\n",
-	       acc, acc / copy);
-	printf("stray reduce, full frames (I/O, SHA-256, all passes): "
-	       "%.0f MB/s = %.3f x memcpy (best of %d; %s)\n", mb / t_best,
-	       mb / t_best / copy, RUNS, rc == 0 ? "ok" : "FAILED");
-	/* on a shared machine the wall clock counts other processes too */
-	printf("  per CPU second of the reduction: %.0f MB/s = %.3f x memcpy "
-	       "(cpu %.2f s, wall %.2f s)\n", mb / cpu_best,
-	       mb / cpu_best / copy, cpu_best, t_best);
-	printf("  first run: %.0f MB/s = %.3f x memcpy (cpu %.2f s, wall "
-	       "%.2f s)\n", mb / t_first, mb / t_first / copy, cpu_first,
-	       t_first);
+	/* every frame hashed and accumulated, nothing else, the two
+	 * spread perfectly over 2 cores */
+	ceiling = 2.0 / (1.0 / sha + 1.0 / acc);
+	printf("memcpy of one frame (baseline, this run): %8.0f MB/s\n", copy);
+	printf("memcpy of %zu MB (past the caches):      %8.0f MB/s = %.2f x "
+	       "memcpy\n", STREAM_BYTES >> 20, stream, stream / copy);
+	printf("accumulate one frame (eq. 3.4-3.6):       %8.0f MB/s = %.3f x "
+	       "memcpy\n", acc, acc / copy);
+	printf("SHA-256 of one frame (OpenSSL):           %8.0f MB/s = %.3f x "
+	       "memcpy\n", sha, sha / copy);
+	printf("  hash + accumulate alone on 2 cores:     %8.0f MB/s = %.3f x "
+	       "memcpy (a ceiling with the check on)\n", ceiling,
+	       ceiling / copy);
+	printf("sweep: %zu frames, %.0f MB\n", r.n_frames, mb);
+	print_reduce("I/O, SHA-256, all passes", &hashed, mb, copy);
+	print_reduce("I/O, all passes, --no-verify", &plain, mb, copy);
 	printf("workspace: %.1f bytes per pixel\n",
 	       (double)r.workspace_bytes / ((double)ROWS * COLS));
 	stray_reduce_sweep_result_free(&r);
 	snprintf(cmd, sizeof(cmd), "rm -rf '%s'", dir);
-	return system(cmd) != 0 || rc != 0;
+	return system(cmd) != 0 || hashed.rc != 0 || plain.rc != 0;
 }

@@ -6,10 +6,78 @@
 #include <string.h>
 
 #include "stray/reduce_common.h"
+#include "lanes.h"
 
 void stray_common_group_reset(struct stray_common_group *g)
 {
 	memset(g, 0, sizeof(*g));
+}
+
+/* The mask of a frame without one: every pixel STRAY_PIX_OK (0). */
+static const uint8_t all_ok[4096];
+
+/* The mask over pixels [i, i + *len): mask's own, or without one all_ok,
+ * *len cut to its length (a multiple of 4 and of STRAY_LANES, so column
+ * phases and lanes stay the same piece to piece). */
+static const uint8_t *mask_piece(const uint8_t *mask, size_t i, size_t *len)
+{
+	if (mask)
+		return mask + i;
+	if (*len > sizeof(all_ok))
+		*len = sizeof(all_ok);
+	return all_ok;
+}
+
+/*
+ * One row's sum of (I - D) over its unmasked pixels (m: 0 for all), per
+ * column phase c & 3 (one dark level each): the samples summed exactly
+ * in integers, the levels taken off once per phase.  *sat is set when
+ * an unmasked sample is saturated.
+ */
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+static double row_total(const uint16_t *restrict row,
+			const uint8_t *restrict m, size_t n_cols,
+			const double *lvl, int sat_at, int *sat)
+{
+	uint64_t s0 = 0, s1 = 0, s2 = 0, s3 = 0;  /* < 2^16 a sample */
+	uint64_t n0 = 0, n1 = 0, n2 = 0, n3 = 0;
+	unsigned hit = 0;
+	size_t c;
+
+	for (c = 0; c + 4 <= n_cols; c += 4) {
+		unsigned k0 = m[c] == STRAY_PIX_OK, k1 = m[c + 1] == STRAY_PIX_OK;
+		unsigned k2 = m[c + 2] == STRAY_PIX_OK;
+		unsigned k3 = m[c + 3] == STRAY_PIX_OK;
+
+		s0 += k0 ? row[c] : 0u;
+		s1 += k1 ? row[c + 1] : 0u;
+		s2 += k2 ? row[c + 2] : 0u;
+		s3 += k3 ? row[c + 3] : 0u;
+		n0 += k0, n1 += k1, n2 += k2, n3 += k3;
+		hit |= (k0 & (row[c] >= sat_at)) |
+		       (k1 & (row[c + 1] >= sat_at)) |
+		       (k2 & (row[c + 2] >= sat_at)) |
+		       (k3 & (row[c + 3] >= sat_at));
+	}
+	for (; c < n_cols; c++) {
+		unsigned k = m[c] == STRAY_PIX_OK;
+		uint64_t v = k ? row[c] : 0u;
+
+		switch (c & 3) {
+		case 0: s0 += v, n0 += k; break;
+		case 1: s1 += v, n1 += k; break;
+		case 2: s2 += v, n2 += k; break;
+		default: s3 += v, n3 += k; break;
+		}
+		hit |= k & (row[c] >= sat_at);
+	}
+	*sat |= hit != 0;
+	return ((double)s0 - (double)n0 * lvl[0]) +
+	       ((double)s1 - (double)n1 * lvl[1]) +
+	       ((double)s2 - (double)n2 * lvl[2]) +
+	       ((double)s3 - (double)n3 * lvl[3]);
 }
 
 int stray_common_group_add(struct stray_common_group *g,
@@ -19,30 +87,33 @@ int stray_common_group_add(struct stray_common_group *g,
 {
 	const struct stray_dark_level *l;
 	double s = 0.0, inv;
-	size_t r, c, li;
-	int rc;
+	size_t r, li;
+	int rc, sat_at;
 
 	if ((rc = stray_dark_find(d, f->t_exp_s, &li, err)) != STRAY_OK)
 		return rc;
 	l = &d->lvl[li];
 	inv = 1.0 / (f->t_exp_s * f->nd_trans * f->monitor);
+	/* row[c] >= sat_at is (long)row[c] >= f->sat_level, in int */
+	sat_at = f->sat_level < 0 ? 0 : f->sat_level > 65536 ? 65536 :
+		 (int)f->sat_level;
 	for (r = 0; r < f->n_rows; r++) {
-		const uint16_t *row = f->pix + r * f->n_cols;
-		const uint8_t *m = mask ? mask + r * f->n_cols : NULL;
-		double lvl[4];
+		double lvl[4], row = 0.0;
+		size_t c, len;
 		unsigned k;
 
 		for (k = 0; k < 4; k++)
 			lvl[k] = l->mean[stray_bayer_channel(&d->map,
 					f->det_row[r], f->col0 + (long)k)];
-		for (c = 0; c < f->n_cols; c++) {
-			if (m && m[c] != STRAY_PIX_OK)
-				continue;
-			if (row[c] >= f->sat_level)
-				g->incomplete = 1;
-			/* eq. 3.4-3.5, per unit t alpha_nd as in accum.c */
-			s += (row[c] - lvl[c & 3]) * inv;
+		/* eq. 3.4-3.5, per unit t alpha_nd as in accum.c */
+		for (c = 0; c < f->n_cols; c += len) {
+			len = f->n_cols - c;
+			row += row_total(f->pix + r * f->n_cols + c,
+					 mask_piece(mask ? mask + r * f->n_cols :
+						    NULL, c, &len),
+					 len, lvl, sat_at, &g->incomplete);
 		}
+		s += row * inv;
 	}
 	if (g->n == 0) {
 		g->s0 = s;
@@ -59,16 +130,42 @@ int stray_common_group_add(struct stray_common_group *g,
 	return STRAY_OK;
 }
 
+/* lane += m2 / (n - 1) over pixels with n >= 2 that m keeps (n_pix a
+ * multiple of STRAY_LANES but for the last piece). */
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+static void v_ind_piece(const float *restrict m2, const uint16_t *restrict n,
+			const uint8_t *restrict m, size_t n_pix, double *lane)
+{
+	size_t i, k;
+
+	for (i = 0; i + STRAY_LANES <= n_pix; i += STRAY_LANES)
+		for (k = 0; k < STRAY_LANES; k++) {
+			unsigned ok = (m[i + k] == STRAY_PIX_OK) &
+				      (n[i + k] >= 2);
+			double den = ok ? n[i + k] - 1.0 : 1.0;
+
+			lane[k] += ok ? m2[i + k] / den : 0.0;
+		}
+	for (k = 0; i < n_pix; i++, k++)
+		if (m[i] == STRAY_PIX_OK && n[i] >= 2)
+			lane[k] += m2[i] / (n[i] - 1.0);
+}
+
 void stray_common_group_finish(struct stray_common_group *g,
 			       const struct stray_accum *a,
 			       const uint8_t *mask)
 {
-	size_t i;
+	double lane[STRAY_LANES] = { 0 };
+	size_t i, len;
 
-	g->v_ind = 0.0;
-	for (i = 0; i < a->n_pix; i++)
-		if ((!mask || mask[i] == STRAY_PIX_OK) && a->n[i] >= 2)
-			g->v_ind += a->m2[i] / (a->n[i] - 1.0);
+	for (i = 0; i < a->n_pix; i += len) {
+		len = a->n_pix - i;
+		v_ind_piece(a->m2 + i, a->n + i, mask_piece(mask, i, &len),
+			    len, lane);
+	}
+	g->v_ind = stray_lanes_total(lane);
 }
 
 double stray_common_group_mean(const struct stray_common_group *g)

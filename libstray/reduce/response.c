@@ -7,30 +7,42 @@
 #include <math.h>
 
 #include "stray/reduce_response.h"
+#include "lanes.h"
 
-/* The sums of pooled_var for two groups in one pass (four independent
- * chains of additions instead of two after two; each in pixel order, so
- * the same sums). */
-static void pooled_sums(const struct stray_accum *a,
-			const struct stray_accum *b, double *sum)
+/* lane sums of m2 and n - 1 over the pixels with repeats (n >= 2) */
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+static void repeat_sums(const float *restrict m2, const uint16_t *restrict n,
+			size_t n_pix, double *restrict num,
+			double *restrict den)
 {
-	double na = 0.0, da = 0.0, nb = 0.0, db = 0.0;
-	size_t i;
+	size_t i, k;
 
-	for (i = 0; i < a->n_pix; i++) {
-		if (a->n[i] >= 2) {
-			na += a->m2[i];
-			da += a->n[i] - 1.0;
+	for (i = 0; i + STRAY_LANES <= n_pix; i += STRAY_LANES)
+		for (k = 0; k < STRAY_LANES; k++) {
+			int r = n[i + k] >= 2;
+
+			num[k] += r ? m2[i + k] : 0.0f;
+			den[k] += r ? n[i + k] - 1.0 : 0.0;
 		}
-		if (b->n[i] >= 2) {
-			nb += b->m2[i];
-			db += b->n[i] - 1.0;
+	for (k = 0; i < n_pix; i++, k++)
+		if (n[i] >= 2) {
+			num[k] += m2[i];
+			den[k] += n[i] - 1.0;
 		}
-	}
-	sum[0] = na;
-	sum[1] = da;
-	sum[2] = nb;
-	sum[3] = db;
+}
+
+/* The sums of pooled_var for one group: of m2 and of n - 1 over its
+ * pixels with repeats. */
+static void pooled_sums(const struct stray_accum *a, double *num,
+			double *den)
+{
+	double ln[STRAY_LANES] = { 0 }, ld[STRAY_LANES] = { 0 };
+
+	repeat_sums(a->m2, a->n, a->n_pix, ln, ld);
+	*num = stray_lanes_total(ln);
+	*den = stray_lanes_total(ld);
 }
 
 /* Single-frame variance of a rate, pooled over pixels with repeats
@@ -169,6 +181,42 @@ static void per_pixel_j(const struct stray_accum *full,
 	}
 }
 
+/* eq. 3.9: P = sum_i J_i, and the sum of var J_i; filled pixels
+ * (var_j <= -1) take their neighbours' variance, var_j -(v + 1). */
+static void power_sums(const float *restrict j, float *restrict var_j,
+		       size_t n, double *p, double *vp)
+{
+	double lp[STRAY_LANES] = { 0 }, lv[STRAY_LANES] = { 0 };
+	size_t i, k;
+
+	for (i = 0; i < n; i += k) {
+		for (k = 0; k < STRAY_LANES && i + k < n; k++) {
+			float v = var_j[i + k];
+
+			v = v >= 0.0f ? v : v <= -1.0f ? -v - 1.0f : 0.0f;
+			var_j[i + k] = v;
+			lp[k] += j[i + k];
+			lv[k] += v;
+		}
+	}
+	*p = stray_lanes_total(lp);
+	*vp = stray_lanes_total(lv);
+}
+
+/* sum_i (J_i - mean)^2, for eq. 3.14 */
+static double spread(const float *j, size_t n, double mean)
+{
+	double l[STRAY_LANES] = { 0 };
+	size_t i, k;
+
+	for (i = 0; i + STRAY_LANES <= n; i += STRAY_LANES)
+		for (k = 0; k < STRAY_LANES; k++)
+			l[k] += (j[i + k] - mean) * (j[i + k] - mean);
+	for (k = 0; i < n; i++, k++)
+		l[k] += (j[i] - mean) * (j[i] - mean);
+	return stray_lanes_total(l);
+}
+
 int stray_response_compute(const struct stray_accum *full,
 			   const struct stray_accum *amb,
 			   const struct stray_dark_model *d,
@@ -177,8 +225,8 @@ int stray_response_compute(const struct stray_accum *full,
 			   float *var_j, struct stray_response_sums *out,
 			   struct stray_error *err)
 {
-	size_t n = geo->n_rows * geo->n_cols, i, r;
-	double p = 0.0, vp = 0.0, s2 = 0.0, sum[4];
+	size_t n = geo->n_rows * geo->n_cols, r;
+	double p, vp, sum[4];
 
 	if (full->n_pix != n || amb->n_pix != n)
 		return stray_error_set(err, STRAY_EINVAL, "NAXIS",
@@ -189,7 +237,8 @@ int stray_response_compute(const struct stray_accum *full,
 				       : "no FULL frame at this angle");
 	out->n_pix = n;
 	out->n_valid = out->n_masked = out->n_sat_pix = 0;
-	pooled_sums(full, amb, sum);
+	pooled_sums(full, &sum[0], &sum[1]);
+	pooled_sums(amb, &sum[2], &sum[3]);
 	per_pixel_j(full, amb, mask, pooled_var(full, d, sum[0], sum[1]),
 		    pooled_var(amb, d, sum[2], sum[3]), j, var_j, out);
 	for (r = 0; r < geo->n_rows; r++) {
@@ -199,18 +248,11 @@ int stray_response_compute(const struct stray_accum *full,
 		if (o && o->row_filter)
 			row_filter(j + off, geo->n_cols);
 	}
-	for (i = 0; i < n; i++) {
-		if (var_j[i] < 0.0f)	/* filled: its neighbours' variance */
-			var_j[i] = var_j[i] <= -1.0f ? -var_j[i] - 1.0f : 0.0f;
-		p += j[i];	/* eq. 3.9: P = sum_i J_i */
-		vp += var_j[i];
-	}
+	power_sums(j, var_j, n, &p, &vp);
 	out->power = p;
 	out->var_power = vp + dark_var(full, amb, d);
 	out->mean = p / (double)n;	/* eq. 3.13 */
-	for (i = 0; i < n; i++)
-		s2 += (j[i] - out->mean) * (j[i] - out->mean);
-	out->sigma = sqrt(s2 / (double)n);	/* eq. 3.14 */
+	out->sigma = sqrt(spread(j, n, out->mean) / (double)n); /* eq. 3.14 */
 	return STRAY_OK;
 }
 

@@ -6,9 +6,10 @@
  * then the curve (eq. 3.12-3.15) and the ghost tracks.
  *
  * Reading (issue 19): every frame file is read once, whole; its SHA-256
- * is taken of those bytes and cfitsio decodes the same bytes from memory.
- * A second thread (prefetch.c) reads and hashes the next frame while this
- * one is decoded and accumulated.  The darks of pass 1 are decoded into
+ * is taken of those bytes (unless verify_sha256 is off) and cfitsio
+ * decodes the same bytes from memory.  A second thread (prefetch.c)
+ * reads and hashes the next frame while this one is decoded and
+ * accumulated.  The darks of pass 1 are decoded into
  * the part of the arena the pixel statistics leave free (up to
  * STRAY_REDUCE_DARK_CACHE), so pass 2 reads no file again; the phases
  * share that one arena, on 2 MiB pages (bigmem.c).  workspace_bytes
@@ -171,24 +172,20 @@ static int load_frame(struct workspace *w, const struct stray_sweep_entry *e,
 	int taken = 0;
 
 	frame_path(w, e, path, sizeof(path));
-	/* Hashed: read once, hash those bytes, decode them from memory
-	 * (read and hashed ahead by the prefetch thread, in its order). */
-	if (w->o->verify_sha256) {
-		rc = stray_prefetch_take(&w->pf, e, &b, err);
-		taken = rc == STRAY_OK;
-		if (rc == STRAY_PREFETCH_NOT_NEXT) {
-			b = &w->file;
-			rc = stray_sweep_file_load(path, b, err);
-			if (rc == STRAY_OK)
-				rc = stray_sweep_sha256_check_mem(path,
-					b->data, b->len, e->sha256, err);
-		}
-		if (rc == STRAY_OK)
-			rc = stray_sweep_fits_open_buf(path, b, &w->fits,
-						       err);
-	} else {
-		rc = stray_sweep_fits_open(path, &w->fits, err);
+	/* Read once (ahead, by the prefetch thread, in its order), hashed
+	 * from those bytes unless told not to, decoded from memory. */
+	rc = stray_prefetch_take(&w->pf, e, &b, err);
+	taken = rc == STRAY_OK;
+	if (rc == STRAY_PREFETCH_NOT_NEXT) {
+		b = &w->file;
+		rc = stray_sweep_file_load(path, b, err);
+		if (rc == STRAY_OK && w->o->verify_sha256)
+			rc = stray_sweep_sha256_check_mem(path, b->data,
+							  b->len, e->sha256,
+							  err);
 	}
+	if (rc == STRAY_OK)
+		rc = stray_sweep_fits_open_buf(path, b, &w->fits, err);
 	if (rc != STRAY_OK) {
 		if (taken)
 			stray_prefetch_release(&w->pf);
@@ -698,7 +695,8 @@ static void start_reading(struct workspace *w,
 			     i++)
 				if (w->man.e[i].type != STRAY_SWEEP_DARK)
 					seq[n++] = &w->man.e[i];
-	stray_prefetch_start(&w->pf, w->dir, seq, n, 1);	/* owns seq */
+	/* owns seq */
+	stray_prefetch_start(&w->pf, w->dir, seq, n, w->o->verify_sha256);
 }
 
 /* The fitted source drift per manifest row, relative (0: none fitted). */
@@ -798,8 +796,7 @@ static int reduce_all(struct workspace *w,
 
 	if ((rc = setup(w, err)) || (rc = plan_visits(w, res, err)))
 		return rc;
-	if (w->o->verify_sha256)
-		start_reading(w, res);
+	start_reading(w, res);
 	if ((rc = dark_levels(w, res, err)) ||
 	    (rc = dark_pixels(w, res, err)) ||
 	    (rc = check_visits(w, res, err)) ||
