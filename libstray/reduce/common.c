@@ -130,42 +130,56 @@ int stray_common_group_add(struct stray_common_group *g,
 	return STRAY_OK;
 }
 
-/* lane += m2 / (n - 1) over pixels with n >= 2 that m keeps (n_pix a
- * multiple of STRAY_LANES but for the last piece). */
+/*
+ * The sum of m2 / (n - 1) over pixels with n >= 2 that m keeps: blocks of
+ * STRAY_LANES pixels all kept and seen in all nf frames add their m2 to
+ * usual[] (divided by nf - 1 once, at the end), the others pixel by pixel
+ * to other[].
+ */
 #if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
 __attribute__((target_clones("avx2", "default")))
 #endif
 static void v_ind_piece(const float *restrict m2, const uint16_t *restrict n,
-			const uint8_t *restrict m, size_t n_pix, double *lane)
+			const uint8_t *restrict m, size_t n_pix, unsigned nf,
+			double *usual, double *other)
 {
 	size_t i, k;
 
-	for (i = 0; i + STRAY_LANES <= n_pix; i += STRAY_LANES)
-		for (k = 0; k < STRAY_LANES; k++) {
-			unsigned ok = (m[i + k] == STRAY_PIX_OK) &
-				      (n[i + k] >= 2);
-			double den = ok ? n[i + k] - 1.0 : 1.0;
+	for (i = 0; i + STRAY_LANES <= n_pix; i += STRAY_LANES) {
+		unsigned odd = 0;
 
-			lane[k] += ok ? m2[i + k] / den : 0.0;
+		for (k = 0; k < STRAY_LANES; k++)
+			odd |= (m[i + k] != STRAY_PIX_OK) | (n[i + k] != nf);
+		if (!odd) {
+			for (k = 0; k < STRAY_LANES; k++)
+				usual[k] += m2[i + k];
+			continue;
 		}
+		for (k = 0; k < STRAY_LANES; k++)
+			if (m[i + k] == STRAY_PIX_OK && n[i + k] >= 2)
+				other[k] += m2[i + k] / (n[i + k] - 1.0);
+	}
 	for (k = 0; i < n_pix; i++, k++)
 		if (m[i] == STRAY_PIX_OK && n[i] >= 2)
-			lane[k] += m2[i] / (n[i] - 1.0);
+			other[k] += m2[i] / (n[i] - 1.0);
 }
 
 void stray_common_group_finish(struct stray_common_group *g,
 			       const struct stray_accum *a,
 			       const uint8_t *mask)
 {
-	double lane[STRAY_LANES] = { 0 };
+	double usual[STRAY_LANES] = { 0 }, other[STRAY_LANES] = { 0 };
+	double nf = (double)a->n_frames;
 	size_t i, len;
 
 	for (i = 0; i < a->n_pix; i += len) {
 		len = a->n_pix - i;
 		v_ind_piece(a->m2 + i, a->n + i, mask_piece(mask, i, &len),
-			    len, lane);
+			    len, (unsigned)a->n_frames, usual, other);
 	}
-	g->v_ind = stray_lanes_total(lane);
+	/* with one frame there is no m2 to count (n >= 2 nowhere) */
+	g->v_ind = (nf >= 2.0 ? stray_lanes_total(usual) / (nf - 1.0) : 0.0) +
+		   stray_lanes_total(other);
 }
 
 double stray_common_group_mean(const struct stray_common_group *g)

@@ -155,29 +155,85 @@ static void row_filter(float *j, size_t n_cols)
 	}
 }
 
+/* var of the temporal mean of a pixel seen in all of a's frames: m2 cm
+ * + cp (mean_var with n = n_frames, the division taken once). */
+static void usual_var(const struct stray_accum *a, double pooled, double *cm,
+		      double *cp)
+{
+	double n = (double)a->n_frames;
+
+	*cm = n >= 2.0 ? 1.0 / (n * (n - 1.0)) : 0.0;
+	*cp = n >= 2.0 ? 0.0 : pooled / n;
+}
+
+/* Whether pixels [i, i + n) are all unmasked and seen in every frame of
+ * both groups (an OR over the row the compiler vectorises). */
+static int usual_pixels(const struct stray_accum *full,
+			const struct stray_accum *amb, const uint8_t *mask,
+			size_t i, size_t n)
+{
+	const uint16_t *restrict nf = full->n + i, *restrict na = amb->n + i;
+	unsigned odd = 0, f = (unsigned)full->n_frames;
+	unsigned g = (unsigned)amb->n_frames;
+	size_t c;
+
+	for (c = 0; c < n; c++)
+		odd |= (nf[c] != f) | (na[c] != g);
+	if (mask)
+		for (c = 0; c < n; c++)
+			odd |= mask[i + c] != STRAY_PIX_OK;
+	return !odd;
+}
+
+/* eq. 3.6 over a usual row: J_i and its variance, without branches. */
+static void usual_j(const float *restrict fm, const float *restrict fm2,
+		    const float *restrict am, const float *restrict am2,
+		    size_t n, const double *coef, float *restrict j,
+		    float *restrict var_j)
+{
+	size_t c;
+
+	for (c = 0; c < n; c++) {
+		j[c] = fm[c] - am[c];
+		var_j[c] = (float)((fm2[c] * coef[0] + coef[1]) +
+				   (am2[c] * coef[2] + coef[3]));
+	}
+}
+
 static void per_pixel_j(const struct stray_accum *full,
 			const struct stray_accum *amb, const uint8_t *mask,
-			double pool_f, double pool_a, float *j, float *var_j,
-			struct stray_response_sums *out)
+			size_t n_cols, double pool_f, double pool_a, float *j,
+			float *var_j, struct stray_response_sums *out)
 {
-	size_t i;
+	double coef[4];
+	size_t i, r;
 
-	for (i = 0; i < full->n_pix; i++) {
-		if (mask && mask[i] != STRAY_PIX_OK) {
-			out->n_masked++;
-			var_j[i] = -1.0f;
+	usual_var(full, pool_f, &coef[0], &coef[1]);
+	usual_var(amb, pool_a, &coef[2], &coef[3]);
+	for (r = 0; r < full->n_pix; r += n_cols) {
+		if (usual_pixels(full, amb, mask, r, n_cols)) {
+			usual_j(full->mean + r, full->m2 + r, amb->mean + r,
+				amb->m2 + r, n_cols, coef, j + r, var_j + r);
+			out->n_valid += n_cols;
 			continue;
 		}
-		if (full->n[i] == 0 || amb->n[i] == 0) {
-			out->n_sat_pix++;
-			var_j[i] = -1.0f;
-			continue;
+		for (i = r; i < r + n_cols; i++) {
+			if (mask && mask[i] != STRAY_PIX_OK) {
+				out->n_masked++;
+				var_j[i] = -1.0f;
+				continue;
+			}
+			if (full->n[i] == 0 || amb->n[i] == 0) {
+				out->n_sat_pix++;
+				var_j[i] = -1.0f;
+				continue;
+			}
+			/* eq. 3.6: true response J_i */
+			j[i] = full->mean[i] - amb->mean[i];
+			var_j[i] = (float)(mean_var(full, i, pool_f) +
+					   mean_var(amb, i, pool_a));
+			out->n_valid++;
 		}
-		/* eq. 3.6: true response J_i */
-		j[i] = full->mean[i] - amb->mean[i];
-		var_j[i] = (float)(mean_var(full, i, pool_f) +
-				   mean_var(amb, i, pool_a));
-		out->n_valid++;
 	}
 }
 
@@ -239,7 +295,8 @@ int stray_response_compute(const struct stray_accum *full,
 	out->n_valid = out->n_masked = out->n_sat_pix = 0;
 	pooled_sums(full, &sum[0], &sum[1]);
 	pooled_sums(amb, &sum[2], &sum[3]);
-	per_pixel_j(full, amb, mask, pooled_var(full, d, sum[0], sum[1]),
+	per_pixel_j(full, amb, mask, geo->n_cols,
+		    pooled_var(full, d, sum[0], sum[1]),
 		    pooled_var(amb, d, sum[2], sum[3]), j, var_j, out);
 	for (r = 0; r < geo->n_rows; r++) {
 		size_t off = r * geo->n_cols;
