@@ -187,6 +187,78 @@ static void test_group_saturated_unusable(void **state)
 }
 
 /* alpha = exp(-theta / 6): visits taken 0.01 deg past their angle. */
+/*
+ * The frame totals and the pixels' own variance against sums written out
+ * here pixel by pixel: masked pixels are left out of both, a pixel with
+ * one saturated sample keeps its other two, and a saturated sample only
+ * makes the group incomplete where the mask keeps the pixel.
+ */
+static void test_totals_and_pixel_variance_closed_form(void **state)
+{
+	struct stray_dark_model *d = flat_dark();
+	static uint16_t pix[3][NPIX];
+	static uint8_t mask[NPIX];
+	struct stray_frame f = { ROWS, COLS, NULL, det_rows, 0, 0.1, 1.0, 1.0,
+				 4095 };
+	struct stray_accum a;
+	struct stray_common_group g, masked_only;
+	void *mem = malloc(stray_accum_bytes(NPIX));
+	double total0 = 0.0, v_ind = 0.0;
+	size_t i, k, sat = 5 * COLS + 9, hidden = 7 * COLS + 3;
+
+	(void)state;
+	for (k = 0; k < 3; k++)
+		for (i = 0; i < NPIX; i++)
+			pix[k][i] = (uint16_t)(300 + i * 7 % 13 +
+					       5 * k * (i % 3));
+	for (i = 0; i < NPIX; i += 37)
+		mask[i] = STRAY_PIX_HOT;
+	mask[hidden] = STRAY_PIX_DEAD;
+	pix[2][sat] = 4095;		/* saturated once, kept */
+	stray_accum_init(&a, NPIX, mem);
+	stray_common_group_reset(&g);
+	for (k = 0; k < 3; k++) {
+		f.pix = pix[k];
+		assert_int_equal(stray_accum_add(&a, d, &f, NULL), STRAY_OK);
+		assert_int_equal(stray_common_group_add(&g, d, &f, mask,
+			(double)k, NULL), STRAY_OK);
+	}
+	stray_common_group_finish(&g, &a, mask);
+	for (i = 0; i < NPIX; i++) {
+		double x[3], mean = 0.0, ss = 0.0;
+		size_t n = 0;
+
+		if (mask[i] != STRAY_PIX_OK)
+			continue;
+		total0 += (pix[0][i] - 100.0) / 0.1;
+		for (k = 0; k < 3; k++)
+			if (pix[k][i] < 4095)
+				x[n++] = (pix[k][i] - 100.0) / 0.1;
+		for (k = 0; k < n; k++)
+			mean += x[k] / (double)n;
+		for (k = 0; k < n; k++)
+			ss += (x[k] - mean) * (x[k] - mean);
+		v_ind += ss / (double)(n - 1);
+	}
+	assert_int_equal(a.n[sat], 2);
+	assert_near(g.s0, total0, 1e-9 * total0);	/* frame 0's total */
+	assert_near(g.v_ind, v_ind, 1e-5 * v_ind);
+	assert_int_equal(g.incomplete, 1);
+	/* saturated samples under the mask, one in each column phase: the
+	 * group stays complete */
+	for (k = 0; k < 4; k++) {
+		mask[sat + k] = STRAY_PIX_HOT;
+		pix[2][sat + k] = 4095;
+	}
+	stray_common_group_reset(&masked_only);
+	f.pix = pix[2];
+	assert_int_equal(stray_common_group_add(&masked_only, d, &f, mask, 0.0,
+						NULL), STRAY_OK);
+	assert_int_equal(masked_only.incomplete, 0);
+	free(mem);
+	free(d);
+}
+
 static void test_read_back_carried_to_commanded(void **state)
 {
 	struct stray_curve_point p[11];
@@ -224,6 +296,7 @@ int main(void)
 		cmocka_unit_test(test_pixel_noise_not_common),
 		cmocka_unit_test(test_known_drift_not_noise),
 		cmocka_unit_test(test_group_saturated_unusable),
+		cmocka_unit_test(test_totals_and_pixel_variance_closed_form),
 		cmocka_unit_test(test_read_back_carried_to_commanded),
 	};
 

@@ -139,6 +139,40 @@ static void test_response_masked_and_saturated_filled(void **state)
 	assert_near(x->j[COLS + 5], (200.0 + 50.0 - 150.0) / 0.1, 1e-2);
 }
 
+/* A pixel saturated in one of its two frames keeps one sample: the
+ * variance of its mean is the single-frame variance pooled over the
+ * pixels with repeats, while the rest of the frame (a usual row beside
+ * it) keeps its own m2 / (n (n - 1)). */
+static void test_response_single_sample_takes_pooled_variance(void **state)
+{
+	struct fixture *x = *state;
+	double full[N], amb[N];
+	struct stray_frame geo = { ROWS, COLS, NULL, rows, 0, 1, 1, 1, 4095 };
+	struct stray_response_sums s;
+	size_t i, one = COLS + 2;	/* row 1: 4090 kept, 4100 saturated */
+
+	for (i = 0; i < N; i++) {
+		full[i] = 1100.0;	/* t 0.1, nd 0.5: rate scale 20 */
+		amb[i] = 320.0;		/* t 0.2, nd 1: rate scale 5 */
+	}
+	full[one] = 4095.0;
+	add_group(x, &x->full, full, 0.1, 0.5);
+	add_group(x, &x->amb, amb, 0.2, 1.0);
+	assert_int_equal(x->full.n[one], 1);
+	assert_int_equal(stray_response_compute(&x->full, &x->amb, &x->d, NULL,
+		&geo, NULL, x->j, x->var_j, &s, NULL), STRAY_OK);
+	assert_int_equal(s.n_valid, N);
+	for (i = 0; i < N; i++) {
+		/* -/+5 counts: m2 = 50, of the mean 25 (n = 2), single
+		 * frame 50 (pooled), times the scale squared */
+		double want = (i == one ? 50.0 : 25.0) * 400.0 + 25.0 * 25.0;
+
+		assert_near(x->var_j[i], want, 1e-6 * want);
+	}
+	assert_near(x->j[one], (4090.0 - 100.0) * 20.0 - (320.0 - 120.0) * 5.0,
+		    1e-2);
+}
+
 static void test_response_row_filter_and_profile(void **state)
 {
 	struct fixture *x = *state;
@@ -173,6 +207,9 @@ int main(void)
 		cmocka_unit_test_setup_teardown(
 			test_response_masked_and_saturated_filled, setup,
 			teardown),
+		cmocka_unit_test_setup_teardown(
+			test_response_single_sample_takes_pooled_variance,
+			setup, teardown),
 		cmocka_unit_test_setup_teardown(
 			test_response_row_filter_and_profile, setup, teardown),
 	};
