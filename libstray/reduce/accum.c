@@ -133,9 +133,7 @@ int stray_accum_add(struct stray_accum *a, const struct stray_dark_model *d,
 	l = &d->lvl[li];
 	inv = 1.0 / (f->t_exp_s * f->nd_trans * f->monitor);
 	inv_next = 1.0 / ((double)a->n_frames + 1.0);
-	/* row[c] >= sat_at is (long)row[c] >= f->sat_level, in int */
-	sat_at = f->sat_level < 0 ? 0 : f->sat_level > 65536 ? 65536 :
-		 (int)f->sat_level;
+	sat_at = stray_frame_sat_at(f);
 	for (r = 0; r < f->n_rows; r++) {
 		const uint16_t *row = f->pix + r * f->n_cols;
 		double lvl[4];

@@ -94,9 +94,7 @@ int stray_common_group_add(struct stray_common_group *g,
 		return rc;
 	l = &d->lvl[li];
 	inv = 1.0 / (f->t_exp_s * f->nd_trans * f->monitor);
-	/* row[c] >= sat_at is (long)row[c] >= f->sat_level, in int */
-	sat_at = f->sat_level < 0 ? 0 : f->sat_level > 65536 ? 65536 :
-		 (int)f->sat_level;
+	sat_at = stray_frame_sat_at(f);
 	for (r = 0; r < f->n_rows; r++) {
 		double lvl[4], row = 0.0;
 		size_t c, len;

@@ -60,3 +60,9 @@ int stray_frame_check(const struct stray_frame *f, struct stray_error *err)
 			"must be in 1..65536", (double)f->sat_level);
 	return STRAY_OK;
 }
+
+int stray_frame_sat_at(const struct stray_frame *f)
+{
+	return f->sat_level < 0 ? 0 : f->sat_level > 65536 ? 65536 :
+	       (int)f->sat_level;
+}

@@ -52,4 +52,8 @@ struct stray_frame {
 /* Finite positive exposure, 0 < nd <= 1, monitor > 0, pixels present. */
 int stray_frame_check(const struct stray_frame *f, struct stray_error *err);
 
+/* SATLEVEL as an int a 16-bit sample compares with, clamped to 0..65536:
+ * pix >= it is exactly (long)pix >= sat_level, without widening. */
+int stray_frame_sat_at(const struct stray_frame *f);
+
 #endif /* STRAY_REDUCE_FRAME_H */
