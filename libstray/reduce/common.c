@@ -16,16 +16,14 @@ void stray_common_group_reset(struct stray_common_group *g)
 /* The mask of a frame without one: every pixel STRAY_PIX_OK (0). */
 static const uint8_t all_ok[4096];
 
-/* The mask over pixels [i, i + *len): mask's own, or without one all_ok,
- * *len cut to its length (a multiple of 4 and of STRAY_LANES, so column
- * phases and lanes stay the same piece to piece). */
+/* The mask over pixels [i, i + *len), *len cut to all_ok's length (a
+ * multiple of 4 and of STRAY_LANES, so column phases and lanes stay the
+ * same piece to piece): mask's own, or without one all_ok. */
 static const uint8_t *mask_piece(const uint8_t *mask, size_t i, size_t *len)
 {
-	if (mask)
-		return mask + i;
 	if (*len > sizeof(all_ok))
 		*len = sizeof(all_ok);
-	return all_ok;
+	return mask ? mask + i : all_ok;
 }
 
 /*
@@ -41,8 +39,9 @@ static double row_total(const uint16_t *restrict row,
 			const uint8_t *restrict m, size_t n_cols,
 			const double *lvl, int sat_at, int *sat)
 {
-	uint64_t s0 = 0, s1 = 0, s2 = 0, s3 = 0;  /* < 2^16 a sample */
-	uint64_t n0 = 0, n1 = 0, n2 = 0, n3 = 0;
+	/* at most 1024 samples of < 2^16 a phase: exact in 32 bits */
+	uint32_t s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+	uint32_t n0 = 0, n1 = 0, n2 = 0, n3 = 0;
 	unsigned hit = 0;
 	size_t c;
 
@@ -63,7 +62,7 @@ static double row_total(const uint16_t *restrict row,
 	}
 	for (; c < n_cols; c++) {
 		unsigned k = m[c] == STRAY_PIX_OK;
-		uint64_t v = k ? row[c] : 0u;
+		uint32_t v = k ? row[c] : 0u;
 
 		switch (c & 3) {
 		case 0: s0 += v, n0 += k; break;
@@ -105,11 +104,13 @@ int stray_common_group_add(struct stray_common_group *g,
 					f->det_row[r], f->col0 + (long)k)];
 		/* eq. 3.4-3.5, per unit t alpha_nd as in accum.c */
 		for (c = 0; c < f->n_cols; c += len) {
+			const uint8_t *m;
+
 			len = f->n_cols - c;
-			row += row_total(f->pix + r * f->n_cols + c,
-					 mask_piece(mask ? mask + r * f->n_cols :
-						    NULL, c, &len),
-					 len, lvl, sat_at, &g->incomplete);
+			m = mask_piece(mask ? mask + r * f->n_cols : NULL, c,
+				       &len);
+			row += row_total(f->pix + r * f->n_cols + c, m, len,
+					 lvl, sat_at, &g->incomplete);
 		}
 		s += row * inv;
 	}
@@ -171,9 +172,12 @@ void stray_common_group_finish(struct stray_common_group *g,
 	size_t i, len;
 
 	for (i = 0; i < a->n_pix; i += len) {
+		const uint8_t *m;
+
 		len = a->n_pix - i;
-		v_ind_piece(a->m2 + i, a->n + i, mask_piece(mask, i, &len),
-			    len, (unsigned)a->n_frames, usual, other);
+		m = mask_piece(mask, i, &len);
+		v_ind_piece(a->m2 + i, a->n + i, m, len,
+			    (unsigned)a->n_frames, usual, other);
 	}
 	/* with one frame there is no m2 to count (n >= 2 nowhere) */
 	g->v_ind = (nf >= 2.0 ? stray_lanes_total(usual) / (nf - 1.0) : 0.0) +

@@ -259,6 +259,54 @@ static void test_totals_and_pixel_variance_closed_form(void **state)
 	free(d);
 }
 
+/* Rows wider than the pieces the sums walk in (4096 columns), without a
+ * mask and with an all-clear one: the same totals, and the ones written
+ * out here. */
+static void test_wide_rows_without_mask(void **state)
+{
+	enum { WR = 2, WC = 4102, WN = WR * WC };
+	struct stray_dark_model *d = flat_dark();
+	static uint16_t pix[3][WN];
+	static uint8_t clear[WN];
+	static long wrows[WR] = { 0, 1 };
+	struct stray_frame f = { WR, WC, NULL, wrows, 0, 0.1, 1.0, 1.0, 4095 };
+	struct stray_accum a;
+	struct stray_common_group none, all;
+	void *mem = malloc(stray_accum_bytes(WN));
+	double total0 = 0.0, v_ind = 0.0;
+	size_t i, k;
+
+	(void)state;
+	for (k = 0; k < 3; k++)
+		for (i = 0; i < WN; i++)
+			pix[k][i] = (uint16_t)(400 + i % 11 + 3 * k * (i % 2));
+	stray_accum_init(&a, WN, mem);
+	stray_common_group_reset(&none);
+	stray_common_group_reset(&all);
+	for (k = 0; k < 3; k++) {
+		f.pix = pix[k];
+		assert_int_equal(stray_accum_add(&a, d, &f, NULL), STRAY_OK);
+		assert_int_equal(stray_common_group_add(&none, d, &f, NULL,
+			(double)k, NULL), STRAY_OK);
+		assert_int_equal(stray_common_group_add(&all, d, &f, clear,
+			(double)k, NULL), STRAY_OK);
+	}
+	stray_common_group_finish(&none, &a, NULL);
+	stray_common_group_finish(&all, &a, clear);
+	for (i = 0; i < WN; i++) {
+		double d1 = 3.0 * (double)(i % 2) / 0.1;	/* steps */
+
+		total0 += (pix[0][i] - 100.0) / 0.1;
+		v_ind += d1 * d1;	/* x0, x0 + d, x0 + 2d: ss / 2 */
+	}
+	assert_true(none.s0 == all.s0);
+	assert_true(none.v_ind == all.v_ind);
+	assert_near(none.s0, total0, 1e-12 * total0);
+	assert_near(none.v_ind, v_ind, 1e-5 * v_ind);
+	free(mem);
+	free(d);
+}
+
 static void test_read_back_carried_to_commanded(void **state)
 {
 	struct stray_curve_point p[11];
@@ -297,6 +345,7 @@ int main(void)
 		cmocka_unit_test(test_known_drift_not_noise),
 		cmocka_unit_test(test_group_saturated_unusable),
 		cmocka_unit_test(test_totals_and_pixel_variance_closed_form),
+		cmocka_unit_test(test_wide_rows_without_mask),
 		cmocka_unit_test(test_read_back_carried_to_commanded),
 	};
 
