@@ -9,13 +9,14 @@
 #include "stray/reduce_response.h"
 #include "lanes.h"
 
-/* lane sums of m2 and n - 1 over the pixels with repeats (n >= 2) */
+/* lane sums of m2, and the count of n - 1 (exact, in integers), over
+ * the pixels with repeats (n >= 2) */
 #if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
 __attribute__((target_clones("avx2", "default")))
 #endif
 static void repeat_sums(const float *restrict m2, const uint16_t *restrict n,
 			size_t n_pix, double *restrict num,
-			double *restrict den)
+			uint64_t *restrict den)
 {
 	size_t i, k;
 
@@ -24,12 +25,12 @@ static void repeat_sums(const float *restrict m2, const uint16_t *restrict n,
 			int r = n[i + k] >= 2;
 
 			num[k] += r ? m2[i + k] : 0.0f;
-			den[k] += r ? n[i + k] - 1.0 : 0.0;
+			den[k] += r ? n[i + k] - 1u : 0u;
 		}
 	for (k = 0; i < n_pix; i++, k++)
 		if (n[i] >= 2) {
 			num[k] += m2[i];
-			den[k] += n[i] - 1.0;
+			den[k] += n[i] - 1u;
 		}
 }
 
@@ -38,11 +39,15 @@ static void repeat_sums(const float *restrict m2, const uint16_t *restrict n,
 static void pooled_sums(const struct stray_accum *a, double *num,
 			double *den)
 {
-	double ln[STRAY_LANES] = { 0 }, ld[STRAY_LANES] = { 0 };
+	double ln[STRAY_LANES] = { 0 };
+	uint64_t ld[STRAY_LANES] = { 0 }, d = 0;
+	int k;
 
 	repeat_sums(a->m2, a->n, a->n_pix, ln, ld);
+	for (k = 0; k < STRAY_LANES; k++)
+		d += ld[k];
 	*num = stray_lanes_total(ln);
-	*den = stray_lanes_total(ld);
+	*den = (double)d;
 }
 
 /* Single-frame variance of a rate, pooled over pixels with repeats
@@ -168,6 +173,9 @@ static void usual_var(const struct stray_accum *a, double pooled, double *cm,
 
 /* Whether pixels [i, i + n) are all unmasked and seen in every frame of
  * both groups (an OR over the row the compiler vectorises). */
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
 static int usual_pixels(const struct stray_accum *full,
 			const struct stray_accum *amb, const uint8_t *mask,
 			size_t i, size_t n)
@@ -186,6 +194,9 @@ static int usual_pixels(const struct stray_accum *full,
 }
 
 /* eq. 3.6 over a usual row: J_i and its variance, without branches. */
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
 static void usual_j(const float *restrict fm, const float *restrict fm2,
 		    const float *restrict am, const float *restrict am2,
 		    size_t n, const double *coef, float *restrict j,
@@ -200,53 +211,57 @@ static void usual_j(const float *restrict fm, const float *restrict fm2,
 	}
 }
 
-static void per_pixel_j(const struct stray_accum *full,
-			const struct stray_accum *amb, const uint8_t *mask,
-			size_t n_cols, double pool_f, double pool_a, float *j,
-			float *var_j, struct stray_response_sums *out)
+/* eq. 3.6 for the row of pixels [r, r + n_cols); coef: usual_var of
+ * both groups.  Returns the number of pixels marked invalid (var_j -1),
+ * for fill_row. */
+static size_t j_row(const struct stray_accum *full, const struct stray_accum *amb,
+		  const uint8_t *mask, size_t r, size_t n_cols,
+		  const double *coef, double pool_f, double pool_a, float *j,
+		  float *var_j, struct stray_response_sums *out)
 {
-	double coef[4];
-	size_t i, r;
+	size_t i, invalid = 0;
 
-	usual_var(full, pool_f, &coef[0], &coef[1]);
-	usual_var(amb, pool_a, &coef[2], &coef[3]);
-	for (r = 0; r < full->n_pix; r += n_cols) {
-		if (usual_pixels(full, amb, mask, r, n_cols)) {
-			usual_j(full->mean + r, full->m2 + r, amb->mean + r,
-				amb->m2 + r, n_cols, coef, j + r, var_j + r);
-			out->n_valid += n_cols;
+	if (usual_pixels(full, amb, mask, r, n_cols)) {
+		usual_j(full->mean + r, full->m2 + r, amb->mean + r,
+			amb->m2 + r, n_cols, coef, j + r, var_j + r);
+		out->n_valid += n_cols;
+		return 0;
+	}
+	for (i = r; i < r + n_cols; i++) {
+		if (mask && mask[i] != STRAY_PIX_OK) {
+			out->n_masked++;
+			var_j[i] = -1.0f;
+			invalid++;
 			continue;
 		}
-		for (i = r; i < r + n_cols; i++) {
-			if (mask && mask[i] != STRAY_PIX_OK) {
-				out->n_masked++;
-				var_j[i] = -1.0f;
-				continue;
-			}
-			if (full->n[i] == 0 || amb->n[i] == 0) {
-				out->n_sat_pix++;
-				var_j[i] = -1.0f;
-				continue;
-			}
-			/* eq. 3.6: true response J_i */
-			j[i] = full->mean[i] - amb->mean[i];
-			var_j[i] = (float)(mean_var(full, i, pool_f) +
-					   mean_var(amb, i, pool_a));
-			out->n_valid++;
+		if (full->n[i] == 0 || amb->n[i] == 0) {
+			out->n_sat_pix++;
+			var_j[i] = -1.0f;
+			invalid++;
+			continue;
 		}
+		/* eq. 3.6: true response J_i */
+		j[i] = full->mean[i] - amb->mean[i];
+		var_j[i] = (float)(mean_var(full, i, pool_f) +
+				   mean_var(amb, i, pool_a));
+		out->n_valid++;
 	}
+	return invalid;
 }
 
-/* eq. 3.9: P = sum_i J_i, and the sum of var J_i; filled pixels
- * (var_j <= -1) take their neighbours' variance, var_j -(v + 1). */
-static void power_sums(const float *restrict j, float *restrict var_j,
-		       size_t n, double *p, double *vp)
+/* eq. 3.9 over one row, into lanes: P = sum_i J_i and the sum of
+ * var J_i; filled pixels (var_j <= -1) take their neighbours' variance,
+ * var_j -(v + 1). */
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+static void power_row(const float *restrict j, float *restrict var_j,
+		      size_t n, double *restrict lp, double *restrict lv)
 {
-	double lp[STRAY_LANES] = { 0 }, lv[STRAY_LANES] = { 0 };
 	size_t i, k;
 
-	for (i = 0; i < n; i += k) {
-		for (k = 0; k < STRAY_LANES && i + k < n; k++) {
+	for (i = 0; i + STRAY_LANES <= n; i += STRAY_LANES)
+		for (k = 0; k < STRAY_LANES; k++) {
 			float v = var_j[i + k];
 
 			v = v >= 0.0f ? v : v <= -1.0f ? -v - 1.0f : 0.0f;
@@ -254,12 +269,20 @@ static void power_sums(const float *restrict j, float *restrict var_j,
 			lp[k] += j[i + k];
 			lv[k] += v;
 		}
+	for (k = 0; i < n; i++, k++) {
+		float v = var_j[i];
+
+		v = v >= 0.0f ? v : v <= -1.0f ? -v - 1.0f : 0.0f;
+		var_j[i] = v;
+		lp[k] += j[i];
+		lv[k] += v;
 	}
-	*p = stray_lanes_total(lp);
-	*vp = stray_lanes_total(lv);
 }
 
 /* sum_i (J_i - mean)^2, for eq. 3.14 */
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
 static double spread(const float *j, size_t n, double mean)
 {
 	double l[STRAY_LANES] = { 0 };
@@ -282,7 +305,8 @@ int stray_response_compute(const struct stray_accum *full,
 			   struct stray_error *err)
 {
 	size_t n = geo->n_rows * geo->n_cols, r;
-	double p, vp, sum[4];
+	double lp[STRAY_LANES] = { 0 }, lv[STRAY_LANES] = { 0 };
+	double p, vp, sum[4], coef[4], pool_f, pool_a;
 
 	if (full->n_pix != n || amb->n_pix != n)
 		return stray_error_set(err, STRAY_EINVAL, "NAXIS",
@@ -295,17 +319,21 @@ int stray_response_compute(const struct stray_accum *full,
 	out->n_valid = out->n_masked = out->n_sat_pix = 0;
 	pooled_sums(full, &sum[0], &sum[1]);
 	pooled_sums(amb, &sum[2], &sum[3]);
-	per_pixel_j(full, amb, mask, geo->n_cols,
-		    pooled_var(full, d, sum[0], sum[1]),
-		    pooled_var(amb, d, sum[2], sum[3]), j, var_j, out);
-	for (r = 0; r < geo->n_rows; r++) {
-		size_t off = r * geo->n_cols;
-
-		fill_row(j + off, var_j + off, geo->n_cols);
+	pool_f = pooled_var(full, d, sum[0], sum[1]);
+	pool_a = pooled_var(amb, d, sum[2], sum[3]);
+	usual_var(full, pool_f, &coef[0], &coef[1]);
+	usual_var(amb, pool_a, &coef[2], &coef[3]);
+	/* row by row, each row's steps while it is in cache */
+	for (r = 0; r < n; r += geo->n_cols) {
+		if (j_row(full, amb, mask, r, geo->n_cols, coef, pool_f,
+			  pool_a, j, var_j, out))
+			fill_row(j + r, var_j + r, geo->n_cols);
 		if (o && o->row_filter)
-			row_filter(j + off, geo->n_cols);
+			row_filter(j + r, geo->n_cols);
+		power_row(j + r, var_j + r, geo->n_cols, lp, lv);
 	}
-	power_sums(j, var_j, n, &p, &vp);
+	p = stray_lanes_total(lp);
+	vp = stray_lanes_total(lv);
 	out->power = p;
 	out->var_power = vp + dark_var(full, amb, d);
 	out->mean = p / (double)n;	/* eq. 3.13 */
