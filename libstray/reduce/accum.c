@@ -7,6 +7,9 @@
 #include <string.h>
 
 #include "stray/reduce_response.h"
+#include "pixel_sums.h"
+
+const uint8_t stray_all_ok[STRAY_PIECE_MAX];
 
 /* Layout in the caller's block: mean, m2 (float), then n (uint16). */
 size_t stray_accum_bytes(size_t n_pix)
@@ -171,4 +174,76 @@ int stray_accum_add(struct stray_accum *a, const struct stray_dark_model *d,
 	a->inv_scale_sum += inv;
 	a->n_frames++;
 	return STRAY_OK;
+}
+
+/*
+ * stray_accum_var_sums over one piece: blocks of STRAY_LANES pixels all
+ * kept and seen in all nf frames add their m2 to usual[] (counted in
+ * *n_usual); the others go pixel by pixel to all[], dof[] and kept[].
+ */
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+static void var_piece(const float *restrict m2, const uint16_t *restrict n,
+		      const uint8_t *restrict m, size_t n_pix, unsigned nf,
+		      double *restrict usual, size_t *n_usual,
+		      double *restrict all, uint64_t *restrict dof,
+		      double *restrict kept)
+{
+	size_t i, k;
+
+	for (i = 0; i + STRAY_LANES <= n_pix; i += STRAY_LANES) {
+		unsigned odd = 0;
+
+		for (k = 0; k < STRAY_LANES; k++)
+			odd |= (m[i + k] != STRAY_PIX_OK) | (n[i + k] != nf);
+		if (!odd) {
+			for (k = 0; k < STRAY_LANES; k++)
+				usual[k] += m2[i + k];
+			*n_usual += STRAY_LANES;
+			continue;
+		}
+		for (k = 0; k < STRAY_LANES; k++)
+			if (n[i + k] >= 2) {
+				all[k] += m2[i + k];
+				dof[k] += n[i + k] - 1u;
+				if (m[i + k] == STRAY_PIX_OK)
+					kept[k] += m2[i + k] /
+						   (n[i + k] - 1.0);
+			}
+	}
+	for (k = 0; i < n_pix; i++, k++)
+		if (n[i] >= 2) {
+			all[k] += m2[i];
+			dof[k] += n[i] - 1u;
+			if (m[i] == STRAY_PIX_OK)
+				kept[k] += m2[i] / (n[i] - 1.0);
+		}
+}
+
+void stray_accum_var_sums(const struct stray_accum *a, const uint8_t *mask,
+			  struct stray_accum_var *v)
+{
+	double usual[STRAY_LANES] = { 0 }, all[STRAY_LANES] = { 0 };
+	double kept[STRAY_LANES] = { 0 }, u, nf = (double)a->n_frames;
+	uint64_t dof[STRAY_LANES] = { 0 }, d = 0;
+	size_t i, len, n_usual = 0;
+	int k;
+
+	for (i = 0; i < a->n_pix; i += len) {
+		const uint8_t *m;
+
+		len = a->n_pix - i;
+		m = stray_mask_piece(mask, i, &len);
+		var_piece(a->m2 + i, a->n + i, m, len, (unsigned)a->n_frames,
+			  usual, &n_usual, all, dof, kept);
+	}
+	for (k = 0; k < STRAY_LANES; k++)
+		d += dof[k];
+	/* with one frame there is no m2 (n >= 2 nowhere) */
+	u = stray_lanes_total(usual);
+	v->m2 = u + stray_lanes_total(all);
+	v->dof = (nf >= 2.0 ? (double)n_usual * (nf - 1.0) : 0.0) + (double)d;
+	v->kept_var = (nf >= 2.0 ? u / (nf - 1.0) : 0.0) +
+		      stray_lanes_total(kept);
 }

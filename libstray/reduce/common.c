@@ -6,24 +6,11 @@
 #include <string.h>
 
 #include "stray/reduce_common.h"
-#include "lanes.h"
+#include "pixel_sums.h"
 
 void stray_common_group_reset(struct stray_common_group *g)
 {
 	memset(g, 0, sizeof(*g));
-}
-
-/* The mask of a frame without one: every pixel STRAY_PIX_OK (0). */
-static const uint8_t all_ok[4096];
-
-/* The mask over pixels [i, i + *len), *len cut to all_ok's length (a
- * multiple of 4 and of STRAY_LANES, so column phases and lanes stay the
- * same piece to piece): mask's own, or without one all_ok. */
-static const uint8_t *mask_piece(const uint8_t *mask, size_t i, size_t *len)
-{
-	if (*len > sizeof(all_ok))
-		*len = sizeof(all_ok);
-	return mask ? mask + i : all_ok;
 }
 
 /*
@@ -107,8 +94,8 @@ int stray_common_group_add(struct stray_common_group *g,
 			const uint8_t *m;
 
 			len = f->n_cols - c;
-			m = mask_piece(mask ? mask + r * f->n_cols : NULL, c,
-				       &len);
+			m = stray_mask_piece(mask ? mask + r * f->n_cols : NULL,
+					     c, &len);
 			row += row_total(f->pix + r * f->n_cols + c, m, len,
 					 lvl, sat_at, &g->incomplete);
 		}
@@ -129,59 +116,10 @@ int stray_common_group_add(struct stray_common_group *g,
 	return STRAY_OK;
 }
 
-/*
- * The sum of m2 / (n - 1) over pixels with n >= 2 that m keeps: blocks of
- * STRAY_LANES pixels all kept and seen in all nf frames add their m2 to
- * usual[] (divided by nf - 1 once, at the end), the others pixel by pixel
- * to other[].
- */
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-static void v_ind_piece(const float *restrict m2, const uint16_t *restrict n,
-			const uint8_t *restrict m, size_t n_pix, unsigned nf,
-			double *usual, double *other)
-{
-	size_t i, k;
-
-	for (i = 0; i + STRAY_LANES <= n_pix; i += STRAY_LANES) {
-		unsigned odd = 0;
-
-		for (k = 0; k < STRAY_LANES; k++)
-			odd |= (m[i + k] != STRAY_PIX_OK) | (n[i + k] != nf);
-		if (!odd) {
-			for (k = 0; k < STRAY_LANES; k++)
-				usual[k] += m2[i + k];
-			continue;
-		}
-		for (k = 0; k < STRAY_LANES; k++)
-			if (m[i + k] == STRAY_PIX_OK && n[i + k] >= 2)
-				other[k] += m2[i + k] / (n[i + k] - 1.0);
-	}
-	for (k = 0; i < n_pix; i++, k++)
-		if (m[i] == STRAY_PIX_OK && n[i] >= 2)
-			other[k] += m2[i] / (n[i] - 1.0);
-}
-
 void stray_common_group_finish(struct stray_common_group *g,
-			       const struct stray_accum *a,
-			       const uint8_t *mask)
+			       const struct stray_accum_var *v)
 {
-	double usual[STRAY_LANES] = { 0 }, other[STRAY_LANES] = { 0 };
-	double nf = (double)a->n_frames;
-	size_t i, len;
-
-	for (i = 0; i < a->n_pix; i += len) {
-		const uint8_t *m;
-
-		len = a->n_pix - i;
-		m = mask_piece(mask, i, &len);
-		v_ind_piece(a->m2 + i, a->n + i, m, len,
-			    (unsigned)a->n_frames, usual, other);
-	}
-	/* with one frame there is no m2 to count (n >= 2 nowhere) */
-	g->v_ind = (nf >= 2.0 ? stray_lanes_total(usual) / (nf - 1.0) : 0.0) +
-		   stray_lanes_total(other);
+	g->v_ind = v->kept_var;
 }
 
 double stray_common_group_mean(const struct stray_common_group *g)

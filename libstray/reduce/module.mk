@@ -23,8 +23,8 @@ $(B)/obj/libstray/reduce/accum.o: EXTRA_CFLAGS += -ftree-vectorize
 # so are the darks' per-pixel statistics and the 16-bit decode of a frame
 $(B)/obj/libstray/reduce/pixmask.o: EXTRA_CFLAGS += -ftree-vectorize
 $(B)/obj/libstray/sweep/fits_read.o: EXTRA_CFLAGS += -ftree-vectorize
-# and the frame-wide sums of common.c and response.c (lanes.h: a fixed
-# order of eight partial sums, so the same bits on every machine)
+# and the frame-wide sums of common.c and response.c (pixel_sums.h: a
+# fixed order of eight partial sums, so the same bits on every machine)
 $(B)/obj/libstray/reduce/common.o: EXTRA_CFLAGS += -ftree-vectorize
 $(B)/obj/libstray/reduce/response.o: EXTRA_CFLAGS += -ftree-vectorize
 

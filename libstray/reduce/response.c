@@ -7,51 +7,10 @@
 #include <math.h>
 
 #include "stray/reduce_response.h"
-#include "lanes.h"
-
-/* lane sums of m2, and the count of n - 1 (exact, in integers), over
- * the pixels with repeats (n >= 2) */
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-static void repeat_sums(const float *restrict m2, const uint16_t *restrict n,
-			size_t n_pix, double *restrict num,
-			uint64_t *restrict den)
-{
-	size_t i, k;
-
-	for (i = 0; i + STRAY_LANES <= n_pix; i += STRAY_LANES)
-		for (k = 0; k < STRAY_LANES; k++) {
-			int r = n[i + k] >= 2;
-
-			num[k] += r ? m2[i + k] : 0.0f;
-			den[k] += r ? n[i + k] - 1u : 0u;
-		}
-	for (k = 0; i < n_pix; i++, k++)
-		if (n[i] >= 2) {
-			num[k] += m2[i];
-			den[k] += n[i] - 1u;
-		}
-}
-
-/* The sums of pooled_var for one group: of m2 and of n - 1 over its
- * pixels with repeats. */
-static void pooled_sums(const struct stray_accum *a, double *num,
-			double *den)
-{
-	double ln[STRAY_LANES] = { 0 };
-	uint64_t ld[STRAY_LANES] = { 0 }, d = 0;
-	int k;
-
-	repeat_sums(a->m2, a->n, a->n_pix, ln, ld);
-	for (k = 0; k < STRAY_LANES; k++)
-		d += ld[k];
-	*num = stray_lanes_total(ln);
-	*den = (double)d;
-}
+#include "pixel_sums.h"
 
 /* Single-frame variance of a rate, pooled over pixels with repeats
- * (num, den: the sums of pooled_sums). */
+ * (num, den: their m2 and n - 1 summed, stray_accum_var_sums). */
 static double pooled_var(const struct stray_accum *a,
 			 const struct stray_dark_model *d, double num,
 			 double den)
@@ -306,7 +265,7 @@ int stray_response_compute(const struct stray_accum *full,
 {
 	size_t n = geo->n_rows * geo->n_cols, r;
 	double lp[STRAY_LANES] = { 0 }, lv[STRAY_LANES] = { 0 };
-	double p, vp, sum[4], coef[4], pool_f, pool_a;
+	double p, vp, coef[4], pool_f, pool_a;
 
 	if (full->n_pix != n || amb->n_pix != n)
 		return stray_error_set(err, STRAY_EINVAL, "NAXIS",
@@ -317,10 +276,10 @@ int stray_response_compute(const struct stray_accum *full,
 				       : "no FULL frame at this angle");
 	out->n_pix = n;
 	out->n_valid = out->n_masked = out->n_sat_pix = 0;
-	pooled_sums(full, &sum[0], &sum[1]);
-	pooled_sums(amb, &sum[2], &sum[3]);
-	pool_f = pooled_var(full, d, sum[0], sum[1]);
-	pool_a = pooled_var(amb, d, sum[2], sum[3]);
+	stray_accum_var_sums(full, mask, &out->var[0]);
+	stray_accum_var_sums(amb, mask, &out->var[1]);
+	pool_f = pooled_var(full, d, out->var[0].m2, out->var[0].dof);
+	pool_a = pooled_var(amb, d, out->var[1].m2, out->var[1].dof);
 	usual_var(full, pool_f, &coef[0], &coef[1]);
 	usual_var(amb, pool_a, &coef[2], &coef[3]);
 	/* row by row, each row's steps while it is in cache */

@@ -600,8 +600,8 @@ static int reduce_visit(struct workspace *w, size_t v,
 	vis->power = s.power;
 	vis->var_power = s.var_power;
 	vis->sigma = s.sigma;
-	stray_common_group_finish(&p->cg[0], &w->full, w->mask);
-	stray_common_group_finish(&p->cg[1], &w->amb, w->mask);
+	stray_common_group_finish(&p->cg[0], &s.var[0]);
+	stray_common_group_finish(&p->cg[1], &s.var[1]);
 	vis->n_pix = s.n_pix;
 	res->n_sat_samples += w->full.n_sat + w->amb.n_sat;
 	res->n_sat_pixels += s.n_sat_pix;

@@ -69,6 +69,16 @@ static struct stray_dark_model *flat_dark(void)
 	return m;
 }
 
+/* Close a group as the sweep does: its accumulator's variance sums. */
+static void finish(struct stray_common_group *g, const struct stray_accum *a,
+		   const uint8_t *mask)
+{
+	struct stray_accum_var v;
+
+	stray_accum_var_sums(a, mask, &v);
+	stray_common_group_finish(g, &v);
+}
+
 /*
  * GROUPS groups of REPEATS frames, 100 places apart in the order x: light
  * 1000 DN x (1 + drift x_k), pixel noise 3 DN, each frame's MONITOR off the true lamp by a relative
@@ -107,7 +117,7 @@ static double pooled(double rel_sigma, double drift, double beta,
 			assert_int_equal(stray_common_group_add(&g, d, &f,
 					 NULL, x, NULL), STRAY_OK);
 		}
-		stray_common_group_finish(&g, &a, NULL);
+		finish(&g, &a, NULL);
 		/* the mean total: 1000 DN / 0.1 s per pixel, drifted */
 		assert_true(fabs(stray_common_group_mean(&g) / (1e4 * NPIX *
 			(1.0 + drift * (double)(k * 300 + 100))) - 1.0) < 0.01);
@@ -180,7 +190,7 @@ static void test_group_saturated_unusable(void **state)
 		assert_int_equal(stray_common_group_add(&g, d, &f, NULL, n,
 							NULL), STRAY_OK);
 	}
-	stray_common_group_finish(&g, &a, NULL);
+	finish(&g, &a, NULL);
 	assert_int_equal(stray_common_group_stats(&g, 0.0, &est, &ind), 0);
 	free(mem);
 	free(d);
@@ -203,7 +213,8 @@ static void test_totals_and_pixel_variance_closed_form(void **state)
 	struct stray_accum a;
 	struct stray_common_group g, masked_only;
 	void *mem = malloc(stray_accum_bytes(NPIX));
-	double total0 = 0.0, v_ind = 0.0;
+	double total0 = 0.0, v_ind = 0.0, m2_all = 0.0, dof_all = 0.0;
+	struct stray_accum_var v;
 	size_t i, k, sat = 5 * COLS + 9, hidden = 7 * COLS + 3;
 
 	(void)state;
@@ -223,14 +234,12 @@ static void test_totals_and_pixel_variance_closed_form(void **state)
 		assert_int_equal(stray_common_group_add(&g, d, &f, mask,
 			(double)k, NULL), STRAY_OK);
 	}
-	stray_common_group_finish(&g, &a, mask);
+	finish(&g, &a, mask);
+	stray_accum_var_sums(&a, mask, &v);
 	for (i = 0; i < NPIX; i++) {
 		double x[3], mean = 0.0, ss = 0.0;
 		size_t n = 0;
 
-		if (mask[i] != STRAY_PIX_OK)
-			continue;
-		total0 += (pix[0][i] - 100.0) / 0.1;
 		for (k = 0; k < 3; k++)
 			if (pix[k][i] < 4095)
 				x[n++] = (pix[k][i] - 100.0) / 0.1;
@@ -238,11 +247,18 @@ static void test_totals_and_pixel_variance_closed_form(void **state)
 			mean += x[k] / (double)n;
 		for (k = 0; k < n; k++)
 			ss += (x[k] - mean) * (x[k] - mean);
+		m2_all += ss;		/* masked or not: the pooled sums */
+		dof_all += (double)(n - 1);
+		if (mask[i] != STRAY_PIX_OK)
+			continue;
+		total0 += (pix[0][i] - 100.0) / 0.1;
 		v_ind += ss / (double)(n - 1);
 	}
 	assert_int_equal(a.n[sat], 2);
 	assert_near(g.s0, total0, 1e-9 * total0);	/* frame 0's total */
 	assert_near(g.v_ind, v_ind, 1e-5 * v_ind);
+	assert_near(v.m2, m2_all, 1e-5 * m2_all);
+	assert_true(v.dof == dof_all);
 	assert_int_equal(g.incomplete, 1);
 	/* saturated samples under the mask, one in each column phase: the
 	 * group stays complete */
@@ -291,8 +307,8 @@ static void test_wide_rows_without_mask(void **state)
 		assert_int_equal(stray_common_group_add(&all, d, &f, clear,
 			(double)k, NULL), STRAY_OK);
 	}
-	stray_common_group_finish(&none, &a, NULL);
-	stray_common_group_finish(&all, &a, clear);
+	finish(&none, &a, NULL);
+	finish(&all, &a, clear);
 	for (i = 0; i < WN; i++) {
 		double d1 = 3.0 * (double)(i % 2) / 0.1;	/* steps */
 

@@ -39,11 +39,11 @@ int stray_common_group_add(struct stray_common_group *g,
 			   const struct stray_frame *f, const uint8_t *mask,
 			   double x, struct stray_error *err);
 
-/* Close a group with its accumulator (the same frames): what
+/* Close a group with the variance sums of its accumulator (the same
+ * frames and mask: stray_accum_var_sums, or a response's var[]): what
  * independent pixels give to the scatter of its totals. */
 void stray_common_group_finish(struct stray_common_group *g,
-			       const struct stray_accum *a,
-			       const uint8_t *mask);
+			       const struct stray_accum_var *v);
 
 /* The mean total of a closed group. */
 double stray_common_group_mean(const struct stray_common_group *g);

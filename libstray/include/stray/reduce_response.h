@@ -47,6 +47,19 @@ void stray_accum_reset(struct stray_accum *a);
 int stray_accum_add(struct stray_accum *a, const struct stray_dark_model *d,
 		    const struct stray_frame *f, struct stray_error *err);
 
+/* An accumulator's variance sums: m2 and n - 1 over its pixels with
+ * repeats (n >= 2), whose ratio is the single-frame variance pooled over
+ * pixels, and m2 / (n - 1) over those of them a mask keeps: the pixels'
+ * own variances summed over the frame (reduce_common.h's v_ind). */
+struct stray_accum_var {
+	double m2, dof;
+	double kept_var;
+};
+
+/* One pass over a's pixels; mask may be NULL (every pixel kept). */
+void stray_accum_var_sums(const struct stray_accum *a, const uint8_t *mask,
+			  struct stray_accum_var *v);
+
 struct stray_response_opts {
 	int row_filter;		/* 3-pixel row-neighbour mean (§3.2) */
 };
@@ -61,6 +74,7 @@ struct stray_response_sums {
 	double var_power;	/* its variance (noise + dark levels) */
 	double mean;		/* eq. 3.13: P / n_ppi */
 	double sigma;		/* eq. 3.14: image standard deviation */
+	struct stray_accum_var var[2];	/* of FULL [0] and AMBIENT [1] */
 };
 
 /*
