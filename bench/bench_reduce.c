@@ -20,7 +20,8 @@
 #define ROWS 1944
 #define COLS 2592
 #define RUNS 3
-#define ANGLES 4		/* 2 darks, then 2 FULL + 2 AMBIENT a visit */
+#define ANGLES 4		/* 2 darks, then 3 FULL + 3 AMBIENT a visit */
+#define REPEATS 3		/* frames averaged per group (thesis §3.2) */
 #define STREAM_BYTES ((size_t)256 << 20)	/* 8x the L3 of this VM */
 
 static double now_s(void)
@@ -171,7 +172,7 @@ int main(void)
 	c.n_cols = COLS;
 	c.n_angles = ANGLES;
 	c.revisit = 0;
-	c.repeats = 2;
+	c.repeats = REPEATS;
 	c.darks_per_exp = 2;
 	c.ghosts = 0;
 	if (synth_write_sweep(dir, &c, &truth) != 0)
