@@ -89,10 +89,7 @@ static inline void welford_usual(float *restrict mean, float *restrict m2,
  * arithmetic pixel by pixel, without branches, four columns (one Bayer
  * period) a step, so the loop vectorises.
  */
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-/* wider vectors where the CPU has AVX2 (chosen at load time) */
-__attribute__((target_clones("avx2", "default")))
-#endif
+STRAY_VECTOR_CLONES
 static void welford_usual_row(float *restrict mean, float *restrict m2,
 			      uint16_t *restrict nn,
 			      const uint16_t *restrict row, size_t n_cols,
@@ -181,9 +178,7 @@ int stray_accum_add(struct stray_accum *a, const struct stray_dark_model *d,
  * kept and seen in all nf frames add their m2 to usual[] (counted in
  * *n_usual); the others go pixel by pixel to all[], dof[] and kept[].
  */
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+STRAY_VECTOR_CLONES
 static void var_piece(const float *restrict m2, const uint16_t *restrict n,
 		      const uint8_t *restrict m, size_t n_pix, unsigned nf,
 		      double *restrict usual, size_t *n_usual,

@@ -19,9 +19,7 @@ void stray_common_group_reset(struct stray_common_group *g)
  * in integers, the levels taken off once per phase.  *sat is set when
  * an unmasked sample is saturated.
  */
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+STRAY_VECTOR_CLONES
 static double row_total(const uint16_t *restrict row,
 			const uint8_t *restrict m, size_t n_cols,
 			const double *lvl, int sat_at, int *sat)

@@ -17,6 +17,14 @@
 
 #define STRAY_LANES 8
 
+/* A hot loop built twice, for AVX2 and for the baseline x86-64, the CPU's
+ * chosen when the program loads (GCC's function multi-versioning). */
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+#define STRAY_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define STRAY_VECTOR_CLONES
+#endif
+
 static inline double stray_lanes_total(const double *lane)
 {
 	double s = 0.0;

@@ -132,9 +132,7 @@ static void usual_var(const struct stray_accum *a, double pooled, double *cm,
 
 /* Whether pixels [i, i + n) are all unmasked and seen in every frame of
  * both groups (an OR over the row the compiler vectorises). */
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+STRAY_VECTOR_CLONES
 static int usual_pixels(const struct stray_accum *full,
 			const struct stray_accum *amb, const uint8_t *mask,
 			size_t i, size_t n)
@@ -153,9 +151,7 @@ static int usual_pixels(const struct stray_accum *full,
 }
 
 /* eq. 3.6 over a usual row: J_i and its variance, without branches. */
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+STRAY_VECTOR_CLONES
 static void usual_j(const float *restrict fm, const float *restrict fm2,
 		    const float *restrict am, const float *restrict am2,
 		    size_t n, const double *coef, float *restrict j,
@@ -208,12 +204,16 @@ static size_t j_row(const struct stray_accum *full, const struct stray_accum *am
 	return invalid;
 }
 
+/* A variance as fill_row left it: filled pixels (var_j <= -1) take
+ * their neighbours' variance, var_j -(v + 1); unfilled ones 0. */
+static inline float filled_var(float v)
+{
+	return v >= 0.0f ? v : v <= -1.0f ? -v - 1.0f : 0.0f;
+}
+
 /* eq. 3.9 over one row, into lanes: P = sum_i J_i and the sum of
- * var J_i; filled pixels (var_j <= -1) take their neighbours' variance,
- * var_j -(v + 1). */
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+ * var J_i. */
+STRAY_VECTOR_CLONES
 static void power_row(const float *restrict j, float *restrict var_j,
 		      size_t n, double *restrict lp, double *restrict lv)
 {
@@ -221,27 +221,19 @@ static void power_row(const float *restrict j, float *restrict var_j,
 
 	for (i = 0; i + STRAY_LANES <= n; i += STRAY_LANES)
 		for (k = 0; k < STRAY_LANES; k++) {
-			float v = var_j[i + k];
-
-			v = v >= 0.0f ? v : v <= -1.0f ? -v - 1.0f : 0.0f;
-			var_j[i + k] = v;
+			var_j[i + k] = filled_var(var_j[i + k]);
 			lp[k] += j[i + k];
-			lv[k] += v;
+			lv[k] += var_j[i + k];
 		}
 	for (k = 0; i < n; i++, k++) {
-		float v = var_j[i];
-
-		v = v >= 0.0f ? v : v <= -1.0f ? -v - 1.0f : 0.0f;
-		var_j[i] = v;
+		var_j[i] = filled_var(var_j[i]);
 		lp[k] += j[i];
-		lv[k] += v;
+		lv[k] += var_j[i];
 	}
 }
 
 /* sum_i (J_i - mean)^2, for eq. 3.14 */
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+STRAY_VECTOR_CLONES
 static double spread(const float *j, size_t n, double mean)
 {
 	double l[STRAY_LANES] = { 0 };
