@@ -1,10 +1,12 @@
 /*
  * test_diag_beams.c - the pivot-offset nodes of one geometry traced in
  * one pass (diagnose/trace_beams.c) are, bit for bit, full re-traces of
- * each node with the unshifted beam's guide: the same path rows, direct
- * shares and batch covariance as re-tracing the shifted scene alone.  A
- * knife-edge x pivot-offset grid node, as the bench's combinations ask.
- * The comparison can fail: the shifted node differs from the unshifted
+ * each node with the pass's guide: the same path rows, direct shares and
+ * batch covariance as re-tracing the shifted scene alone.  A knife-edge
+ * x pivot-offset grid node, as the bench's combinations ask.  The
+ * comparison can fail (a node's shift 20 % off, two directions made to
+ * share a ray, or one node's path rows of one angle given to the next,
+ * each fail it); the shifted node differs from the unshifted
  * one, and a re-trace with its own pilot's guide agrees only within the
  * Monte Carlo error (checked at 5 sigma).  Small traces: runs under the
  * sanitizers too.
@@ -128,54 +130,72 @@ static void assert_same_trace(const struct diag_trace *a,
 	assert_memory_equal(&a->base_rho, &b->base_rho, sizeof(a->base_rho));
 }
 
-/* The guide of the unshifted beam at the node's geometry. */
-static struct tracer_guide *unshifted_guide(struct diag_eval *e,
-					    const struct diag_trace *t)
+/* The pass's guide: the pilot of the unshifted scene with every angle
+ * repeated once per node of the pass (the cache holds them in the
+ * pass's order), each with its node's beam shift. */
+static struct tracer_guide *pass_guide(struct diag_eval *e,
+				       const struct diag_trace *t)
 {
 	struct diag_scene ds;
 	struct tracer_trace_opts o;
 	struct tracer_guide *g;
 	struct stray_error err;
-	double geo[DIAG_GEO_N];
+	double geo[DIAG_GEO_N], *th, *dz;
+	size_t K = e->n_cache, i, k;
 
+	th = malloc(t->n_theta * K * sizeof(*th));
+	dz = malloc(t->n_theta * K * sizeof(*dz));
+	assert_non_null(th);
+	assert_non_null(dz);
+	for (i = 0; i < t->n_theta; i++)
+		for (k = 0; k < K; k++) {
+			th[i * K + k] = t->theta[i];
+			dz[i * K + k] = e->cache[k]->geo[DIAG_GEO_PIVOT];
+		}
 	key(geo, NAN);
 	stray_error_clear(&err);
 	assert_int_equal(diag_scene_build(e, geo, &ds, &err), 0);
 	diag_trace_opts(e, t, &ds, &o);
+	o.theta_deg = th;
+	o.n_theta = t->n_theta * K;
+	o.beam_shift_z = dz;
 	g = guide_of(&ds, &o);
 	diag_scene_free(&ds);
+	free(th);
+	free(dz);
 	return g;
 }
 
 static void test_pivot_nodes_are_full_retraces(void **state)
 {
-	static const double nodes[] = { 3.0, 20.0, 1.0 };
 	struct diag_eval e;
 	struct stray_error err;
-	struct tracer_guide *g = NULL;
-	size_t i, traces = 0;
+	struct tracer_guide *g;
+	const struct diag_trace *t;
+	double geo[DIAG_GEO_N];
+	size_t k;
 
 	(void)state;
 	eval_init(&e);
 	stray_error_clear(&err);
-	for (i = 0; i < sizeof(nodes) / sizeof(nodes[0]); i++) {
-		const struct diag_trace *t;
+	key(geo, 3.0);
+	assert_int_equal(diag_trace_get(&e, geo, 0, &t, &err), 0);
+	/* one pass for every node of the axis but the nominal one */
+	assert_int_equal(e.n_traces, 1);
+	assert_int_equal(e.n_cache, 8);
+	g = pass_guide(&e, t);
+	for (k = 0; k < e.n_cache; k++) {
 		struct diag_trace ref;
 		struct tracer_result r;
-		double geo[DIAG_GEO_N];
 
-		key(geo, nodes[i]);
+		key(geo, e.cache[k]->geo[DIAG_GEO_PIVOT]);
 		assert_int_equal(diag_trace_get(&e, geo, 0, &t, &err), 0);
-		if (i == 0) {	/* one pass for every node of the axis */
-			traces = e.n_traces;
-			assert_int_equal(traces, 1);
-			g = unshifted_guide(&e, t);
-		}
-		assert_int_equal(e.n_traces, traces);
+		assert_ptr_equal(t, e.cache[k]);
 		full_retrace(&e, t, g, &ref, &r);
 		assert_same_trace(t, &ref, e.n);
 		ref_free(&ref, &r);
 	}
+	assert_int_equal(e.n_traces, 1);
 	free(g);
 	diag_eval_free(&e);
 }
