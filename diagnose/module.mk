@@ -28,19 +28,22 @@ TOOLS_LDLIBS := $(DIAG_LIB) $(TOOLS_LDLIBS)
 # Hidden-effect tests: a truth generator (tests/diagnose/truth.c, calls
 # the tracer with its own seed) writes "measured" curves, the tests run
 # build/bin/stray diagnose on them.  Minutes under ASan: TESTS_SLOW.
-# test_diag_errors (bad input, no tracing) and test_diag_runner (the
-# library's public headers with a runner of its own, small traces) run in
-# both passes.
+# test_diag_errors (bad input, no tracing), test_diag_runner (the
+# library's public headers with a runner of its own, small traces) and
+# test_diag_beams (pivot-offset nodes in one pass = full re-traces, small
+# traces) run in both passes.
 DIAG_TRUTH := $(B)/obj/tests/diagnose/truth.o
 DIAG_TESTS := $(patsubst tests/diagnose/%.c,$(B)/tests/diagnose/%,\
 	$(wildcard tests/diagnose/test_*.c))
 DIAG_TESTS_FAST := $(B)/tests/diagnose/test_diag_errors \
-	$(B)/tests/diagnose/test_diag_runner
+	$(B)/tests/diagnose/test_diag_runner $(B)/tests/diagnose/test_diag_beams
 TESTS += $(DIAG_TESTS_FAST)
 TESTS_SLOW += $(filter-out $(DIAG_TESTS_FAST),$(DIAG_TESTS))
 
 $(B)/obj/tests/diagnose/%.o: EXTRA_CFLAGS += -Itests -Itests/diagnose \
 	$(DIAG_CFLAGS) -I/usr/include/cjson
+# test_diag_beams checks the trace cache's internals (trace_cache.h)
+$(B)/obj/tests/diagnose/test_diag_beams.o: EXTRA_CFLAGS += -Idiagnose
 
 $(B)/tests/diagnose/%: $(B)/obj/tests/diagnose/%.o $(DIAG_TRUTH) \
 		$(DIAG_LIB) $(TRACER_LIB) $(STRAY_LIB) $(STRAY_BIN)

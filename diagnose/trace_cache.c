@@ -210,58 +210,87 @@ static int batch_covariance(const struct diag_eval *e, struct diag_trace *t,
 	return STRAY_OK;
 }
 
-static int trace_geometry(struct diag_eval *e, struct diag_trace *t,
-			  struct stray_error *err)
+int diag_scene_build(const struct diag_eval *e, const double *geo,
+		     struct diag_scene *ds, struct stray_error *err)
 {
-	char buf[3][64];
-	const char *sets[DIAG_SETS_MAX + 3];
-	struct tracer_scene s;
-	struct tracer_trace_opts o;
-	struct tracer_result r;
-	int n = geometry_sets(e, t->geo, buf, sets), rc;
+	int n = geometry_sets(e, geo, ds->buf, ds->sets), rc;
+	struct tracer_scene_spec spec = { e->scene, ds->sets, n, e->lens,
+					  0.0, 0.0 };
 
 	/* the ABg lobe (cause_abg_scatter.c) and the beam axis through the
 	 * pivot (cause_pivot_offset.c) are edits after loading: in the spec
 	 * too, so that stray-mpi's ranks build this scene */
-	struct tracer_scene_spec spec = { e->scene, sets, n, e->lens,
-					  0.0, 0.0 };
-	struct tracer_lens lens = { 0, NULL, NULL };	/* system curve */
+	if (!isnan(geo[DIAG_GEO_ABG_G]) && geo[DIAG_GEO_ABG_G] > 0.0)
+		spec.abg_g = geo[DIAG_GEO_ABG_G];
+	if (!isnan(geo[DIAG_GEO_PIVOT]))
+		spec.beam_shift_z = geo[DIAG_GEO_PIVOT];
+	ds->spec = spec;
+	ds->lens.n = 0;
+	ds->lens.theta_deg = ds->lens.t = NULL;
+	tracer_scene_init(&ds->s);
+	rc = tracer_scene_load(e->scene, ds->sets, n, &ds->s, err);
+	if (!rc && e->lens)	/* system curve */
+		rc = tracer_lens_load(e->lens, &ds->lens, err);
+	if (!rc)
+		tracer_scene_spec_edit(&ds->spec, &ds->s);
+	if (!rc)
+		rc = tracer_scene_commit(&ds->s, err);
+	return rc;
+}
 
-	if (!isnan(t->geo[DIAG_GEO_ABG_G]) && t->geo[DIAG_GEO_ABG_G] > 0.0)
-		spec.abg_g = t->geo[DIAG_GEO_ABG_G];
-	if (!isnan(t->geo[DIAG_GEO_PIVOT]))
-		spec.beam_shift_z = t->geo[DIAG_GEO_PIVOT];
+void diag_scene_free(struct diag_scene *ds)
+{
+	tracer_scene_free(&ds->s);
+	tracer_lens_free(&ds->lens);
+}
+
+void diag_trace_opts(const struct diag_eval *e, const struct diag_trace *t,
+		     const struct diag_scene *ds, struct tracer_trace_opts *o)
+{
+	tracer_trace_defaults(o);
+	o->theta_deg = t->theta;
+	o->n_theta = t->n_theta;
+	o->n_paths = t->fine ? (e->n_paths + 3) / 4 : e->n_paths;
+	o->seed = e->seed;
+	o->threads = e->threads;
+	o->record_paths = 1;
+	o->lens = e->lens ? &ds->lens : NULL;
+}
+
+int diag_trace_fill(struct diag_eval *e, struct diag_trace *t,
+		    const struct tracer_result *r, const struct tracer_scene *s,
+		    struct stray_error *err)
+{
+	int rc;
+
+	direct_share(t, r);
+	rc = reduce_paths(t, r, s, err);
+	if (!rc)
+		rc = batch_covariance(e, t, r, err);
+	return rc;
+}
+
+static int trace_geometry(struct diag_eval *e, struct diag_trace *t,
+			  struct stray_error *err)
+{
+	struct diag_scene ds;
+	struct tracer_trace_opts o;
+	struct tracer_result r;
+	int rc;
+
 	memset(&r, 0, sizeof(r));
-	tracer_scene_init(&s);
-	rc = tracer_scene_load(e->scene, sets, n, &s, err);
-	if (!rc && e->lens)
-		rc = tracer_lens_load(e->lens, &lens, err);
-	if (!rc)
-		tracer_scene_spec_edit(&spec, &s);
-	if (!rc)
-		rc = tracer_scene_commit(&s, err);
+	rc = diag_scene_build(e, t->geo, &ds, err);
 	if (!rc) {
-		tracer_trace_defaults(&o);
-		o.theta_deg = t->theta;
-		o.n_theta = t->n_theta;
-		o.n_paths = t->fine ? (e->n_paths + 3) / 4 : e->n_paths;
-		o.seed = e->seed;
-		o.threads = e->threads;
-		o.record_paths = 1;
-		o.lens = e->lens ? &lens : NULL;
-		rc = tracer_run(e->runner, &spec, &s, &o, &r, err);
+		diag_trace_opts(e, t, &ds, &o);
+		rc = tracer_run(e->runner, &ds.spec, &ds.s, &o, &r, err);
 	}
 	if (!rc) {
 		e->trace_seconds += r.seconds;
 		e->n_traces++;
-		direct_share(t, &r);
-		rc = reduce_paths(t, &r, &s, err);
+		rc = diag_trace_fill(e, t, &r, &ds.s, err);
 	}
-	if (!rc)
-		rc = batch_covariance(e, t, &r, err);
 	tracer_result_free(&r);
-	tracer_scene_free(&s);
-	tracer_lens_free(&lens);
+	diag_scene_free(&ds);
 	return rc;
 }
 
@@ -354,29 +383,44 @@ static int same_key(const double *a, const double *b)
 	return 1;
 }
 
-int diag_trace_get(struct diag_eval *e, const double *geo, int fine,
-		   const struct diag_trace **out, struct stray_error *err)
+static const struct diag_trace *cached(const struct diag_eval *e,
+				       const double *geo, int fine)
 {
-	struct diag_trace *t;
 	size_t i;
-	int rc;
 
 	for (i = 0; i < e->n_cache; i++)
-		if (e->cache[i]->fine == fine && same_key(e->cache[i]->geo, geo)) {
-			*out = e->cache[i];
-			return STRAY_OK;
-		}
-	if (e->n_cache == e->cap_cache) {
-		size_t cap = e->cap_cache ? 2 * e->cap_cache : 16;
-		struct diag_trace **c = realloc(e->cache, cap * sizeof(*c));
+		if (e->cache[i]->fine == fine && same_key(e->cache[i]->geo, geo))
+			return e->cache[i];
+	return NULL;
+}
 
-		if (!c)
-			return stray_error_set(err, STRAY_ENOMEM, "diagnose",
-					       "out of memory");
-		e->cache = c;
-		e->cap_cache = cap;
-	}
-	t = calloc(1, sizeof(*t));
+static int cache_room(struct diag_eval *e, size_t more,
+		      struct stray_error *err)
+{
+	size_t cap = e->cap_cache ? e->cap_cache : 16;
+	struct diag_trace **c;
+
+	while (cap < e->n_cache + more)
+		cap *= 2;
+	if (cap == e->cap_cache)
+		return STRAY_OK;
+	c = realloc(e->cache, cap * sizeof(*c));
+	if (!c)
+		return stray_error_set(err, STRAY_ENOMEM, "diagnose",
+				       "out of memory");
+	e->cache = c;
+	e->cap_cache = cap;
+	return STRAY_OK;
+}
+
+/* A trace of geometry geo with its angles set, not yet traced. */
+static int new_trace(const struct diag_eval *e, const double *geo, int fine,
+		     struct diag_trace **out, struct stray_error *err)
+{
+	struct diag_trace *t = calloc(1, sizeof(*t));
+	int rc;
+
+	*out = t;
 	if (!t)
 		return stray_error_set(err, STRAY_ENOMEM, "diagnose",
 				       "out of memory");
@@ -389,6 +433,77 @@ int diag_trace_get(struct diag_eval *e, const double *geo, int fine,
 			rc = stray_error_set(err, STRAY_ENOMEM, "diagnose",
 					     "out of memory");
 	}
+	return rc;
+}
+
+static const struct diag_cause *pivot_cause(void)
+{
+	int i;
+
+	for (i = 0; diag_causes[i]; i++)
+		if (diag_causes[i]->kind == DIAG_RETRACE &&
+		    diag_causes[i]->geo_axis == DIAG_GEO_PIVOT)
+			return diag_causes[i];
+	return NULL;
+}
+
+/*
+ * A pivot-offset node: it and every other node of the pivot axis at the
+ * same geometry not traced yet, in one pass (trace_beams.c).  The fit
+ * of the pivot axis asks for its nodes in turn, so they are all used.
+ */
+static int trace_pivot_nodes(struct diag_eval *e, const double *geo,
+			     struct stray_error *err)
+{
+	const struct diag_cause *c = pivot_cause();
+	struct diag_trace *ts[DIAG_PIVOT_NODES_MAX + 1];
+	double key[DIAG_GEO_N];
+	size_t K = 0, k;
+	int i, rc = STRAY_OK;
+
+	memcpy(key, geo, sizeof(key));
+	for (i = -1; c && i < c->n_nodes && !rc; i++) {
+		double v = i < 0 ? geo[DIAG_GEO_PIVOT] : c->nodes[i];
+
+		if (i >= 0 && (v == c->param[0].nominal ||
+			       v == geo[DIAG_GEO_PIVOT] ||
+			       K > DIAG_PIVOT_NODES_MAX))
+			continue;
+		key[DIAG_GEO_PIVOT] = v;
+		if (cached(e, key, 0))
+			continue;
+		rc = new_trace(e, key, 0, &ts[K++], err);
+	}
+	if (!rc)
+		rc = cache_room(e, K, err);
+	if (!rc)
+		rc = diag_trace_beams(e, ts, K, err);
+	for (k = 0; k < K; k++) {
+		if (rc)
+			trace_free(ts[k]);
+		else
+			e->cache[e->n_cache++] = ts[k];
+	}
+	return rc;
+}
+
+int diag_trace_get(struct diag_eval *e, const double *geo, int fine,
+		   const struct diag_trace **out, struct stray_error *err)
+{
+	struct diag_trace *t = NULL;
+	int rc;
+
+	*out = cached(e, geo, fine);
+	if (*out)
+		return STRAY_OK;
+	if (!fine && !isnan(geo[DIAG_GEO_PIVOT])) {
+		rc = trace_pivot_nodes(e, geo, err);
+		*out = rc ? NULL : cached(e, geo, fine);
+		return rc;
+	}
+	rc = cache_room(e, 1, err);
+	if (!rc)
+		rc = new_trace(e, geo, fine, &t, err);
 	if (!rc)
 		rc = trace_geometry(e, t, err);
 	if (rc) {

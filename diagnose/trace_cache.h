@@ -7,6 +7,10 @@
 #define DIAGNOSE_TRACE_CACHE_H
 
 #include "diagnose/diag_eval.h"
+#include "tracer/detector.h"
+#include "tracer/integrator.h"
+#include "tracer/runner.h"
+#include "tracer/scene.h"
 
 struct diag_trace {
 	double geo[DIAG_GEO_N];	/* the key; NaN: the scene's own */
@@ -24,7 +28,40 @@ struct diag_trace {
 	double *v, *var;
 };
 
-/* The cached trace of a geometry (traced on first use). */
+/* A geometry's scene as the trace cache builds it: --set list, the
+ * runner's description (its edits), the scene and the lens table.  The
+ * spec points into the struct: build it in place, do not copy it. */
+struct diag_scene {
+	char buf[3][64];
+	const char *sets[DIAG_SETS_MAX + 3];
+	struct tracer_scene_spec spec;
+	struct tracer_scene s;
+	struct tracer_lens lens;
+};
+
+int diag_scene_build(const struct diag_eval *e, const double *geo,
+		     struct diag_scene *ds, struct stray_error *err);
+void diag_scene_free(struct diag_scene *ds);
+
+/* The options every trace of the cache uses (t's angles and paths). */
+void diag_trace_opts(const struct diag_eval *e, const struct diag_trace *t,
+		     const struct diag_scene *ds, struct tracer_trace_opts *o);
+
+/* t's tables (direct share, path rows, covariance) from a trace r of
+ * scene s at t's angles. */
+int diag_trace_fill(struct diag_eval *e, struct diag_trace *t,
+		    const struct tracer_result *r, const struct tracer_scene *s,
+		    struct stray_error *err);
+
+/* The pivot-offset nodes of one geometry traced in one pass
+ * (trace_beams.c): ts[0..K) set up by the cache, the same geometry but
+ * for their DIAG_GEO_PIVOT. */
+#define DIAG_PIVOT_NODES_MAX 16
+int diag_trace_beams(struct diag_eval *e, struct diag_trace **ts, size_t K,
+		     struct stray_error *err);
+
+/* The cached trace of a geometry (traced on first use; a pivot-offset
+ * node with every other node of its axis at that geometry). */
 int diag_trace_get(struct diag_eval *e, const double *geo, int fine,
 		   const struct diag_trace **out, struct stray_error *err);
 void diag_trace_cache_free(struct diag_eval *e);

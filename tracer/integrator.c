@@ -123,21 +123,58 @@ static void screen(const struct worker_ctx *w, const double *ok,
 {
 	const struct tracer_beam *b = &w->s->beam;
 	const double *restrict dx = w->dir_x + j0, *restrict dy = w->dir_y + j0,
-		     *restrict dz = w->dir_z + j0, *restrict okj = ok + j0;
-	struct vec3 v = v3_sub(b->center, p);
-	double l2 = v3_dot(v, v), r2;
+		     *restrict dz = w->dir_z + j0, *restrict okj = ok + j0,
+		     *restrict cx = w->beam_cx + j0, *restrict cy = w->beam_cy + j0,
+		     *restrict cz = w->beam_cz + j0;
+	double R2 = b->radius_mm * b->radius_mm * (1.0 + 1e-6) + 1e-9;
 	double nx = n ? n->x : 0.0, ny = n ? n->y : 0.0, nz = n ? n->z : 0.0;
 	double nmin = n ? -1e-9 : -1.0, *restrict kp = keep;
 	size_t k;
 
-	r2 = b->radius_mm * b->radius_mm * (1.0 + 1e-6) + 1e-9 * l2 + 1e-9;
 	for (k = 0; k < m; k++) {
-		double a = dx[k] * v.x + dy[k] * v.y + dz[k] * v.z;
+		/* v: p to the angle's beam centre (one centre unless
+		 * opts.beam_shift_z moves it per angle) */
+		double vx = cx[k] - p.x, vy = cy[k] - p.y, vz = cz[k] - p.z;
+		double l2 = vx * vx + vy * vy + vz * vz;
+		double a = dx[k] * vx + dy[k] * vy + dz[k] * vz;
 		double cn = dx[k] * nx + dy[k] * ny + dz[k] * nz, okk = okj[k];
 
 		/* branch-free, so the loop vectorises */
-		kp[k] = (l2 - a * a <= r2) & (cn > nmin) ? okk : 0.0;
+		kp[k] = (l2 - a * a <= R2 + 1e-9 * l2) & (cn > nmin) ? okk :
+			0.0;
 	}
+}
+
+/* tracer_beam_covers with angle j's beam (its own centre with
+ * opts.beam_shift_z). */
+static bool covers(const struct worker_ctx *w, size_t j, struct vec3 d,
+		   struct vec3 p)
+{
+	struct tracer_beam b = w->s->beam;
+
+	if (!w->o->beam_shift_z)
+		return tracer_beam_covers(&b, d, p);
+	b.center = v3(w->beam_cx[j], w->beam_cy[j], w->beam_cz[j]);
+	return tracer_beam_covers(&b, d, p);
+}
+
+/*
+ * Candidate k of a fan takes the shadow ray of candidate k - 1 when both
+ * point the same way (an angle repeated with another beam centre, laid
+ * out next to each other): one ray, the same answer.  Returns the
+ * number of distinct rays so far.
+ */
+static size_t share_ray(const struct vec3 *dirs, size_t n, size_t n_u,
+			struct vec3 d, struct vec3 *u_dirs, size_t *u_of)
+{
+	if (n > 0 && dirs[n - 1].x == d.x && dirs[n - 1].y == d.y &&
+	    dirs[n - 1].z == d.z) {
+		u_of[n] = u_of[n - 1];
+		return n_u;
+	}
+	u_dirs[n_u] = d;
+	u_of[n] = n_u;
+	return n_u + 1;
 }
 
 /* Direct light: the detector point connected to each source angle. */
@@ -146,8 +183,9 @@ static void connect_direct(struct worker_ctx *w, struct path_state *ps,
 {
 	const struct tracer_scene *s = w->s;
 	struct vec3 o = tracer_offset_origin(x, s->det.normal), dirs[FAN];
+	struct vec3 u_dirs[FAN];
 	double cs[FAN];
-	size_t jj[FAN], j0, n = 0, k, nt = w->o->n_theta;
+	size_t jj[FAN], u_of[FAN], j0, n = 0, n_u = 0, k, nt = w->o->n_theta;
 	unsigned char occ[FAN];
 	double keep[BLOCK];
 
@@ -160,22 +198,23 @@ static void connect_direct(struct worker_ctx *w, struct path_state *ps,
 			size_t j = j0 + k;
 			struct vec3 d = w->dir[j];
 
-			if (keep[k] == 0.0 || !tracer_beam_covers(&s->beam, d, x))
+			if (keep[k] == 0.0 || !covers(w, j, d, x))
 				continue;
+			n_u = share_ray(dirs, n, n_u, d, u_dirs, u_of);
 			jj[n] = j;
 			cs[n] = v3_dot(d, s->det.normal);
 			dirs[n++] = d;
 		}
 		if (n < BLOCK && j0 + m < nt)
 			continue;
-		ps->casts += n;
-		ps->connections += n;
-		tracer_scene_occluded_fan(s, o, dirs, n, occ);
+		ps->casts += n_u;
+		ps->connections += n_u;
+		tracer_scene_occluded_fan(s, o, u_dirs, n_u, occ);
 		for (k = 0; k < n; k++) {
 			size_t jk = jj[k];
 			double c = cs[k];
 
-			if (occ[k])
+			if (occ[u_of[k]])
 				continue;
 			if (w->o->lens)	/* else 1: no acos per ray */
 				c *= tracer_lens_transmission(w->o->lens,
@@ -187,7 +226,7 @@ static void connect_direct(struct worker_ctx *w, struct path_state *ps,
 				add_to_focal(w, ps, jk, c, tracer_focal_cell(
 					w->o->focal, &w->focal_frame, dirs[k]));
 		}
-		n = 0;
+		n = n_u = 0;
 	}
 }
 
@@ -203,9 +242,11 @@ static void connect_vertex(struct worker_ctx *w, struct path_state *ps,
 {
 	const struct tracer_scene *s = w->s;
 	struct vec3 o = tracer_offset_origin(h->p, h->ng), dirs[FAN];
+	struct vec3 u_dirs[FAN];
 	int order = depth < TRACER_ORDERS - 1 ? depth : TRACER_ORDERS - 1;
 	double cs[FAN];
-	size_t jj[FAN], j0, n = 0, k, nt = w->o->n_theta;
+	size_t jj[FAN], u_of[FAN], j0, n = 0, n_u = 0, k,
+	       nt = w->o->n_theta;
 	unsigned char occ[FAN];
 	double keep[BLOCK];
 
@@ -223,26 +264,26 @@ static void connect_vertex(struct worker_ctx *w, struct path_state *ps,
 			if (keep[k] == 0.0)
 				continue;
 			cos_d = v3_dot(d, h->ng);
-			if (cos_d <= 0.0 ||
-			    !tracer_beam_covers(&s->beam, d, h->p))
+			if (cos_d <= 0.0 || !covers(w, j, d, h->p))
 				continue;
 			fv = mat->ops->eval(mat, wo, frame_to_local(f, d));
 			if (fv <= 0.0)
 				continue;
+			n_u = share_ray(dirs, n, n_u, d, u_dirs, u_of);
 			jj[n] = j;
 			cs[n] = T * fv * cos_d;
 			dirs[n++] = d;
 		}
 		if (n < BLOCK && j0 + m < nt)
 			continue;
-		ps->casts += n;
-		ps->connections += n;
-		tracer_scene_occluded_fan(s, o, dirs, n, occ);
+		ps->casts += n_u;
+		ps->connections += n_u;
+		tracer_scene_occluded_fan(s, o, u_dirs, n_u, occ);
 		for (k = 0; k < n; k++) {
 			size_t jk = jj[k];
 			double c = cs[k];
 
-			if (occ[k])
+			if (occ[u_of[k]])
 				continue;
 			ps->acc[jk * TRACER_ORDERS + order] += c;
 			add_to_map(w, ps, jk, c);
@@ -255,7 +296,7 @@ static void connect_vertex(struct worker_ctx *w, struct path_state *ps,
 			}
 			record(ps, (uint32_t)jk, depth, c);
 		}
-		n = 0;
+		n = n_u = 0;
 	}
 }
 

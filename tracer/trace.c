@@ -46,6 +46,11 @@ static int check_opts(const struct tracer_scene *s,
 			return stray_error_set_value(err, STRAY_EINVAL,
 				"theta_deg", "must be in [0, 180]",
 				o->theta_deg[j]);
+	for (j = 0; o->beam_shift_z && j < o->n_theta; j++)
+		if (!isfinite(o->beam_shift_z[j]))
+			return stray_error_set_value(err, STRAY_EINVAL,
+				"beam_shift_z", "must be finite",
+				o->beam_shift_z[j]);
 	if (o->n_batches < 2 || o->n_paths < (uint64_t)o->n_batches)
 		return stray_error_set_value(err, STRAY_EINVAL, "rays",
 			"need at least one path per batch (and 2 batches)",
@@ -196,6 +201,19 @@ static int merge_tables(struct worker_ctx *w)
 	return rc;
 }
 
+/* The beam centre at angle j: the scene's, or moved back along the
+ * aperture normal by o->beam_shift_z[j] (the bits tracer_scene_spec_edit
+ * gives for the same shift). */
+static struct vec3 beam_center(const struct tracer_scene *s,
+			       const struct tracer_trace_opts *o, size_t j)
+{
+	const struct tracer_beam *b = &s->beam;
+
+	if (!o->beam_shift_z || o->beam_shift_z[j] == 0.0)
+		return b->center;
+	return v3_sub(b->center, v3_scale(b->normal, o->beam_shift_z[j]));
+}
+
 /* Batches [b0, b0 + nb) of a pass of o->n_paths paths; with a guide, or
  * filling pilot stats. */
 static int run_pass(const struct tracer_scene *s,
@@ -221,7 +239,7 @@ static int run_pass(const struct tracer_scene *s,
 	if (!rc)
 		rc = alloc_extras(s, o, res, &w.batch_maps);
 	w.dir = malloc(o->n_theta * sizeof(*w.dir));
-	w.dir_x = malloc(5 * o->n_theta * sizeof(*w.dir_x));
+	w.dir_x = malloc(8 * o->n_theta * sizeof(*w.dir_x));
 	w.batch_tables = calloc((size_t)o->n_batches, sizeof(*w.batch_tables));
 	if (rc || !w.dir || !w.dir_x || !w.batch_tables) {
 		rc = stray_error_set(err, STRAY_ENOMEM, "trace",
@@ -232,8 +250,12 @@ static int run_pass(const struct tracer_scene *s,
 	w.dir_z = w.dir_y + o->n_theta;
 	w.beam_ok = w.dir_z + o->n_theta;
 	w.direct_ok = w.beam_ok + o->n_theta;
+	w.beam_cx = w.direct_ok + o->n_theta;
+	w.beam_cy = w.beam_cx + o->n_theta;
+	w.beam_cz = w.beam_cy + o->n_theta;
 	for (j = 0; j < o->n_theta; j++) {
 		struct vec3 d = tracer_source_dir(o->theta_deg[j]);
+		struct vec3 c = beam_center(s, o, j);
 
 		w.dir[j] = d;
 		w.dir_x[j] = d.x;
@@ -245,6 +267,9 @@ static int run_pass(const struct tracer_scene *s,
 		w.direct_ok[j] = w.beam_ok[j] > 0.0 &&
 				 v3_dot(d, s->det.normal) > 0.0 &&
 				 tracer_detector_accepts(&s->det, d);
+		w.beam_cx[j] = c.x;
+		w.beam_cy[j] = c.y;
+		w.beam_cz[j] = c.z;
 	}
 	pthread_mutex_init(&w.lock, NULL);
 	run_workers(&w, o->threads);

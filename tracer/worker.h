@@ -18,6 +18,7 @@ struct worker_ctx {
 	double *dir_x, *dir_y, *dir_z;	/* the same, one array a component */
 	double *beam_ok;		/* 1: the source is in front of the aperture */
 	double *direct_ok;		/* 1: ... and the detector accepts it */
+	double *beam_cx, *beam_cy, *beam_cz;	/* beam centre per angle */
 	struct tracer_path_table *batch_tables;
 	double *batch_maps;		/* [batch][pixel] */
 	struct frame focal_frame;	/* the pupil's frame (focal cells) */

@@ -48,6 +48,14 @@ struct tracer_trace_opts {
 	double rr_weight;	/* survival = min(1, throughput / rr_weight) */
 	int max_depth;		/* hard bound on the loop (bias << sigma) */
 	const struct tracer_lens *lens;	/* NULL: no lens */
+	/* per angle, or NULL: that angle's beam centre moved back along
+	 * the aperture normal by this many mm, as tracer_scene_spec's
+	 * beam_shift_z moves it for every angle; so one pass traces several
+	 * beam positions as repeated angles that share the paths and the
+	 * shadow rays (the diagnosis's pivot-offset nodes).  In-process
+	 * only (tracer_trace, tracer_trace_batches): mpi/'s farm does not
+	 * carry it. */
+	const double *beam_shift_z;
 	int record_paths;	/* fill tracer_result.paths */
 	int guide;		/* pilot-guided detector directions (guide.h);
 				 * used from 10000 paths on (pilot: a tenth) */
