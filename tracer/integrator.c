@@ -117,9 +117,36 @@ static void dump_vertex(struct path_state *ps, struct vec3 p, int group)
 /* 4 doubles a lane where the CPU has AVX2 (chosen at load time) */
 __attribute__((target_clones("avx2", "default")))
 #endif
-static void screen(const struct worker_ctx *w, const double *ok,
-		   size_t j0, size_t m, struct vec3 p, const struct vec3 *n,
-		   double *keep)
+static void screen_one_beam(const struct worker_ctx *w, const double *ok,
+			    size_t j0, size_t m, struct vec3 p,
+			    const struct vec3 *n, double *keep)
+{
+	const struct tracer_beam *b = &w->s->beam;
+	const double *restrict dx = w->dir_x + j0, *restrict dy = w->dir_y + j0,
+		     *restrict dz = w->dir_z + j0, *restrict okj = ok + j0;
+	struct vec3 v = v3_sub(b->center, p);
+	double l2 = v3_dot(v, v), r2;
+	double nx = n ? n->x : 0.0, ny = n ? n->y : 0.0, nz = n ? n->z : 0.0;
+	double nmin = n ? -1e-9 : -1.0, *restrict kp = keep;
+	size_t k;
+
+	r2 = b->radius_mm * b->radius_mm * (1.0 + 1e-6) + 1e-9 * l2 + 1e-9;
+	for (k = 0; k < m; k++) {
+		double a = dx[k] * v.x + dy[k] * v.y + dz[k] * v.z;
+		double cn = dx[k] * nx + dy[k] * ny + dz[k] * nz, okk = okj[k];
+
+		/* branch-free, so the loop vectorises */
+		kp[k] = (l2 - a * a <= r2) & (cn > nmin) ? okk : 0.0;
+	}
+}
+
+/* The same with a beam centre per angle (opts.beam_shift_z). */
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+static void screen_shifted(const struct worker_ctx *w, const double *ok,
+			   size_t j0, size_t m, struct vec3 p,
+			   const struct vec3 *n, double *keep)
 {
 	const struct tracer_beam *b = &w->s->beam;
 	const double *restrict dx = w->dir_x + j0, *restrict dy = w->dir_y + j0,
@@ -132,17 +159,24 @@ static void screen(const struct worker_ctx *w, const double *ok,
 	size_t k;
 
 	for (k = 0; k < m; k++) {
-		/* v: p to the angle's beam centre (one centre unless
-		 * opts.beam_shift_z moves it per angle) */
+		/* v: p to the angle's beam centre */
 		double vx = cx[k] - p.x, vy = cy[k] - p.y, vz = cz[k] - p.z;
 		double l2 = vx * vx + vy * vy + vz * vz;
 		double a = dx[k] * vx + dy[k] * vy + dz[k] * vz;
 		double cn = dx[k] * nx + dy[k] * ny + dz[k] * nz, okk = okj[k];
 
-		/* branch-free, so the loop vectorises */
 		kp[k] = (l2 - a * a <= R2 + 1e-9 * l2) & (cn > nmin) ? okk :
 			0.0;
 	}
+}
+
+static void screen(const struct worker_ctx *w, const double *ok, size_t j0,
+		   size_t m, struct vec3 p, const struct vec3 *n, double *keep)
+{
+	if (w->o->beam_shift_z)
+		screen_shifted(w, ok, j0, m, p, n, keep);
+	else
+		screen_one_beam(w, ok, j0, m, p, n, keep);
 }
 
 /* tracer_beam_covers with angle j's beam (its own centre with
@@ -150,31 +184,39 @@ static void screen(const struct worker_ctx *w, const double *ok,
 static bool covers(const struct worker_ctx *w, size_t j, struct vec3 d,
 		   struct vec3 p)
 {
-	struct tracer_beam b = w->s->beam;
+	struct tracer_beam b;
 
 	if (!w->o->beam_shift_z)
-		return tracer_beam_covers(&b, d, p);
+		return tracer_beam_covers(&w->s->beam, d, p);
+	b = w->s->beam;
 	b.center = v3(w->beam_cx[j], w->beam_cy[j], w->beam_cz[j]);
 	return tracer_beam_covers(&b, d, p);
 }
 
 /*
- * Candidate k of a fan takes the shadow ray of candidate k - 1 when both
- * point the same way (an angle repeated with another beam centre, laid
- * out next to each other): one ray, the same answer.  Returns the
- * number of distinct rays so far.
+ * The shadow rays of a fan's n candidates: their own directions, or with
+ * beam shifts (an angle repeated with other beam centres, laid out side by
+ * side) one ray per run of equal directions, ray_of[k] candidate k's.
  */
-static size_t share_ray(const struct vec3 *dirs, size_t n, size_t n_u,
-			struct vec3 d, struct vec3 *u_dirs, size_t *u_of)
+static size_t fan_rays(const struct worker_ctx *w, const struct vec3 *dirs,
+		       size_t n, struct vec3 *u_dirs, size_t *ray_of,
+		       const struct vec3 **rays)
 {
-	if (n > 0 && dirs[n - 1].x == d.x && dirs[n - 1].y == d.y &&
-	    dirs[n - 1].z == d.z) {
-		u_of[n] = u_of[n - 1];
-		return n_u;
+	size_t k, n_u = 0;
+
+	*rays = dirs;
+	if (!w->o->beam_shift_z)
+		return n;
+	for (k = 0; k < n; k++) {
+		const struct vec3 *d = &dirs[k];
+
+		if (n_u == 0 || u_dirs[n_u - 1].x != d->x ||
+		    u_dirs[n_u - 1].y != d->y || u_dirs[n_u - 1].z != d->z)
+			u_dirs[n_u++] = *d;
+		ray_of[k] = n_u - 1;
 	}
-	u_dirs[n_u] = d;
-	u_of[n] = n_u;
-	return n_u + 1;
+	*rays = u_dirs;
+	return n_u;
 }
 
 /* Direct light: the detector point connected to each source angle. */
@@ -184,8 +226,9 @@ static void connect_direct(struct worker_ctx *w, struct path_state *ps,
 	const struct tracer_scene *s = w->s;
 	struct vec3 o = tracer_offset_origin(x, s->det.normal), dirs[FAN];
 	struct vec3 u_dirs[FAN];
+	const struct vec3 *rays;
 	double cs[FAN];
-	size_t jj[FAN], u_of[FAN], j0, n = 0, n_u = 0, k, nt = w->o->n_theta;
+	size_t jj[FAN], ray_of[FAN], j0, n = 0, n_u, k, nt = w->o->n_theta;
 	unsigned char occ[FAN];
 	double keep[BLOCK];
 
@@ -200,21 +243,21 @@ static void connect_direct(struct worker_ctx *w, struct path_state *ps,
 
 			if (keep[k] == 0.0 || !covers(w, j, d, x))
 				continue;
-			n_u = share_ray(dirs, n, n_u, d, u_dirs, u_of);
 			jj[n] = j;
 			cs[n] = v3_dot(d, s->det.normal);
 			dirs[n++] = d;
 		}
 		if (n < BLOCK && j0 + m < nt)
 			continue;
+		n_u = fan_rays(w, dirs, n, u_dirs, ray_of, &rays);
 		ps->casts += n_u;
 		ps->connections += n_u;
-		tracer_scene_occluded_fan(s, o, u_dirs, n_u, occ);
+		tracer_scene_occluded_fan(s, o, rays, n_u, occ);
 		for (k = 0; k < n; k++) {
 			size_t jk = jj[k];
 			double c = cs[k];
 
-			if (occ[u_of[k]])
+			if (occ[rays == dirs ? k : ray_of[k]])
 				continue;
 			if (w->o->lens)	/* else 1: no acos per ray */
 				c *= tracer_lens_transmission(w->o->lens,
@@ -226,7 +269,7 @@ static void connect_direct(struct worker_ctx *w, struct path_state *ps,
 				add_to_focal(w, ps, jk, c, tracer_focal_cell(
 					w->o->focal, &w->focal_frame, dirs[k]));
 		}
-		n = n_u = 0;
+		n = 0;
 	}
 }
 
@@ -243,10 +286,10 @@ static void connect_vertex(struct worker_ctx *w, struct path_state *ps,
 	const struct tracer_scene *s = w->s;
 	struct vec3 o = tracer_offset_origin(h->p, h->ng), dirs[FAN];
 	struct vec3 u_dirs[FAN];
+	const struct vec3 *rays;
 	int order = depth < TRACER_ORDERS - 1 ? depth : TRACER_ORDERS - 1;
 	double cs[FAN];
-	size_t jj[FAN], u_of[FAN], j0, n = 0, n_u = 0, k,
-	       nt = w->o->n_theta;
+	size_t jj[FAN], ray_of[FAN], j0, n = 0, n_u, k, nt = w->o->n_theta;
 	unsigned char occ[FAN];
 	double keep[BLOCK];
 
@@ -269,21 +312,21 @@ static void connect_vertex(struct worker_ctx *w, struct path_state *ps,
 			fv = mat->ops->eval(mat, wo, frame_to_local(f, d));
 			if (fv <= 0.0)
 				continue;
-			n_u = share_ray(dirs, n, n_u, d, u_dirs, u_of);
 			jj[n] = j;
 			cs[n] = T * fv * cos_d;
 			dirs[n++] = d;
 		}
 		if (n < BLOCK && j0 + m < nt)
 			continue;
+		n_u = fan_rays(w, dirs, n, u_dirs, ray_of, &rays);
 		ps->casts += n_u;
 		ps->connections += n_u;
-		tracer_scene_occluded_fan(s, o, u_dirs, n_u, occ);
+		tracer_scene_occluded_fan(s, o, rays, n_u, occ);
 		for (k = 0; k < n; k++) {
 			size_t jk = jj[k];
 			double c = cs[k];
 
-			if (occ[u_of[k]])
+			if (occ[rays == dirs ? k : ray_of[k]])
 				continue;
 			ps->acc[jk * TRACER_ORDERS + order] += c;
 			add_to_map(w, ps, jk, c);
@@ -296,7 +339,7 @@ static void connect_vertex(struct worker_ctx *w, struct path_state *ps,
 			}
 			record(ps, (uint32_t)jk, depth, c);
 		}
-		n = n_u = 0;
+		n = 0;
 	}
 }
 
