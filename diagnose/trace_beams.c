@@ -19,8 +19,9 @@
  * the nominal node's paths) samples the light of a shifted beam worse:
  * a hidden 3.5 mm offset (test_diag_geometry) was fitted with RMS 0.042
  * against 0.016 with this guide and 0.036 with one guide per node.
- * The pass runs in this process for any runner, so `stray-mpi diagnose`
- * gives the bits of `stray diagnose` (its other ranks wait meanwhile).
+ * The pass goes through the caller's runner like any trace (mpi/'s farm
+ * carries the shifts), so `stray-mpi diagnose` gives the bits of `stray
+ * diagnose`.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -28,7 +29,7 @@
 
 #include "trace_cache.h"
 #include "stray/errfmt.h"
-#include "tracer/batches.h"
+#include "tracer/runner.h"
 
 /* Node k's columns of a pass whose angle i * K + k is angle i at node k;
  * the path records become a plain list (read in sorted order only, by
@@ -71,42 +72,6 @@ static int cut_node(const struct tracer_result *m, size_t K, size_t k,
 	return STRAY_OK;
 }
 
-/* The guide tracer_trace(s, o) would build (NULL when it builds none),
- * and its pilot's seconds; o may repeat angles with beam shifts. */
-static int pilot_guide(const struct tracer_scene *s,
-		       const struct tracer_trace_opts *o,
-		       struct tracer_guide **g, double *seconds,
-		       struct stray_error *err)
-{
-	struct tracer_trace_opts po;
-	struct tracer_result pr;
-	double *s2;
-	int rc;
-
-	*g = NULL;
-	if (!tracer_pilot_wanted(o))
-		return STRAY_OK;
-	tracer_pilot_opts(o, &po);
-	s2 = calloc(TRACER_GUIDE_CELLS * o->n_theta * (size_t)po.n_batches,
-		    sizeof(*s2));
-	*g = malloc(sizeof(**g));
-	if (!s2 || !*g) {
-		free(s2);
-		return stray_error_set(err, STRAY_ENOMEM, "diagnose",
-				       "out of memory for the guide");
-	}
-	memset(&pr, 0, sizeof(pr));
-	rc = tracer_trace_batches(s, &po, NULL, 0, po.n_batches, s2, &pr,
-				  err);
-	if (!rc && tracer_guide_from_pilot(*g, &pr, s2))
-		rc = stray_error_set(err, STRAY_ENOMEM, "diagnose",
-				     "out of memory for the guide");
-	*seconds += pr.seconds;
-	tracer_result_free(&pr);
-	free(s2);
-	return rc;
-}
-
 /* The pass: angle i of the nodes' common list at node k is angle
  * i * K + k (a direction's repeats side by side share their ray). */
 static int run_nodes(struct diag_eval *e, struct diag_trace **ts, size_t K,
@@ -114,11 +79,9 @@ static int run_nodes(struct diag_eval *e, struct diag_trace **ts, size_t K,
 		     struct stray_error *err)
 {
 	struct tracer_trace_opts o;
-	struct tracer_guide *g = NULL;
 	size_t n = ts[0]->n_theta, i, k;
 	double *th = malloc(n * K * sizeof(*th)), *dz = malloc(n * K *
 							       sizeof(*dz));
-	double sec = 0.0;
 	int rc = th && dz ? STRAY_OK :
 		 stray_error_set(err, STRAY_ENOMEM, "diagnose", "out of memory");
 
@@ -131,16 +94,13 @@ static int run_nodes(struct diag_eval *e, struct diag_trace **ts, size_t K,
 	o.theta_deg = th;
 	o.n_theta = n * K;
 	o.beam_shift_z = dz;
-	if (!rc)	/* one guide for every node's beam */
-		rc = pilot_guide(&ds->s, &o, &g, &sec, err);
+	/* its pilot samples every node's beam: one guide for all */
 	if (!rc)
-		rc = tracer_trace_batches(&ds->s, &o, g, 0, o.n_batches, NULL,
-					  m, err);
+		rc = tracer_run(e->runner, &ds->spec, &ds->s, &o, m, err);
 	if (!rc) {
-		e->trace_seconds += sec + m->seconds;
+		e->trace_seconds += m->seconds;
 		e->n_traces++;
 	}
-	free(g);
 	free(th);
 	free(dz);
 	return rc;

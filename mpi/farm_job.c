@@ -16,6 +16,7 @@ struct job_head {
 	double beam_shift_z, abg_g;	/* the scene's edits after loading */
 	int32_t n_batches, rr_depth, max_depth, guide;
 	int32_t n_theta, n_sets, has_lens, record_paths;
+	int32_t has_shifts;	/* opts.beam_shift_z follows theta_deg */
 };
 
 static size_t str_size(const char *s)
@@ -27,7 +28,8 @@ char *farm_job_pack(const struct tracer_scene_spec *spec,
 		    const struct tracer_trace_opts *o, size_t *len)
 {
 	struct job_head h;
-	size_t n = sizeof(h) + o->n_theta * sizeof(double), k;
+	size_t angles = (o->beam_shift_z ? 2 : 1) * o->n_theta * sizeof(double);
+	size_t n = sizeof(h) + angles, k;
 	char *buf, *p;
 	int i;
 
@@ -45,6 +47,7 @@ char *farm_job_pack(const struct tracer_scene_spec *spec,
 	h.n_sets = spec->n_sets;
 	h.has_lens = spec->lens != NULL;
 	h.record_paths = o->record_paths != 0;
+	h.has_shifts = o->beam_shift_z != NULL;
 	n += str_size(spec->scene) + str_size(spec->lens);
 	for (i = 0; i < spec->n_sets; i++)
 		n += str_size(spec->sets[i]);
@@ -53,7 +56,10 @@ char *farm_job_pack(const struct tracer_scene_spec *spec,
 		return NULL;
 	memcpy(buf, &h, sizeof(h));
 	memcpy(buf + sizeof(h), o->theta_deg, o->n_theta * sizeof(double));
-	p = buf + sizeof(h) + o->n_theta * sizeof(double);
+	if (o->beam_shift_z)
+		memcpy(buf + sizeof(h) + o->n_theta * sizeof(double),
+		       o->beam_shift_z, o->n_theta * sizeof(double));
+	p = buf + sizeof(h) + angles;
 	k = str_size(spec->scene);
 	memcpy(p, spec->scene ? spec->scene : "", k);
 	p += k;
@@ -91,7 +97,9 @@ int farm_job_unpack(char *buf, size_t len, struct farm_job *j,
 		return stray_error_set(err, STRAY_EINVAL, "job", "truncated");
 	memcpy(&h, buf, sizeof(h));
 	if (h.n_theta < 1 || h.n_sets < 0 || h.n_sets > FARM_SETS_MAX ||
-	    (size_t)h.n_theta > (len - sizeof(h)) / sizeof(double))
+	    (h.has_shifts != 0 && h.has_shifts != 1) ||
+	    (size_t)h.n_theta > (len - sizeof(h)) / sizeof(double) /
+				(h.has_shifts ? 2 : 1))
 		return stray_error_set(err, STRAY_EINVAL, "job", "malformed");
 	tracer_trace_defaults(&j->o);
 	j->o.n_paths = h.n_paths;
@@ -108,6 +116,10 @@ int farm_job_unpack(char *buf, size_t len, struct farm_job *j,
 	/* the buffer is malloc'ed: suitably aligned for doubles */
 	j->o.theta_deg = (const double *)(void *)(buf + sizeof(h));
 	p = buf + sizeof(h) + (size_t)h.n_theta * sizeof(double);
+	if (h.has_shifts) {
+		j->o.beam_shift_z = (const double *)(void *)p;
+		p += (size_t)h.n_theta * sizeof(double);
+	}
 	j->scene = next_str(&p, end);
 	j->lens = j->scene ? next_str(&p, end) : NULL;
 	if (!j->lens)

@@ -75,6 +75,8 @@ static int run_into(const struct tracer_scene *s,
 		return stray_error_set_value(err, STRAY_EINVAL, "piece",
 			"angle range outside the sweep", p->theta_first);
 	o.theta_deg = po->theta_deg + p->theta_first;
+	if (po->beam_shift_z)
+		o.beam_shift_z = po->beam_shift_z + p->theta_first;
 	o.n_theta = (size_t)p->theta_n;
 	o.threads = 1;		/* ranks, not threads, share the work */
 	o.progress = NULL;

@@ -52,9 +52,8 @@ struct tracer_trace_opts {
 	 * the aperture normal by this many mm, as tracer_scene_spec's
 	 * beam_shift_z moves it for every angle; so one pass traces several
 	 * beam positions as repeated angles that share the paths and the
-	 * shadow rays (the diagnosis's pivot-offset nodes).  In-process
-	 * only (tracer_trace, tracer_trace_batches): mpi/'s farm does not
-	 * carry it. */
+	 * shadow rays (the diagnosis's pivot-offset nodes); mpi/'s farm
+	 * carries it to every rank. */
 	const double *beam_shift_z;
 	int record_paths;	/* fill tracer_result.paths */
 	int guide;		/* pilot-guided detector directions (guide.h);
