@@ -14,10 +14,11 @@ void stray_common_group_reset(struct stray_common_group *g)
 }
 
 /*
- * One row's sum of (I - D) over its unmasked pixels (m: 0 for all), per
- * column phase c & 3 (one dark level each): the samples summed exactly
- * in integers, the levels taken off once per phase.  *sat is set when
- * an unmasked sample is saturated.
+ * The sum of (I - D) over the unmasked pixels of a piece of a row (at
+ * most STRAY_PIECE_MAX columns, from a multiple of 4), per column phase
+ * c & 3 (one dark level each): the samples summed exactly in integers,
+ * the levels taken off once per phase.  *sat is set when an unmasked
+ * sample is saturated.
  */
 STRAY_VECTOR_CLONES
 static double row_total(const uint16_t *restrict row,
