@@ -194,29 +194,36 @@ static bool covers(const struct worker_ctx *w, size_t j, struct vec3 d,
 }
 
 /*
- * The shadow rays of a fan's n candidates: their own directions, or with
- * beam shifts (an angle repeated with other beam centres, laid out side by
- * side) one ray per run of equal directions, ray_of[k] candidate k's.
+ * The shadow rays of a fan's n candidates from o, counted, occ[k] for
+ * candidate k.  With beam shifts (an angle repeated with other beam
+ * centres, laid out side by side) a run of equal directions is one ray.
  */
-static size_t fan_rays(const struct worker_ctx *w, const struct vec3 *dirs,
-		       size_t n, struct vec3 *u_dirs, size_t *ray_of,
-		       const struct vec3 **rays)
+static void trace_fan(const struct worker_ctx *w, struct path_state *ps,
+		      struct vec3 o, const struct vec3 *dirs, size_t n,
+		      unsigned char *occ)
 {
-	size_t k, n_u = 0;
+	struct vec3 u_dirs[FAN];
+	unsigned char u_occ[FAN];
+	size_t ray_of[FAN], k, n_u = 0;
 
-	*rays = dirs;
-	if (!w->o->beam_shift_z)
-		return n;
+	if (!w->o->beam_shift_z || n == 0) {
+		ps->casts += n;
+		ps->connections += n;
+		tracer_scene_occluded_fan(w->s, o, dirs, n, occ);
+		return;
+	}
 	for (k = 0; k < n; k++) {
-		const struct vec3 *d = &dirs[k];
+		const struct vec3 *d = &dirs[k], *e = &dirs[k ? k - 1 : 0];
 
-		if (n_u == 0 || u_dirs[n_u - 1].x != d->x ||
-		    u_dirs[n_u - 1].y != d->y || u_dirs[n_u - 1].z != d->z)
+		if (k == 0 || e->x != d->x || e->y != d->y || e->z != d->z)
 			u_dirs[n_u++] = *d;
 		ray_of[k] = n_u - 1;
 	}
-	*rays = u_dirs;
-	return n_u;
+	ps->casts += n_u;
+	ps->connections += n_u;
+	tracer_scene_occluded_fan(w->s, o, u_dirs, n_u, u_occ);
+	for (k = 0; k < n; k++)
+		occ[k] = u_occ[ray_of[k]];
 }
 
 /* Direct light: the detector point connected to each source angle. */
@@ -225,10 +232,8 @@ static void connect_direct(struct worker_ctx *w, struct path_state *ps,
 {
 	const struct tracer_scene *s = w->s;
 	struct vec3 o = tracer_offset_origin(x, s->det.normal), dirs[FAN];
-	struct vec3 u_dirs[FAN];
-	const struct vec3 *rays;
 	double cs[FAN];
-	size_t jj[FAN], ray_of[FAN], j0, n = 0, n_u, k, nt = w->o->n_theta;
+	size_t jj[FAN], j0, n = 0, k, nt = w->o->n_theta;
 	unsigned char occ[FAN];
 	double keep[BLOCK];
 
@@ -249,15 +254,12 @@ static void connect_direct(struct worker_ctx *w, struct path_state *ps,
 		}
 		if (n < BLOCK && j0 + m < nt)
 			continue;
-		n_u = fan_rays(w, dirs, n, u_dirs, ray_of, &rays);
-		ps->casts += n_u;
-		ps->connections += n_u;
-		tracer_scene_occluded_fan(s, o, rays, n_u, occ);
+		trace_fan(w, ps, o, dirs, n, occ);
 		for (k = 0; k < n; k++) {
 			size_t jk = jj[k];
 			double c = cs[k];
 
-			if (occ[rays == dirs ? k : ray_of[k]])
+			if (occ[k])
 				continue;
 			if (w->o->lens)	/* else 1: no acos per ray */
 				c *= tracer_lens_transmission(w->o->lens,
@@ -283,13 +285,10 @@ static void connect_vertex(struct worker_ctx *w, struct path_state *ps,
 			   const struct tracer_brdf *mat, struct vec3 wo,
 			   double T, int depth)
 {
-	const struct tracer_scene *s = w->s;
 	struct vec3 o = tracer_offset_origin(h->p, h->ng), dirs[FAN];
-	struct vec3 u_dirs[FAN];
-	const struct vec3 *rays;
 	int order = depth < TRACER_ORDERS - 1 ? depth : TRACER_ORDERS - 1;
 	double cs[FAN];
-	size_t jj[FAN], ray_of[FAN], j0, n = 0, n_u, k, nt = w->o->n_theta;
+	size_t jj[FAN], j0, n = 0, k, nt = w->o->n_theta;
 	unsigned char occ[FAN];
 	double keep[BLOCK];
 
@@ -318,15 +317,12 @@ static void connect_vertex(struct worker_ctx *w, struct path_state *ps,
 		}
 		if (n < BLOCK && j0 + m < nt)
 			continue;
-		n_u = fan_rays(w, dirs, n, u_dirs, ray_of, &rays);
-		ps->casts += n_u;
-		ps->connections += n_u;
-		tracer_scene_occluded_fan(s, o, rays, n_u, occ);
+		trace_fan(w, ps, o, dirs, n, occ);
 		for (k = 0; k < n; k++) {
 			size_t jk = jj[k];
 			double c = cs[k];
 
-			if (occ[rays == dirs ? k : ray_of[k]])
+			if (occ[k])
 				continue;
 			ps->acc[jk * TRACER_ORDERS + order] += c;
 			add_to_map(w, ps, jk, c);
