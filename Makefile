@@ -69,6 +69,7 @@ demo-check: all
 check: all $(TESTS) $(if $(filter 1,$(SAN)),,$(TESTS_SLOW))
 	@scripts/check-core.sh $(STRAY_CORE_LIB)
 	@scripts/check-equations.sh
+	@scripts/check-docs.sh
 ifneq ($(SAN),1)	# an instrumented library is not for installing
 	@scripts/check-install.sh $(B)
 endif

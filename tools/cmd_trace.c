@@ -18,6 +18,7 @@
 #include "stray/errfmt.h"
 #include "stray/file.h"
 #include "tracer/angles.h"
+#include "tracer/baffle.h"
 #include "tracer/dump_io.h"
 #include "tracer/integrator.h"
 #include "tracer/obj_export.h"
@@ -49,8 +50,8 @@ static const char usage[] =
 	"  --threads T       worker threads (default: online CPUs)\n"
 	"  --batches B       independent batches for sigma (default 64)\n"
 	"  --lens L.csv      lens transmission vs incidence (curve CSV)\n"
-	"  --set key=value   override a baffle parameter (repeatable); a mesh\n"
-	"                    scene: accept_half_angle_deg, edge_radius\n"
+	"  --set key=value   override a scene parameter (repeatable; keys\n"
+	"                    below, units and limits in docs/scene.md)\n"
 	"  --export-obj M    write the scene mesh, one group per surface\n"
 	"  --paths-out P.csv per-angle power by surface-group sequence\n"
 	"  --top N           print the N strongest paths per angle\n"
@@ -66,7 +67,11 @@ static const char usage[] =
 	"  --response R      detector response for them (a photometer's own;\n"
 	"                    default builtin:qe_mt9p031_approx)\n"
 	FOCAL_MAP_USAGE
-	"  --json            print a run summary (paths_per_s, ...)\n";
+	"  --json            print a run summary (paths_per_s, ...)\n"
+	"\n"
+	"--set keys of ref4 and vane scenes (\"type\": \"vanes\"; mm, deg):\n"
+	TRACER_BAFFLE_KEYS "\n"
+	"--set keys of mesh scenes: accept_half_angle_deg edge_radius\n";
 
 #define SETS_MAX 64
 

@@ -12,13 +12,6 @@
 #include "stray/errfmt.h"
 #include "tracer/baffle.h"
 
-const char *const tracer_baffle_keys =
-	"n_vanes vaneK_z vaneK_r (K = 1..8) vane_thickness "
-	"bevel_angle_deg bevel_face(lower|upper) edge_radius pupil_radius "
-	"pupil_z cone_half_angle_deg tube_inner_radius tube_wall reflectance "
-	"exterior_reflectance beam_margin accept_half_angle_deg segments "
-	"arc_segments";
-
 void tracer_baffle_ref4(struct tracer_baffle *b)
 {
 	int i;

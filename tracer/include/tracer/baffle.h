@@ -56,7 +56,14 @@ int tracer_baffle_check(const struct tracer_baffle *b,
 int tracer_baffle_build(const struct tracer_baffle *b,
 			struct tracer_scene *s, struct stray_error *err);
 
-/* The list of parameter names, for --help. */
-extern const char *const tracer_baffle_keys;
+/* The parameter names (--set keys of ref4 and "type": "vanes" scenes),
+ * one string so `stray trace --help` can print it in its usage text;
+ * docs/scene.md gives each key's unit and limits. */
+#define TRACER_BAFFLE_KEYS \
+	"n_vanes vaneK_z vaneK_r (K = 1..8) vane_thickness\n" \
+	"bevel_angle_deg bevel_face=lower|upper edge_radius pupil_radius\n" \
+	"pupil_z cone_half_angle_deg tube_inner_radius tube_wall\n" \
+	"reflectance exterior_reflectance beam_margin\n" \
+	"accept_half_angle_deg segments arc_segments"
 
 #endif /* TRACER_BAFFLE_H */

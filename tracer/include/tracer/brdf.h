@@ -7,7 +7,7 @@
  * detector side of a path), wi toward where it comes from.  Grey scalar
  * BRDFs in sr^-1.  Every BRDF is a reflectance scale `rho` times a shape,
  * so recorded path weights can be re-weighted by rho^k without re-tracing
- * (docs/method.md §6: the reflectance was the model's main error).
+ * (../shared/docs/method.md §6: the reflectance was the model's main error).
  * `sample` takes two uniform numbers from the caller, never an RNG, so
  * tests drive it exactly.
  */
