@@ -43,7 +43,9 @@ static const char usage[] =
 	"\n"
 	"  --scene SCENE     'ref4' (built in) or a scene file (JSON: meshes,\n"
 	"                    or \"type\": \"vanes\", the vane family)\n"
-	"  --angles LIST     e.g. 0,5,10:30:0.5 (default 0:30:5,30:90:0.5)\n"
+	"  --angles LIST     e.g. 0,5,10:30:0.5; default 'auto': 1 deg steps,\n"
+	"                    0.1 deg within 1 deg of the scene's direct\n"
+	"                    cut-off (found by shadow rays), 0.5 deg beyond\n"
 	"  --out C.csv       curve with sigma and direct/order1/order2/order3plus\n"
 	"  --rays N          detector-side paths (default 1500000)\n"
 	"  --seed K          random seed (default 1); same seed, same output\n"
@@ -82,6 +84,8 @@ struct trace_args {
 	const char *spectrum, *response;	/* tracer/spectral.h */
 	double map_angle;
 	int dump_count, map_size;
+	int auto_angles;	/* no --angles, or "auto": fitted grid */
+	double cutoff_deg;	/* the direct cut-off it found */
 	const char *sets[SETS_MAX];
 	int n_sets, top;
 	struct tracer_trace_opts o;
@@ -205,26 +209,30 @@ static void progress(void *user, double fraction)
 	}
 }
 
-/* Angles to trace: the requested ones, with 0 added as the reference. */
-static int make_angles(const char *list, double **theta, size_t *n,
-		       size_t *first_out, struct stray_error *err)
+/* Angles to trace: the requested ones (without --angles or with
+ * "auto", the grid fitted to the committed scene's direct cut-off), with
+ * 0 added as the reference. */
+static int make_angles(struct trace_args *a, const struct tracer_scene *s,
+		       double **theta, size_t *n, size_t *first_out,
+		       struct stray_error *err)
 {
-	double *a;
-	int rc = tracer_angles_parse(list ? list : TRACER_ANGLES_DEFAULT,
-				     theta, n, err);
+	double *t;
+	int rc = a->auto_angles
+		? tracer_angles_auto(s, theta, n, &a->cutoff_deg, err)
+		: tracer_angles_parse(a->angles, theta, n, err);
 
 	if (rc)
 		return rc;
 	*first_out = 0;
 	if ((*theta)[0] == 0.0)
 		return STRAY_OK;
-	a = realloc(*theta, (*n + 1) * sizeof(double));
-	if (!a)
+	t = realloc(*theta, (*n + 1) * sizeof(double));
+	if (!t)
 		return stray_error_set(err, STRAY_ENOMEM, "--angles",
 				       "out of memory");
-	memmove(a + 1, a, *n * sizeof(double));
-	a[0] = 0.0;	/* alpha is normalised to P(0) (ref4-baffle.md) */
-	*theta = a;
+	memmove(t + 1, t, *n * sizeof(double));
+	t[0] = 0.0;	/* alpha is normalised to P(0) (ref4-baffle.md) */
+	*theta = t;
 	(*n)++;
 	*first_out = 1;
 	return STRAY_OK;
@@ -265,6 +273,13 @@ static int add_meta(struct stray_curve *c, const struct trace_args *a,
 		 a->o.n_batches);
 	if (!rc)
 		rc = stray_curve_add_meta(c, "sigma", buf, err);
+	if (a->auto_angles) {
+		snprintf(buf, sizeof(buf), "auto: 1 deg, 0.1 deg within 1 deg "
+			 "of the direct cut-off at %.1f deg, 0.5 deg beyond",
+			 a->cutoff_deg);
+		if (!rc)
+			rc = stray_curve_add_meta(c, "angles", buf, err);
+	}
 	return rc;
 }
 
@@ -321,6 +336,8 @@ static cJSON *summary_json(const struct trace_args *a,
 	}
 	cJSON_AddStringToObject(o, "scene", a->scene);
 	cJSON_AddNumberToObject(o, "angles", (double)(r->n_theta - first));
+	if (a->auto_angles)
+		cJSON_AddNumberToObject(o, "direct_cutoff_deg", a->cutoff_deg);
 	cJSON_AddNumberToObject(o, "paths", (double)r->n_paths);
 	cJSON_AddNumberToObject(o, "threads", a->o.threads);
 	cJSON_AddItemToObject(o, "seconds", cli_json_number(r->seconds));
@@ -423,11 +440,11 @@ static int run_trace(struct trace_args *a, struct tracer_scene *s,
 	size_t n, first;
 	int rc, last = -1;
 
-	rc = make_angles(a->angles, &theta, &n, &first, err);
+	rc = tracer_scene_commit(s, err);
+	if (!rc)
+		rc = make_angles(a, s, &theta, &n, &first, err);
 	if (!rc && a->lens)
 		rc = tracer_lens_load(a->lens, &lens, err);
-	if (!rc)
-		rc = tracer_scene_commit(s, err);
 	if (rc)
 		goto out_free;
 	a->o.theta_deg = theta;
@@ -515,6 +532,7 @@ int cmd_trace(int argc, char **argv, const struct tracer_runner *runner)
 	rc = parse_args(argc, argv, &a);
 	if (rc)
 		return rc < 0 ? CLI_OK : rc;
+	a.auto_angles = !a.angles || strcmp(a.angles, "auto") == 0;
 	stray_error_clear(&err);
 	tracer_scene_init(&s);
 	stray_file_defer();	/* every output renamed at the end, or none */
