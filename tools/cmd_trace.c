@@ -256,13 +256,19 @@ static const char *const order_names[TRACER_ORDERS] = {
 static int add_meta(struct stray_curve *c, const struct trace_args *a,
 		    struct stray_error *err)
 {
-	char buf[160];
-	int rc = stray_curve_add_meta(c, "kind", "baffle", err);
+	char buf[512];
+	int rc = stray_curve_add_meta(c, "kind", a->lens ? "system" : "baffle",
+				      err);
+	size_t k, len;
 
-	snprintf(buf, sizeof(buf), "%s%s", a->scene,
-		 a->n_sets ? " with --set overrides" : "");
+	len = (size_t)snprintf(buf, sizeof(buf), "%s", a->scene);
+	for (k = 0; k < (size_t)a->n_sets && len < sizeof(buf); k++)
+		len += (size_t)snprintf(buf + len, sizeof(buf) - len, "%s%s",
+					k ? ", " : " with --set ", a->sets[k]);
 	if (!rc)
 		rc = stray_curve_add_meta(c, "scene", buf, err);
+	if (!rc && a->lens)	/* a curve path or ideal:DEG */
+		rc = stray_curve_add_meta(c, "lens", a->lens, err);
 	snprintf(buf, sizeof(buf), "stray trace, adjoint Monte Carlo with "
 		 "next-event connections; %llu paths, seed %llu",
 		 (unsigned long long)a->o.n_paths,

@@ -47,6 +47,7 @@ static const struct cmd commands[] = {
 	{ "availability", cmd_availability, "tracker availability over a mission (CCSDS OEM/AEM, several heads)" },
 	{ "trace", trace_local, "attenuation curve of a baffle by Monte Carlo ray tracing" },
 	{ "diagnose", diagnose_local, "name the physical causes of a model-measurement discrepancy" },
+	{ "lens", cmd_lens, "a lens curve without lab data: the ideal lens, or a PST import" },
 	{ "reduce", cmd_reduce, "lens attenuation curve, noise floor and ghosts from a lab sweep" },
 	{ "rig", cmd_rig, "control the lab sweep daemon strayrigd" },
 	{ "sweep", sweep_local, "Sun exclusion angle over a grid of baffle designs (resumable)" },

@@ -6,6 +6,8 @@
 #include <string.h>
 
 #include "stray/curve_io.h"
+#include "stray/errfmt.h"
+#include "stray/lens_model.h"
 #include "tracer/brdf.h"
 #include "tracer/detector.h"
 
@@ -111,6 +113,22 @@ double tracer_lens_transmission(const struct tracer_lens *lens,
 	       (lens->theta_deg[hi] - lens->theta_deg[lo]);
 }
 
+/* "ideal:DEG": the ideal lens of that field half-angle (lens_model.h). */
+static int ideal_lens(const char *spec, struct stray_curve *c,
+		      struct stray_error *err)
+{
+	char *end;
+	double field = strtod(spec + 6, &end);
+
+	if (end == spec + 6 || *end) {
+		stray_error_set(err, STRAY_EINVAL, "--lens",
+			"ideal:DEG, DEG the lens's field half-angle in degrees");
+		stray_error_text(err, spec);
+		return STRAY_EINVAL;
+	}
+	return stray_lens_ideal(field, c, err);
+}
+
 int tracer_lens_load(const char *path, struct tracer_lens *lens,
 		     struct stray_error *err)
 {
@@ -118,7 +136,8 @@ int tracer_lens_load(const char *path, struct tracer_lens *lens,
 	int rc;
 
 	memset(lens, 0, sizeof(*lens));
-	rc = stray_curve_load(path, &c, err);
+	rc = strncmp(path, "ideal:", 6) == 0 ? ideal_lens(path, &c, err)
+					     : stray_curve_load(path, &c, err);
 	if (rc)
 		return rc;
 	lens->theta_deg = malloc(c.n * sizeof(double));

@@ -50,6 +50,18 @@ static char *write_temp(const char *text, const char *suffix)
 	return p;
 }
 
+/* A whole file, NUL-terminated (caller frees). */
+static char *read_file(const char *p, size_t *len)
+{
+	FILE *f = fopen(p, "rb");
+	char *b = calloc(1, 1 << 20);
+
+	assert_non_null(f);
+	*len = fread(b, 1, (1 << 20) - 1, f);
+	fclose(f);
+	return b;
+}
+
 /* Bad input: exit 2, nothing on stdout, exactly one stderr line. */
 static void expect_bad_input(const char *needle)
 {
@@ -140,6 +152,57 @@ static void test_cli_trace_help_lists_set_keys(void **state)
 	}
 	assert_int_equal(n, (int)(sizeof(ok) / sizeof(ok[0])));
 	unlink(obj);
+}
+
+/* Issue 23 items 3 and 6: a system curve says it is one, with its lens
+ * and every --set; `--lens ideal:10` traces the same bytes as the curve
+ * `stray lens ideal --field 10` writes. */
+static void test_cli_trace_ideal_lens_and_provenance(void **state)
+{
+	char *lens = write_temp("", ".csv"), *a = write_temp("", ".csv");
+	char *b = write_temp("", ".csv");
+	char *ta, *tb;
+	size_t la, lb;
+
+	(void)state;
+	assert_int_equal(STRAY("lens", "ideal", "--field", "10", "--out", lens),
+			 0);
+	assert_int_equal(STRAY("trace", "--scene", "ref4", "--angles", "0,5,40",
+			       "--rays", "3000", "--set", "reflectance=0.05",
+			       "--lens", "ideal:10", "--out", a), 0);
+	assert_int_equal(STRAY("trace", "--scene", "ref4", "--angles", "0,5,40",
+			       "--rays", "3000", "--set", "reflectance=0.05",
+			       "--lens", lens, "--out", b), 0);
+	ta = read_file(a, &la);
+	tb = read_file(b, &lb);
+	assert_non_null(strstr(ta, "# kind: system\n"));
+	assert_non_null(strstr(ta, "# lens: ideal:10\n"));
+	assert_non_null(strstr(ta, "# scene: ref4 with --set reflectance=0.05\n"));
+	/* the same alpha row by row (the file holds cos^4 to 10 digits) */
+	{
+		char *pa = strchr(strstr(ta, "theta_deg,"), '\n');
+		char *pb = strchr(strstr(tb, "theta_deg,"), '\n');
+		double t1, a1, t2, a2;
+		int rows = 0;
+
+		while (pa && pb && sscanf(pa + 1, "%lf,%lf", &t1, &a1) == 2 &&
+		       sscanf(pb + 1, "%lf,%lf", &t2, &a2) == 2) {
+			assert_near(t1, t2, 0.0);
+			assert_near(a1, a2, 1e-9 * a1);
+			pa = strchr(pa + 1, '\n');
+			pb = strchr(pb + 1, '\n');
+			rows++;
+		}
+		assert_int_equal(rows, 3);
+	}
+	free(ta);
+	free(tb);
+	STRAY("trace", "--scene", "ref4", "--angles", "0,5", "--rays", "1000",
+	      "--lens", "ideal:x", "--out", a);
+	expect_bad_input("ideal:DEG");
+	unlink(lens);
+	unlink(a);
+	unlink(b);
 }
 
 /* Done-when: photometry --json within 0.5% of an independent computation
@@ -389,6 +452,7 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_cli_help_everywhere),
 		cmocka_unit_test(test_cli_trace_help_lists_set_keys),
+		cmocka_unit_test(test_cli_trace_ideal_lens_and_provenance),
 		cmocka_unit_test(test_cli_photometry_matches_independent),
 		cmocka_unit_test(test_cli_photometry_other_spectra),
 		cmocka_unit_test(test_cli_fdr_alpha_required),

@@ -59,7 +59,9 @@ int tracer_detector_check(const struct tracer_detector *d,
 double tracer_lens_transmission(const struct tracer_lens *lens,
 				double theta_deg);
 
-/* The lens from an attenuation-curve CSV (theta_deg, alpha). */
+/* The lens from an attenuation-curve CSV (theta_deg, alpha), or
+ * "ideal:DEG": the ideal lens of field half-angle DEG (cos^4 inside, 0
+ * beyond; stray/lens_model.h).  A file of that name is given as ./ideal:.. */
 int tracer_lens_load(const char *path, struct tracer_lens *lens,
 		     struct stray_error *err);
 
