@@ -22,6 +22,17 @@ $(STRAY_HOST_OBJ): EXTRA_CFLAGS += -I/usr/include/cjson
 $(B)/obj/libstray/host/builtin_data.o: EXTRA_CFLAGS += -DSTRAY_DATA_DIR=\"libstray/data\"
 $(B)/obj/libstray/host/builtin_data.o: $(STRAY_DATA)
 
+# The build's git revision in every output's provenance: rewritten only
+# when it changes, so provenance.o is rebuilt then and only then.
+STRAY_GIT_REV := $(shell git describe --always --dirty 2>/dev/null || echo unknown)
+$(B)/gen/git-rev: FORCE
+	@mkdir -p $(dir $@)
+	@echo '$(STRAY_GIT_REV)' | cmp -s - $@ || echo '$(STRAY_GIT_REV)' > $@
+$(B)/obj/libstray/host/provenance.o: $(B)/gen/git-rev
+$(B)/obj/libstray/host/provenance.o: EXTRA_CFLAGS += -DSTRAY_GIT_REV=\"$(STRAY_GIT_REV)\"
+.PHONY: FORCE
+FORCE:
+
 $(STRAY_CORE_LIB): $(STRAY_CORE_OBJ)
 	@mkdir -p $(dir $@)
 	rm -f $@ && ar rcs $@ $^

@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "farm.h"
+#include "stray/provenance.h"
 #include "tools/entry.h"
 #include "tracer/runner.h"
 
@@ -170,6 +171,7 @@ int main(int argc, char **argv)
 	}
 	MPI_Comm_rank(MPI_COMM_WORLD, &rank);
 	cli_set_prog("stray-mpi");
+	stray_provenance_set(argc, argv);
 	if (rank != 0) {
 		rc = farm_serve();
 	} else {

@@ -9,6 +9,7 @@
 
 #include "cli.h"
 #include "stray/errfmt.h"
+#include "stray/provenance.h"
 
 struct cli_global cli;
 
@@ -69,7 +70,17 @@ int cli_parse_count(const char *cmd, const char *opt, const char *text,
 
 int cli_json_emit(cJSON *obj)
 {
-	char *text = cJSON_Print(obj);
+	char *text;
+	cJSON *p = cJSON_CreateObject();
+
+	/* how this output was made (stray/provenance.h) */
+	cJSON_AddStringToObject(p, "command", stray_provenance_command());
+	cJSON_AddStringToObject(p, "version", stray_provenance_version());
+	if (cJSON_IsObject(obj) && !cJSON_HasObjectItem(obj, "provenance"))
+		cJSON_AddItemToObject(obj, "provenance", p);
+	else
+		cJSON_Delete(p);
+	text = cJSON_Print(obj);
 	int rc = CLI_OK;
 
 	if (!text || puts(text) == EOF)

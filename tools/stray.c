@@ -10,9 +10,9 @@
 #include "cli.h"
 #include "commands.h"
 #include "stray/file.h"
+#include "stray/provenance.h"
 #include "tracer/runner.h"
 
-#define STRAY_VERSION "0.1.0"
 
 /* The commands that trace, with this process's threads as their runner
  * (stray-mpi passes its MPI farm instead, mpi/stray_mpi.c). */
@@ -129,6 +129,7 @@ int main(int argc, char **argv)
 	int opt;
 
 	cli.prog = "stray";
+	stray_provenance_set(argc, argv);
 	opterr = 0;	/* unknown options get our own one-line message */
 	/* '+': stop at the first non-option, the subcommand. */
 	while ((opt = getopt_long(argc, argv, "+h", opts, NULL)) != -1) {
@@ -140,7 +141,7 @@ int main(int argc, char **argv)
 			usage(stdout);
 			return finish(CLI_OK);
 		case 'V':
-			printf("stray %s\n", STRAY_VERSION);
+			printf("stray %s\n", stray_provenance_version());
 			return finish(CLI_OK);
 		default:
 			usage(stderr);

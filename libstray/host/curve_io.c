@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "stray/curve_io.h"
+#include "stray/provenance.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"
 #include "stray/table.h"
@@ -228,8 +229,15 @@ static void write_curve(FILE *f, const struct stray_curve *c)
 {
 	size_t i, k;
 
+	/* this run's provenance; an input's own command and version lines
+	 * described another run and are not carried over */
+	if (stray_provenance_command()[0])
+		fprintf(f, "# command: %s\n", stray_provenance_command());
+	fprintf(f, "# version: stray %s\n", stray_provenance_version());
 	for (i = 0; i < c->n_meta; i++)
-		fprintf(f, "#%s\n", c->meta[i]);
+		if (strncmp(c->meta[i], " command:", 9) &&
+		    strncmp(c->meta[i], " version:", 9))
+			fprintf(f, "#%s\n", c->meta[i]);
 	fputs(c->sigma ? "theta_deg,alpha,sigma" : "theta_deg,alpha", f);
 	for (k = 0; k < c->n_extra; k++)
 		fprintf(f, ",%s", c->extra_name[k]);
