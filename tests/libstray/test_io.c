@@ -16,6 +16,7 @@
 #include "../test_util.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"
+#include "stray/provenance.h"
 #include "stray/sensor_io.h"
 #include "stray/spectrum_io.h"
 #include "stray/table.h"
@@ -106,13 +107,15 @@ static void test_curve_save_load_round_trip(void **state)
 		assert_rel(d.alpha[i], c.alpha[i], 1e-9);
 	assert_string_equal(d.extra_name[0], "order1");
 	assert_near(d.extra[0][2], 0.3, 1e-12);
-	assert_int_equal(d.n_meta, 1);
+	assert_int_equal(d.n_meta, 2);	/* the version, then ours */
 	{
 		struct stray_table t = { 0 };
 
 		t.meta = d.meta;
 		t.n_meta = d.n_meta;
 		assert_string_equal(stray_table_meta(&t, "kind"), "system");
+		assert_non_null(strstr(stray_table_meta(&t, "version"),
+				       "stray " STRAY_VERSION " (git "));
 	}
 	stray_curve_free(&c);
 	stray_curve_free(&d);

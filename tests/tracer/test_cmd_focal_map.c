@@ -143,7 +143,8 @@ static void test_cmd_focal_map_curve_unchanged(void **state)
 		       "0,5,40", "--rays", "20000", "--set", "segments=64",
 		       "--out", b, "--focal-map", fits, "--map-angle", "5",
 		       NULL };
-	char *cmp[] = { "cmp", a, b, NULL };
+	/* every byte but the command line, which differs */
+	char *cmp[] = { "diff", "-q", "-I", "^# command: ", a, b, NULL };
 	pid_t pid;
 	int st;
 	struct cli_run r;
@@ -156,7 +157,7 @@ static void test_cmd_focal_map_curve_unchanged(void **state)
 	assert_int_equal(run_stray(&r, a2), 0);
 	pid = fork();
 	if (pid == 0) {
-		execvp("cmp", cmp);
+		execvp("diff", cmp);
 		_exit(127);
 	}
 	waitpid(pid, &st, 0);
