@@ -58,6 +58,10 @@ enum stray_sweep_frametyp {
 #define STRAY_SWEEP_SHA256_HEX 65
 /* Rows a frame may store (the largest detector has 1944). */
 #define STRAY_SWEEP_ROWS_MAX 8192
+/* Columns a frame may store, and the pixel bytes that makes at most. */
+#define STRAY_SWEEP_COLS_MAX 65536
+#define STRAY_SWEEP_FRAME_BYTES_MAX \
+	((size_t)STRAY_SWEEP_COLS_MAX * STRAY_SWEEP_ROWS_MAX * 2)
 
 /* FRAMETYP text to enum; -1 when unknown. */
 int stray_sweep_frametyp_parse(const char *text);
