@@ -18,6 +18,8 @@ $(B)/tests/tools/%: $(B)/obj/tests/tools/%.o tests/tools/run_cli.h $(STRAY_BIN)
 	$(CC) $(CFLAGS_BASE) -o $@ $< $(CMOCKA_LIBS) -lcjson -lm
 
 $(B)/obj/tests/tools/%.o: EXTRA_CFLAGS += -I/usr/include/cjson
+# Flight frames come from the truth generator (tests/flightcheck).
+$(B)/tests/tools/test_hardening2_fits: $(B)/tests/flightcheck/make_flight
 
 # Parsers under libFuzzer (clang), run by scripts/fuzz.sh two at a time
 # (FUZZ_JOBS), each on tests/fuzz/corpus/<target> and tests/fuzz/seeds/<target>:
