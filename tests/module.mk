@@ -18,6 +18,8 @@ $(B)/tests/tools/%: $(B)/obj/tests/tools/%.o tests/tools/run_cli.h $(STRAY_BIN)
 	$(CC) $(CFLAGS_BASE) -o $@ $< $(CMOCKA_LIBS) -lcjson -lm
 
 $(B)/obj/tests/tools/%.o: EXTRA_CFLAGS += -I/usr/include/cjson
+# Flight frames come from the truth generator (tests/flightcheck).
+$(B)/tests/tools/test_hardening2_fits: $(B)/tests/flightcheck/make_flight
 
 # Parsers under libFuzzer (clang), run by scripts/fuzz.sh two at a time
 # (FUZZ_JOBS), each on tests/fuzz/corpus/<target> and tests/fuzz/seeds/<target>:
@@ -50,6 +52,18 @@ build/fuzz/fuzz_sweep_manifest: tests/fuzz/fuzz_sweep_manifest.c \
 		$(STRAY_SWEEP_SRC) $(FUZZ_LIB_SRC)
 	@mkdir -p $(dir $@)
 	$(CLANG) $(FUZZ_CFLAGS) -o $@ $^ $(STRAY_LDLIBS)
+
+# The FITS readers of issue 31: a flight frame as flightcheck reads it,
+# and a focal map (tools/focal_map_read.c, from a file on disk).
+build/fuzz/fuzz_flight_frame: tests/fuzz/fuzz_flight_frame.c \
+		$(STRAY_SWEEP_SRC) $(FUZZ_LIB_SRC)
+	@mkdir -p $(dir $@)
+	$(CLANG) $(FUZZ_CFLAGS) -o $@ $^ $(STRAY_LDLIBS)
+build/fuzz/fuzz_focal_map: tests/fuzz/fuzz_focal_map.c \
+		tools/focal_map_read.c $(FUZZ_LIB_SRC)
+	@mkdir -p $(dir $@)
+	$(CLANG) $(FUZZ_CFLAGS) -Itools -Itracer/include -o $@ $^ \
+		$(STRAY_LDLIBS)
 
 # Scene files: the JSON, then the OBJ/STL meshes it names through assimp.
 build/fuzz/fuzz_scene_json: tests/fuzz/fuzz_scene_json.c $(wildcard tracer/*.c) \

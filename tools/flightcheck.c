@@ -479,11 +479,14 @@ void fc_summarise(const struct fc_cfg *c, const struct fc_frame *f,
 	s->dn_per_e_sigma = sqrt(fmax(1.0, s->cal_chi2_dof) / sw);
 	for (i = 0; i < n; i++) {
 		/* stray DN -> photo-e- per px -> alpha_px (eq. 2.3) */
-		double st = f[i].bg_dn - c->bias_dn - c->dark_e / c->gain_e_per_dn;
+		struct fc_cfg at;
+		double st;
 
+		fc_cfg_exposure(c, f[i].t_exp_s, &at);	/* its own EXPTIME */
+		st = f[i].bg_dn - at.bias_dn - at.dark_e / at.gain_e_per_dn;
 		pts[i].theta_deg = f[i].theta_deg;
-		pts[i].alpha_px = st / (s->dn_per_e * c->sun_e);
-		pts[i].sigma = f[i].bg_sigma_dn / (s->dn_per_e * c->sun_e);
+		pts[i].alpha_px = st / (s->dn_per_e * at.sun_e);
+		pts[i].sigma = f[i].bg_sigma_dn / (s->dn_per_e * at.sun_e);
 	}
 	/* best scale: weighted least squares of alpha_px = scale x model */
 	for (i = 0; i < n; i++) {
@@ -538,4 +541,19 @@ void fc_cfg_init(struct fc_cfg *c, const struct stray_sensor *s,
 	c->sun_e = fl->sun * s->t_exp_s * a_px;		/* eq. 2.3 per alpha_px */
 	c->cat_seed = STRAY_CATALOGUE_SEED;
 	c->search_px = 10.0;
+}
+
+void fc_cfg_exposure(const struct fc_cfg *c, double t_exp_s,
+		     struct fc_cfg *out)
+{
+	double r = t_exp_s > 0.0 && c->t_exp_s > 0.0 ? t_exp_s / c->t_exp_s
+						      : 1.0;
+
+	*out = *c;
+	if (r == 1.0)
+		return;
+	out->t_exp_s = t_exp_s;
+	out->dark_e = c->dark_e * r;
+	out->f0_e = c->f0_e * r;
+	out->sun_e = c->sun_e * r;
 }

@@ -52,6 +52,7 @@ struct fc_frame {
 	int n_tiles_used, n_pred, n_match, n_cal;
 	double dx_px, dy_px, rot_deg, resid_px;	/* refinement on the matches */
 	double cal_sw, cal_swr, cal_swr2;	/* sums for DN per photo-e- */
+	double t_exp_s;		/* its EXPTIME; 0: the cfg's (the sensor's) */
 };
 
 int fc_work_alloc(struct fc_work *w, const struct fc_cfg *c);
@@ -97,4 +98,9 @@ struct stray_fluxes;
 void fc_cfg_init(struct fc_cfg *c, const struct stray_sensor *s,
 		 const struct stray_fluxes *fl, int cols, int rows, int col0,
 		 int row0);
+
+/* c for a frame exposed t_exp_s (> 0): the star, dark and Sun counts
+ * of c (at c->t_exp_s) scaled to it. */
+void fc_cfg_exposure(const struct fc_cfg *c, double t_exp_s,
+		     struct fc_cfg *out);
 #endif /* STRAY_TOOLS_FLIGHTCHECK_H */

@@ -13,6 +13,7 @@
 #include "focal_map_io.h"
 #include "image_cv.h"
 #include "stray/errfmt.h"
+#include "stray/file.h"
 #include "stray/sensor_geom.h"
 #include "stray/sensor_io.h"
 #include "stray/table.h"
@@ -183,26 +184,54 @@ static void fits_keys(fitsfile *fp, const struct focal_map_args *f,
 	fits_write_key(fp, TLONG, "SEED", &seed, "random seed", st);
 }
 
+/*
+ * The map built in memory and written through stray_file_open_atomic:
+ * cfitsio never sees the path (its "(", "[" and "!" syntax would turn
+ * 'map[compress].fits' into 'map'), and a failed write leaves nothing.
+ */
 static int write_fits(const struct focal_map_args *f, const float *img,
 		      const struct tracer_trace_opts *o,
 		      struct stray_error *err)
 {
+	struct stray_file_out out;
 	fitsfile *fp = NULL;
 	long naxes[2] = { f->fp.nx, f->fp.ny };
-	char name[4096];
-	int st = 0;
+	size_t size = 2880;
+	void *buf = malloc(size);
+	LONGLONG head = 0, data = 0, end = 0;
+	int st = 0, rc;
 
-	snprintf(name, sizeof(name), "!%s", f->fits);	/* '!': replace */
-	fits_create_file(&fp, name, &st);
+	if (!buf)
+		return stray_error_set(err, STRAY_ENOMEM, "--focal-map",
+				       "out of memory");
+	fits_create_memfile(&fp, &buf, &size, 0, realloc, &st);
 	fits_create_img(fp, FLOAT_IMG, 2, naxes, &st);
 	fits_keys(fp, f, o, &st);
 	fits_write_img(fp, TFLOAT, 1, naxes[0] * naxes[1], (void *)img, &st);
+	fits_get_hduaddrll(fp, &head, &data, &end, &st);	/* the length */
 	if (fp) {
 		int st2 = 0;
 
 		fits_close_file(fp, st ? &st2 : &st);
 	}
-	return st ? fits_failed(f->fits, st, err) : STRAY_OK;
+	if (!st && (end <= 0 || (size_t)end > size))
+		st = WRITE_ERROR;
+	if (st) {
+		free(buf);
+		return fits_failed(f->fits, st, err);
+	}
+	rc = stray_file_open_atomic(&out, f->fits, err);
+	if (rc == STRAY_OK) {
+		if (fwrite(buf, 1, (size_t)end, out.f) != (size_t)end) {
+			stray_file_abort(&out);
+			rc = stray_error_at(err, STRAY_EIO, f->fits, 0,
+					    "--focal-map", "cannot write");
+		} else {
+			rc = stray_file_commit(&out, err);
+		}
+	}
+	free(buf);
+	return rc;
 }
 
 /* PNG with +y up (FITS row 1 is -y): flip the rows. */

@@ -9,9 +9,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "focal_map_io.h"
 #include "stray/errfmt.h"
+#include "stray/file.h"
+#include "stray/sizes.h"
 
 /* One numeric keyword, NaN when the map does not carry it. */
 static double read_key(fitsfile *fp, const char *key)
@@ -73,13 +76,51 @@ static int check_cells(const char *path, struct focal_map_file *m,
 	return STRAY_OK;
 }
 
+/* NAXIS1 x NAXIS2 held to the bytes after the header and to the input
+ * limit before the cells are allocated (a 6 KB file may claim 2^32 x
+ * 2^30 cells, whose product wraps). */
+static int check_size(fitsfile *fp, const char *path, off_t size,
+		      const long naxes[2], struct stray_error *err)
+{
+	LONGLONG head = 0, data = 0, end = 0;
+	size_t have = 0;
+	int st = 0, bitpix = 0, rc;
+
+	if (fits_get_img_type(fp, &bitpix, &st) ||
+	    fits_get_hduaddrll(fp, &head, &data, &end, &st))
+		return stray_error_at(err, STRAY_EPARSE, path, 0, "BITPIX",
+				      "cannot be read");
+	if (data >= 0 && (LONGLONG)size > data)
+		have = (size_t)((LONGLONG)size - data);
+	rc = stray_size_check2((size_t)naxes[0], (size_t)naxes[1],
+			       sizeof(float), STRAY_FILE_READ_MAX, SIZE_MAX,
+			       path, "NAXIS1 x NAXIS2", NULL, err);
+	if (rc == STRAY_OK)
+		rc = stray_size_check2((size_t)naxes[0], (size_t)naxes[1],
+				       (size_t)(bitpix < 0 ? -bitpix : bitpix) / 8,
+				       SIZE_MAX, have, path, "NAXIS1 x NAXIS2",
+				       NULL, err);
+	return rc;
+}
+
+/*
+ * The map opened by its name as given (fits_open_diskfile: cfitsio's
+ * "(", "[" and "!" syntax is not applied), a regular file only (a FIFO
+ * would hang the open), its size checked.
+ */
 static int open_map(const char *path, fitsfile **fp, long naxes[2],
 		    struct stray_error *err)
 {
 	char text[FLEN_STATUS] = "";
-	int st = 0, nax = 0;
+	struct stat sb;
+	int st = 0, nax = 0, rc;
 
-	if (fits_open_file(fp, path, READONLY, &st)) {
+	if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode))
+		return stray_error_at(err, STRAY_EINVAL, path, 0, 0,
+				      S_ISDIR(sb.st_mode)
+				      ? "is a directory, not a file"
+				      : "is not a regular file");
+	if (fits_open_diskfile(fp, path, READONLY, &st)) {
 		fits_get_errstatus(st, text);
 		fits_clear_errmsg();
 		stray_error_at(err, STRAY_ENOTFOUND, path, 0, 0,
@@ -89,14 +130,17 @@ static int open_map(const char *path, fitsfile **fp, long naxes[2],
 	}
 	if (fits_get_img_dim(*fp, &nax, &st) || nax != 2 ||
 	    fits_get_img_size(*fp, 2, naxes, &st) || naxes[0] < 1 ||
-	    naxes[1] < 1) {
+	    naxes[1] < 1)
+		rc = stray_error_at(err, STRAY_EPARSE, path, 0, "NAXIS",
+				    "the map must be a 2-D image");
+	else
+		rc = check_size(*fp, path, sb.st_size, naxes, err);
+	if (rc != STRAY_OK) {
 		st = 0;
 		fits_close_file(*fp, &st);
 		fits_clear_errmsg();
-		return stray_error_at(err, STRAY_EPARSE, path, 0, "NAXIS",
-				      "the map must be a 2-D image");
 	}
-	return STRAY_OK;
+	return rc;
 }
 
 int focal_map_load(const char *path, struct focal_map_file *m,
@@ -114,7 +158,7 @@ int focal_map_load(const char *path, struct focal_map_file *m,
 	m->ny = naxes[1];
 	rc = load_keys(fp, path, m, err);
 	if (!rc) {
-		m->cell = malloc((size_t)(m->nx * m->ny) * sizeof(float));
+		m->cell = malloc((size_t)m->nx * (size_t)m->ny * sizeof(float));
 		if (!m->cell)
 			rc = stray_error_at(err, STRAY_ENOMEM, path, 0, 0,
 					    "no memory");

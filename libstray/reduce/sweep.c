@@ -432,42 +432,6 @@ static size_t pair_runs(struct workspace *w, size_t n)
 	return kept;
 }
 
-static int by_file(const void *a, const void *b)
-{
-	const struct stray_sweep_entry *const *x = a, *const *y = b;
-
-	return strcmp((*x)->file, (*y)->file);
-}
-
-/* A frame listed twice would be counted twice (and once break a visit
- * into "no FULL frame at this angle"): name it. */
-static int no_duplicate_rows(const char *dir,
-			     const struct stray_sweep_manifest *m,
-			     struct stray_error *err)
-{
-	char name[4096];
-
-	const struct stray_sweep_entry **e = malloc((m->n ? m->n : 1) *
-						    sizeof(*e));
-	size_t i;
-	int rc = STRAY_OK;
-
-	if (!e)
-		return stray_error_set(err, STRAY_ENOMEM, "manifest", 0);
-	for (i = 0; i < m->n; i++)
-		e[i] = &m->e[i];
-	qsort(e, m->n, sizeof(*e), by_file);
-	for (i = 1; i < m->n && rc == STRAY_OK; i++)
-		if (strcmp(e[i]->file, e[i - 1]->file) == 0) {
-			snprintf(name, sizeof(name), "%s/manifest.csv", dir);
-			rc = stray_error_at(err, STRAY_EPARSE, name, 0, "file",
-					    "is listed twice (duplicate row)");
-			stray_error_text(err, e[i]->file);
-		}
-	free(e);
-	return rc;
-}
-
 /* Visits: a run of one angle's FULL and AMBIENT frames, or two
  * (planned before the darks are read: the read order needs it). */
 static int plan_visits(struct workspace *w,
@@ -837,9 +801,8 @@ int stray_reduce_sweep(const char *dir, const struct stray_reduce_sweep_opts *o,
 	w->dir = dir;
 	w->o = o;
 	w->monitor = -1;
+	/* the loader refuses duplicate rows, with their line */
 	rc = stray_sweep_manifest_load(dir, &w->man, err);
-	if (rc == STRAY_OK)
-		rc = no_duplicate_rows(dir, &w->man, err);
 	if (rc == STRAY_OK) {
 		res->n_frames = w->man.n;
 		rc = reduce_all(w, res, err);

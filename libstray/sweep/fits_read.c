@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "stray/errfmt.h"
+#include "stray/sizes.h"
 #include "stray/sweep_store.h"
 
 /* A cfitsio failure: keyword (or part) and cfitsio's own words. */
@@ -165,6 +166,27 @@ static int read_type(struct stray_sweep_fits *f, struct stray_error *err)
 	return STRAY_OK;
 }
 
+/* NAXIS1 x NAXIS2 against the bytes after the header, before anyone
+ * sizes a buffer by them (a 6 KB file may claim 65536 x 8192 pixels). */
+static int check_size(struct stray_sweep_fits *f, struct stray_error *err)
+{
+	LONGLONG head = 0, data = 0, end = 0;
+	size_t px = (size_t)(f->bitpix < 0 ? -f->bitpix : f->bitpix) / 8;
+	size_t have = 0;
+	int status = 0;
+
+	if (!f->mem)		/* every reader opens from memory */
+		return STRAY_OK;
+	if (fits_get_hduaddrll(f->fptr, &head, &data, &end, &status))
+		return fits_fail(f->path, "NAXIS", "cannot be read", status,
+				 err);
+	if (data >= 0 && (LONGLONG)f->data_len > data)
+		have = f->data_len - (size_t)data;
+	return stray_size_check2(f->h.n_cols, f->h.n_rows, px,
+				 STRAY_SWEEP_FRAME_BYTES_MAX, have, f->path,
+				 "NAXIS1 x NAXIS2", NULL, err);
+}
+
 static int read_geometry(struct stray_sweep_fits *f, struct stray_error *err)
 {
 	long naxes[2];
@@ -191,7 +213,7 @@ static int read_geometry(struct stray_sweep_fits *f, struct stray_error *err)
 			"image size out of range (1..8192 rows, 1..65536 columns)");
 	f->h.n_cols = (size_t)naxes[0];
 	f->h.n_rows = (size_t)naxes[1];
-	return STRAY_OK;
+	return check_size(f, err);
 }
 
 static int read_header(struct stray_sweep_fits *f, struct stray_error *err)
@@ -264,21 +286,6 @@ static int header_or_close(struct stray_sweep_fits *f,
 	return rc;
 }
 
-int stray_sweep_fits_open(const char *path, struct stray_sweep_fits *f,
-		    struct stray_error *err)
-{
-	int status = 0;
-
-	f->path = path;
-	f->fptr = NULL;
-	f->mem = NULL;
-	f->mem_borrowed = 0;
-	if (fits_open_image((fitsfile **)&f->fptr, path, READONLY, &status))
-		return fits_fail(path, "file", "not a readable FITS image",
-				 status, err);
-	return header_or_close(f, err);
-}
-
 /* Open f's image in f->mem (f->mem_size bytes) and read its header;
  * f closed again on an error. */
 static int open_memory(struct stray_sweep_fits *f, const char *name,
@@ -286,13 +293,38 @@ static int open_memory(struct stray_sweep_fits *f, const char *name,
 {
 	int status = 0;
 
-	if (fits_open_memfile((fitsfile **)&f->fptr, name, READONLY, &f->mem,
-			      &f->mem_size, 0, NULL, &status)) {
+	/* cfitsio parses a memory file's name too ("x[1]" moves to HDU
+	 * 1): it gets a fixed one, messages the real name. */
+	if (fits_open_memfile((fitsfile **)&f->fptr, "frame.fits", READONLY,
+			      &f->mem, &f->mem_size, 0, NULL, &status)) {
 		stray_sweep_fits_close(f);
 		return fits_fail(name, "file", "not a readable FITS image",
 				 status, err);
 	}
 	return header_or_close(f, err);
+}
+
+int stray_sweep_fits_open(const char *path, struct stray_sweep_fits *f,
+		    struct stray_error *err)
+{
+	struct stray_sweep_buf b = { NULL, 0, 0 };
+	int rc;
+
+	f->path = path;
+	f->fptr = NULL;
+	f->mem = NULL;
+	f->mem_borrowed = 0;
+	/* Read by the toolkit (no symlink, FIFO or device) and decoded from
+	 * memory: cfitsio never sees the name, whose "(", "[" and "!" it
+	 * would take as instructions (write a copy, filter the pixels). */
+	if ((rc = stray_sweep_file_load(path, &b, err)) != STRAY_OK) {
+		stray_sweep_buf_free(&b);
+		return rc;
+	}
+	f->mem = b.data;	/* zero-padded to whole blocks; f's now */
+	f->mem_size = b.len ? (b.len + 2879) / 2880 * 2880 : 2880;
+	f->data_len = b.len;
+	return open_memory(f, path, err);
 }
 
 int stray_sweep_fits_open_mem(const char *name, const void *data, size_t len,
@@ -305,7 +337,7 @@ int stray_sweep_fits_open_mem(const char *name, const void *data, size_t len,
 	/* cfitsio's memory driver reads whole 2880-byte blocks: pad a copy
 	 * with zeros so a short buffer is never read past its end. */
 	f->mem = calloc(1, padded ? padded : 2880);
-	f->mem_size = padded;
+	f->mem_size = padded ? padded : 2880;
 	f->mem_borrowed = 0;
 	f->data_len = len;
 	if (!f->mem)

@@ -5,6 +5,7 @@
  * temporary, fsynced and renamed, so a crash never leaves half a frame
  * under the real name.
  */
+#include <errno.h>
 #include <fcntl.h>
 #include <fitsio.h>
 #include <stdio.h>
@@ -98,6 +99,41 @@ static int write_keys(fitsfile *f, const struct stray_sweep_image *img,
 	return *status;
 }
 
+/* The frame as FITS bytes in a malloc'd *buf (*len of them): built in
+ * memory, so cfitsio never sees a path (its "(", "[" and "!" syntax). */
+static int build(const struct stray_sweep_image *img,
+		 const struct stray_sweep_frame *m, void **buf, size_t *len,
+		 int *status)
+{
+	long naxes[2] = { (long)img->n_cols, (long)img->n_rows };
+	size_t rows_size = img->n_rows * 6 + 1, size = 2880;
+	char *rows = malloc(rows_size);
+	LONGLONG head = 0, data = 0, end = 0;
+	fitsfile *f = NULL;
+
+	*buf = malloc(size);
+	if (!rows || !*buf) {
+		free(rows);
+		return *status = MEMORY_ALLOCATION;
+	}
+	fits_create_memfile(&f, buf, &size, 0, realloc, status);
+	fits_create_img(f, USHORT_IMG, 2, naxes, status);
+	write_keys(f, img, m, rows, rows_size, status);
+	fits_write_img(f, TUSHORT, 1, (LONGLONG)img->n_rows * img->n_cols,
+		       (void *)img->px, status);
+	fits_get_hduaddrll(f, &head, &data, &end, status);	/* the length */
+	free(rows);
+	if (f) {
+		int st2 = 0;
+
+		fits_close_file(f, *status ? &st2 : status);
+	}
+	if (!*status && (end <= 0 || (size_t)end > size))
+		*status = WRITE_ERROR;
+	*len = (size_t)end;
+	return *status;
+}
+
 static int sync_path(const char *path, int flags)
 {
 	int fd = open(path, flags), rc;
@@ -109,6 +145,32 @@ static int sync_path(const char *path, int flags)
 	return rc;
 }
 
+/* len bytes to a new file tmp (a stale one replaced, no symlink
+ * followed), fsynced. */
+static int write_tmp(const char *tmp, const void *buf, size_t len)
+{
+	const char *p = buf;
+	int fd, ok;
+
+	unlink(tmp);
+	fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0644);
+	if (fd < 0)
+		return -1;
+	for (ok = 1; ok && len > 0;) {
+		ssize_t n = write(fd, p, len);
+
+		if (n < 0 && errno == EINTR)
+			continue;
+		ok = n > 0;
+		if (ok) {
+			p += n;
+			len -= (size_t)n;
+		}
+	}
+	ok = ok && fsync(fd) == 0;
+	return close(fd) == 0 && ok ? 0 : -1;
+}
+
 int stray_sweep_fits_write(const char *dir, const char *name,
 		      const struct stray_sweep_image *img,
 		      const struct stray_sweep_frame *m,
@@ -116,45 +178,34 @@ int stray_sweep_fits_write(const char *dir, const char *name,
 		      struct stray_error *err)
 {
 	char path[STRAY_SWEEP_DIR_MAX + STRAY_SWEEP_FILE_MAX + 2];
-	char tmp[sizeof(path) + 4], ftmp[sizeof(tmp) + 1];
-	long naxes[2] = { (long)img->n_cols, (long)img->n_rows };
-	size_t rows_size = img->n_rows * 6 + 1;
-	char *rows = malloc(rows_size);
-	fitsfile *f = NULL;
-	int status = 0;
+	char tmp[sizeof(path) + 4];
+	void *buf = NULL;
+	size_t len = 0;
+	int status = 0, rc;
 
-	if (!rows)
-		return stray_error_at(err, STRAY_ENOMEM, name, 0, "file",
-				      "no memory for the ROWS keyword");
 	snprintf(path, sizeof(path), "%s/%s", dir, name);
 	snprintf(tmp, sizeof(tmp), "%s.tmp", path);
-	snprintf(ftmp, sizeof(ftmp), "!%s", tmp);	/* '!' = overwrite */
-	fits_create_file(&f, ftmp, &status);
-	fits_create_img(f, USHORT_IMG, 2, naxes, &status);
-	write_keys(f, img, m, rows, rows_size, &status);
-	fits_write_img(f, TUSHORT, 1, (LONGLONG)img->n_rows * img->n_cols,
-		       (void *)img->px, &status);
-	free(rows);
-	if (f) {
-		int st2 = 0;
-
-		fits_close_file(f, status ? &st2 : &status);
-	}
-	if (status) {
+	if (build(img, m, &buf, &len, &status)) {
 		char text[FLEN_STATUS];
 
+		free(buf);
 		fits_get_errstatus(status, text);
-		unlink(tmp);
+		fits_clear_errmsg();
 		stray_error_at(err, STRAY_EIO, path, 0, "file",
 			       "cfitsio cannot write the frame");
 		stray_error_text(err, text);
 		return STRAY_EIO;
 	}
-	if (sync_path(tmp, O_RDONLY) != 0 || rename(tmp, path) != 0 ||
+	if (write_tmp(tmp, buf, len) != 0 || rename(tmp, path) != 0 ||
 	    sync_path(dir, O_RDONLY | O_DIRECTORY) != 0) {
 		unlink(tmp);
+		free(buf);
 		return stray_error_at(err, STRAY_EIO, path, 0, "file",
-				      "cannot sync or rename the frame");
+				      "cannot write, sync or rename the frame");
 	}
-	return stray_sweep_sha256_file(path, sha_hex, err);
+	rc = stray_sweep_sha256_mem(buf, len, sha_hex);
+	free(buf);
+	return rc == STRAY_OK ? STRAY_OK
+		: stray_error_at(err, STRAY_EIO, path, 0, "file",
+				 "cannot hash the frame");
 }

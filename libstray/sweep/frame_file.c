@@ -40,14 +40,25 @@ int stray_sweep_file_load(const char *path, struct stray_sweep_buf *b,
 {
 	struct stat st;
 	size_t len = 0;
-	int fd = open(path, O_RDONLY), ok;
+	/* No symlink followed, no wait on a FIFO: the manifest's check
+	 * (stray_sweep_manifest_check_files) again at the open itself. */
+	int fd = open(path, O_RDONLY | O_NOFOLLOW | O_NONBLOCK), ok;
 
 	if (fd < 0 && errno == ENOENT)	/* the manifest lists it: exit 2 */
 		return stray_error_at(err, STRAY_ENOTFOUND, path, 0, "file",
 			"listed in manifest.csv but missing from the folder");
+	if (fd < 0 && errno == ELOOP)
+		return stray_error_at(err, STRAY_EINVAL, path, 0, "file",
+			"is a symbolic link: frames must be plain files in "
+			"the sweep folder");
 	if (fd < 0)
 		return stray_error_at(err, STRAY_EIO, path, 0, "file",
 				      "cannot open the frame file");
+	if (fstat(fd, &st) == 0 && !S_ISREG(st.st_mode)) {
+		close(fd);
+		return stray_error_at(err, STRAY_EINVAL, path, 0, "file",
+			"is not a regular file (a FIFO, device or folder)");
+	}
 	ok = fstat(fd, &st) == 0 && st.st_size >= 0;
 	if (ok && grow(b, padded((size_t)st.st_size + 1)) != STRAY_OK) {
 		close(fd);

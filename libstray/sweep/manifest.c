@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "stray/errfmt.h"
@@ -112,15 +113,22 @@ static int check_sha(const char *name, long line, const char *s,
 	return STRAY_OK;
 }
 
-/* Relative path inside the folder: no absolute path, no "..". */
+/* A plain name inside the folder: no separator, no "..", no control
+ * character; the name is later opened as is (never through cfitsio's
+ * extended syntax, where "(", "[" and "!" are instructions). */
 static int check_file(const char *name, long line, const char *s,
 		      struct stray_error *err)
 {
-	if (*s == '\0' || *s == '/' || strstr(s, "..") ||
-	    strlen(s) >= STRAY_SWEEP_FILE_MAX)
+	const char *c;
+
+	for (c = s; *c; c++)
+		if (*c == '/' || (unsigned char)*c < 0x20 || *c == 0x7f)
+			break;
+	if (*s == '\0' || *c != '\0' || strstr(s, "..") ||
+	    strcmp(s, ".") == 0 || strlen(s) >= STRAY_SWEEP_FILE_MAX)
 		return bad_cell(name, line, columns[COL_FILE],
-				"must be a relative path inside the sweep folder",
-				s, err);
+				"must be a plain file name inside the sweep "
+				"folder (no '/', no '..')", s, err);
 	return STRAY_OK;
 }
 
@@ -237,6 +245,41 @@ static int take_line(const char *name, long line, const char *s, size_t len,
 	return rc;
 }
 
+static int by_file(const void *a, const void *b)
+{
+	const struct stray_sweep_entry *const *x = a, *const *y = b;
+	int c = strcmp((*x)->file, (*y)->file);
+
+	return c ? c : ((*x)->line > (*y)->line) - ((*x)->line < (*y)->line);
+}
+
+/* A frame listed twice would be counted twice: named with the line of
+ * its second row (every reader of the folder sees it here). */
+static int no_duplicates(const char *name, const struct stray_sweep_manifest *m,
+			 struct stray_error *err)
+{
+	const struct stray_sweep_entry **e = malloc((m->n ? m->n : 1) *
+						    sizeof(*e));
+	const struct stray_sweep_entry *dup = NULL;
+	size_t i;
+
+	if (!e)
+		return stray_error_at(err, STRAY_ENOMEM, name, 0, 0, 0);
+	for (i = 0; i < m->n; i++)
+		e[i] = &m->e[i];
+	qsort(e, m->n, sizeof(*e), by_file);
+	for (i = 1; i < m->n; i++)
+		if (strcmp(e[i]->file, e[i - 1]->file) == 0 &&
+		    (!dup || e[i]->line < dup->line))
+			dup = e[i];
+	free(e);
+	if (dup)
+		return bad_cell(name, dup->line, columns[COL_FILE],
+				"is listed twice (duplicate row)", dup->file,
+				err);
+	return STRAY_OK;
+}
+
 /*
  * The parser behind stray_sweep_manifest_parse; with allow_empty a
  * manifest of only its header is accepted (a writer resuming a sweep
@@ -272,6 +315,8 @@ int stray_sweep_manifest_parse_text(const char *name, const char *text,
 		rc = stray_error_at(err, STRAY_EPARSE, name, line ? line : 1,
 				    columns[COL_FILE],
 				    "manifest lists no frames");
+	if (rc == STRAY_OK)
+		rc = no_duplicates(name, m, err);
 	if (rc != STRAY_OK)
 		stray_sweep_manifest_free(m);
 	return rc;
@@ -307,7 +352,33 @@ int stray_sweep_manifest_load(const char *dir,
 		return rc;
 	rc = stray_sweep_manifest_parse_text(path, text, len, 0, m, err);
 	free(text);
+	if (rc == STRAY_OK)
+		rc = stray_sweep_manifest_check_files(path, m, err);
+	if (rc != STRAY_OK)
+		stray_sweep_manifest_free(m);
 	return rc;
+}
+
+/* lstat, not stat: a symlink is refused, whatever it points at. */
+int stray_sweep_manifest_check_files(const char *path,
+				     const struct stray_sweep_manifest *m,
+				     struct stray_error *err)
+{
+	char file[STRAY_SWEEP_DIR_MAX + STRAY_SWEEP_FILE_MAX + 2];
+	struct stat st;
+	size_t i;
+
+	for (i = 0; i < m->n; i++) {
+		snprintf(file, sizeof(file), "%s/%s", m->dir, m->e[i].file);
+		if (lstat(file, &st) == 0 && !S_ISREG(st.st_mode))
+			return bad_cell(path, m->e[i].line, columns[COL_FILE],
+				S_ISLNK(st.st_mode)
+				? "is a symbolic link: frames must be plain "
+				  "files in the sweep folder"
+				: "is not a regular file (a FIFO, device or "
+				  "folder)", m->e[i].file, err);
+	}
+	return STRAY_OK;
 }
 
 void stray_sweep_manifest_free(struct stray_sweep_manifest *m)

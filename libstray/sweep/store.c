@@ -64,6 +64,8 @@ static int load(struct stray_sweep_manifest *m, const char *path,
 	strcpy(m->dir, dir);
 	m->lock_fd = fd;	/* the parser reset them: keep the lock */
 	m->writer = writer;
+	if (rc == STRAY_OK)
+		rc = stray_sweep_manifest_check_files(path, m, err);
 	return rc;
 }
 

@@ -15,6 +15,12 @@ int stray_sweep_manifest_parse_text(const char *name, const char *text,
 				    struct stray_sweep_manifest *m,
 				    struct stray_error *err);
 
+/* Every row's file, where it exists, a regular file of the folder
+ * m->dir (no symlink, FIFO or device): refused at path's row line. */
+int stray_sweep_manifest_check_files(const char *path,
+				     const struct stray_sweep_manifest *m,
+				     struct stray_error *err);
+
 /*
  * Write img as dir/name: to name.tmp, fsync, rename, fsync the folder;
  * the SHA-256 of the final bytes goes to sha_hex.

@@ -93,6 +93,25 @@ static void test_manifest_bad_rows(void **state)
 	expect(HDR, STRAY_EPARSE, 1, "file");	/* no frames */
 }
 
+/* Issue 31: names are plain names of the folder (opened as given, never
+ * through cfitsio's syntax), a file listed twice is named at its second
+ * row. */
+static void test_manifest_plain_names_once(void **state)
+{
+	(void)state;
+	expect(HDR "sub/a.fits,FULL,1,0.1,1,0," SHA "\n", STRAY_EPARSE, 2,
+	       "file");
+	expect(HDR "a.fits(/tmp/x.fits),FULL,1,0.1,1,0," SHA "\n",
+	       STRAY_EPARSE, 2, "file");
+	expect(HDR "..,FULL,1,0.1,1,0," SHA "\n", STRAY_EPARSE, 2, "file");
+	expect(HDR ".,FULL,1,0.1,1,0," SHA "\n", STRAY_EPARSE, 2, "file");
+	expect(HDR "\"a\tb.fits\",FULL,1,0.1,1,0," SHA "\n", STRAY_EPARSE, 2,
+	       "file");
+	expect(HDR "a.fits,FULL,1,0.1,1,0," SHA "\n"
+	       "b.fits,FULL,1,0.1,1,1," SHA "\n"
+	       "a.fits,FULL,1,0.1,1,2," SHA "\n", STRAY_EPARSE, 4, "file");
+}
+
 /* FIPS 180-2 appendix B.1: SHA-256("abc"). */
 static void test_manifest_sha256_vector(void **state)
 {
@@ -119,6 +138,7 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_manifest_good_rows),
 		cmocka_unit_test(test_manifest_bad_rows),
+		cmocka_unit_test(test_manifest_plain_names_once),
 		cmocka_unit_test(test_manifest_sha256_vector),
 	};
 

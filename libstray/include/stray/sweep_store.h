@@ -58,6 +58,10 @@ enum stray_sweep_frametyp {
 #define STRAY_SWEEP_SHA256_HEX 65
 /* Rows a frame may store (the largest detector has 1944). */
 #define STRAY_SWEEP_ROWS_MAX 8192
+/* Columns a frame may store, and the pixel bytes that makes at most. */
+#define STRAY_SWEEP_COLS_MAX 65536
+#define STRAY_SWEEP_FRAME_BYTES_MAX \
+	((size_t)STRAY_SWEEP_COLS_MAX * STRAY_SWEEP_ROWS_MAX * 2)
 
 /* FRAMETYP text to enum; -1 when unknown. */
 int stray_sweep_frametyp_parse(const char *text);
@@ -131,7 +135,8 @@ struct stray_sweep_buf {
 };
 
 /* Read the file at path into b (missing: STRAY_ENOTFOUND, as
- * stray_sweep_sha256_file says it). */
+ * stray_sweep_sha256_file says it); a symlink, FIFO, device or folder is
+ * refused (STRAY_EINVAL) without waiting on it. */
 int stray_sweep_file_load(const char *path, struct stray_sweep_buf *b,
 			  struct stray_error *err);
 void stray_sweep_buf_free(struct stray_sweep_buf *b);
@@ -230,7 +235,10 @@ struct stray_sweep_fits {
 	int bitpix, equiv_bitpix;
 };
 
-/* Open and read the header; errors name the file and the keyword. */
+/* Open and read the header; errors name the file and the keyword.  The
+ * file is read whole by stray_sweep_file_load (cfitsio never parses the
+ * path), NAXIS1 x NAXIS2 held to its bytes (stray/sizes.h) here as in
+ * the other opens. */
 int stray_sweep_fits_open(const char *path, struct stray_sweep_fits *f,
 			  struct stray_error *err);
 
