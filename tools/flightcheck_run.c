@@ -121,8 +121,9 @@ int fc_run_dir(const char *dir, const struct stray_aem *aem,
 				rc = stray_error_at(err, STRAY_EINVAL, path, 0, 0,
 					"NAXIS: not the size of the first frame");
 			if (rc == STRAY_OK && stray_aem_attitude(aem, t, q) != STRAY_OK)
-				rc = stray_error_at(err, STRAY_ERANGE, path, 0, 0,
-					"DATE-OBS: outside the AEM's span");
+				/* bad input (the frame or the AEM), exit 2 */
+				rc = stray_error_at(err, STRAY_EINVAL, path, 0, 0,
+					"DATE-OBS: outside the AEM's span or in a gap of it");
 			stray_sweep_fits_close(&f);
 			if (rc != STRAY_OK)
 				break;
