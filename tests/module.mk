@@ -64,6 +64,10 @@ build/fuzz/fuzz_focal_map: tests/fuzz/fuzz_focal_map.c \
 	@mkdir -p $(dir $@)
 	$(CLANG) $(FUZZ_CFLAGS) -Itools -Itracer/include -o $@ $^ \
 		$(STRAY_LDLIBS)
+# The heads file of `stray availability` (issue 31): its parser alone.
+build/fuzz/fuzz_heads: tests/fuzz/fuzz_heads.c tools/avail_heads.c $(FUZZ_LIB_SRC)
+	@mkdir -p $(dir $@)
+	$(CLANG) $(FUZZ_CFLAGS) -Itools -o $@ $^ -lcsv -lcjson -lm
 
 # Scene files: the JSON, then the OBJ/STL meshes it names through assimp.
 build/fuzz/fuzz_scene_json: tests/fuzz/fuzz_scene_json.c $(wildcard tracer/*.c) \

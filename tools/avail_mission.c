@@ -1,6 +1,7 @@
 /*
- * avail_mission.c - `stray availability`: demo mission files, the heads
- * file, and the flight module flown per head at every epoch.
+ * avail_mission.c - `stray availability`: the mission loaded (OEM, AEM,
+ * heads and their tables), and the flight module flown per head at every
+ * epoch the files cover.
  */
 #include <cJSON.h>
 #include <math.h>
@@ -8,227 +9,39 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "avail_heads.h"
 #include "avail_mission.h"
 #include "fdrfw/earth.h"
 #include "fdrfw/ephem.h"
 #include "fdrfw/vec.h"
 #include "flight_table.h"
-#include "orbit.h"
 #include "stray/ccsds.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"
 
-#define OMEGA_EARTH 7.2921159e-5	/* rad/s, IERS */
 #define RAD2DEG 57.2957795130823209
-
-static void unit(double a[3])
-{
-	double n = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-
-	a[0] /= n;
-	a[1] /= n;
-	a[2] /= n;
-}
-
-static void cross(const double a[3], const double b[3], double c[3])
-{
-	c[0] = a[1] * b[2] - a[2] * b[1];
-	c[1] = a[2] * b[0] - a[0] * b[2];
-	c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-/*
- * Nadir pointing with yaw steering: body +z to nadir, +x along the ground
- * track (the orbital velocity less the Earth's rotation under it), the
- * yaw angle psi = atan2(w_E sin i cos u, n - w_E cos i).
- */
-static void nadir_yaw_q(const struct orbit *o, double ts, const double r[3],
-			const double v[3], double q[4])
-{
-	double m[3][3], x0[3], y0[3], h[3], u = o->n_rad_s * ts, psi;
-	int k;
-
-	psi = atan2(OMEGA_EARTH * sin(o->incl_rad) * cos(u),
-		    o->n_rad_s - OMEGA_EARTH * cos(o->incl_rad));
-	cross(r, v, h);
-	for (k = 0; k < 3; k++) {
-		m[2][k] = -r[k];
-		y0[k] = -h[k];
-	}
-	unit(m[2]);
-	unit(y0);
-	cross(y0, m[2], x0);
-	for (k = 0; k < 3; k++) {
-		m[0][k] = cos(psi) * x0[k] + sin(psi) * y0[k];
-		m[1][k] = -sin(psi) * x0[k] + cos(psi) * y0[k];
-	}
-	stray_dcm_q(m, q);
-}
-
-int mission_write_demo(const struct mission_args *a, struct stray_error *err)
-{
-	struct stray_file_out fo, fa;
-	struct orbit orb;
-	char date[40];
-	double t0, (*r)[3], (*v)[3], (*q)[4], *t;
-	float sun[3];
-	size_t n = (size_t)(a->hours * 3600.0 / a->gen_step_s) + 1, i;
-	int rc;
-
-	snprintf(date, sizeof(date), "%04d-%02d-%02dT00:00:00", a->year,
-		 a->month, a->day);
-	if (stray_ccsds_epoch(date, STRAY_TS_UTC, &t0) != 0)
-		return stray_error_at(err, STRAY_EINVAL, NULL, 0, "epoch",
-				      "not a calendar date");
-	t = malloc(n * sizeof(*t));
-	r = malloc(n * sizeof(*r));
-	v = malloc(n * sizeof(*v));
-	q = malloc(n * sizeof(*q));
-	if (!t || !r || !v || !q) {
-		free(t), free(r), free(v), free(q);
-		return stray_error_set(err, STRAY_ENOMEM, "records", NULL);
-	}
-	fdrfw_sun_dir((int32_t)lround(t0), sun);
-	orbit_sso(&orb, 550.0, 22.5, atan2(sun[1], sun[0]));
-	for (i = 0; i < n; i++) {
-		double ts = (double)i * a->gen_step_s;
-
-		t[i] = t0 + ts;
-		orbit_state(&orb, ts, r[i], v[i]);
-		nadir_yaw_q(&orb, ts, r[i], v[i], q[i]);
-	}
-	rc = stray_file_open_atomic(&fo, a->write_oem, err);
-	if (rc == STRAY_OK) {
-		rc = stray_oem_write(fo.f, "STRAY-DEMO", STRAY_TS_UTC, t,
-				     (const double (*)[3])r,
-				     (const double (*)[3])v, n,
-				     STRAY_INTERP_HERMITE, 7);
-		rc = rc == STRAY_OK ? stray_file_commit(&fo, err) :
-		     (stray_file_abort(&fo), rc);
-	}
-	if (rc == STRAY_OK && (rc = stray_file_open_atomic(&fa, a->write_aem,
-							    err)) == STRAY_OK) {
-		rc = stray_aem_write(fa.f, "STRAY-DEMO", STRAY_TS_UTC, t,
-				     (const double (*)[4])q, n);
-		rc = rc == STRAY_OK ? stray_file_commit(&fa, err) :
-		     (stray_file_abort(&fa), rc);
-	}
-	free(t), free(r), free(v), free(q);
-	return rc;
-}
-
-static int vec3(const cJSON *o, const char *key, double out[3])
-{
-	const cJSON *arr = cJSON_GetObjectItemCaseSensitive(o, key);
-	int k;
-
-	if (!cJSON_IsArray(arr) || cJSON_GetArraySize(arr) != 3)
-		return 0;
-	for (k = 0; k < 3; k++) {
-		const cJSON *x = cJSON_GetArrayItem(arr, k);
-
-		if (!cJSON_IsNumber(x) || !isfinite(x->valuedouble))
-			return 0;
-		out[k] = x->valuedouble;
-	}
-	return sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2]) > 1e-9;
-}
-
-/* The head's frame in the body: +z the boresight, +y the image's up. */
-static int head_frame(const double bore[3], const double *up_in,
-		      double m[3][3])
-{
-	double z[3] = { bore[0], bore[1], bore[2] }, up[3], y[3], d;
-	int k;
-
-	unit(z);
-	if (up_in) {
-		memcpy(up, up_in, sizeof(up));
-	} else {	/* the body axis least along the boresight */
-		k = fabs(z[0]) < fabs(z[1]) ? (fabs(z[0]) < fabs(z[2]) ? 0 : 2) :
-		    (fabs(z[1]) < fabs(z[2]) ? 1 : 2);
-		up[0] = up[1] = up[2] = 0.0;
-		up[k] = 1.0;
-	}
-	d = up[0] * z[0] + up[1] * z[1] + up[2] * z[2];
-	for (k = 0; k < 3; k++)
-		y[k] = up[k] - d * z[k];
-	if (sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]) < 1e-6)
-		return 0;
-	unit(y);
-	memcpy(m[1], y, sizeof(y));
-	memcpy(m[2], z, sizeof(z));
-	cross(y, z, m[0]);
-	return 1;
-}
-
-static int head_fail(struct stray_error *err, const char *file,
-		     const char *field, const char *why, const char *name)
-{
-	stray_error_at(err, STRAY_EPARSE, file, 0, field, why);
-	stray_error_text(err, name);
-	return STRAY_EPARSE;
-}
 
 static int load_heads(const char *path, struct mission *m,
 		      struct stray_error *err)
 {
-	char *buf, tpath[4096];
-	size_t len, dirlen;
-	const char *slash = strrchr(path, '/');
-	cJSON *root, *arr, *h;
-	int rc = stray_file_read(path, &buf, &len, err), i = 0;
+	struct avail_head_spec spec[AVAIL_HEADS_MAX];
+	char *buf;
+	size_t len, n, i;
+	int rc = stray_file_read(path, &buf, &len, err);
 
 	if (rc != STRAY_OK)
 		return rc;
-	root = cJSON_ParseWithLength(buf, len);
+	rc = avail_heads_parse(buf, len, path, spec, &n, err);
 	free(buf);
-	arr = cJSON_GetObjectItemCaseSensitive(root, "heads");
-	if (!root || !cJSON_IsArray(arr) || cJSON_GetArraySize(arr) < 1 ||
-	    cJSON_GetArraySize(arr) > MISSION_HEADS_MAX) {
-		cJSON_Delete(root);
-		return head_fail(err, path, "heads",
-				 "not a JSON object with an array of 1..8 heads", "");
-	}
-	dirlen = slash ? (size_t)(slash - path) + 1 : 0;
-	cJSON_ArrayForEach(h, arr) {
+	for (i = 0; rc == STRAY_OK && i < n; i++) {
 		struct mission_head *hd = &m->head[i];
-		const cJSON *name = cJSON_GetObjectItemCaseSensitive(h, "name");
-		const cJSON *tab = cJSON_GetObjectItemCaseSensitive(h, "table");
-		double bore[3], up[3];
-		int has_up = cJSON_GetObjectItemCaseSensitive(h, "up_body") != NULL;
-		int j;
 
-		if (!cJSON_IsString(name) || !name->valuestring[0] ||
-		    strlen(name->valuestring) >= sizeof(hd->name) ||
-		    strspn(name->valuestring, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-") !=
-		    strlen(name->valuestring))
-			rc = head_fail(err, path, "name", "not a name of 1..31 letters, digits, _ or -", "");
-		else if (!vec3(h, "boresight_body", bore))
-			rc = head_fail(err, path, "boresight_body", "not a non-zero [x, y, z]", name->valuestring);
-		else if (has_up && !vec3(h, "up_body", up))
-			rc = head_fail(err, path, "up_body", "not a non-zero [x, y, z]", name->valuestring);
-		else if (!head_frame(bore, has_up ? up : NULL, hd->m_bs))
-			rc = head_fail(err, path, "up_body", "along the boresight", name->valuestring);
-		else if (!cJSON_IsString(tab) || !tab->valuestring[0])
-			rc = head_fail(err, path, "table", "not a file name", name->valuestring);
-		if (rc != STRAY_OK)
-			break;
-		for (j = 0; j < i; j++)
-			if (strcmp(m->head[j].name, name->valuestring) == 0)
-				rc = head_fail(err, path, "name", "given twice", name->valuestring);
-		if (rc != STRAY_OK)
-			break;
-		snprintf(hd->name, sizeof(hd->name), "%s", name->valuestring);
-		snprintf(tpath, sizeof(tpath), "%.*s%s",
-			 tab->valuestring[0] == '/' ? 0 : (int)dirlen, path,
-			 tab->valuestring);
-		if ((rc = flight_table_load(tpath, &hd->table, err)) != STRAY_OK)
-			break;
-		i++;
+		memcpy(hd->name, spec[i].name, sizeof(hd->name));
+		memcpy(hd->m_bs, spec[i].m_bs, sizeof(hd->m_bs));
+		if ((rc = flight_table_load(spec[i].table, &hd->table, err)) ==
+		    STRAY_OK)
+			m->n_heads = i + 1;
 	}
-	m->n_heads = (size_t)i;
-	cJSON_Delete(root);
 	return rc;
 }
 
@@ -239,9 +52,17 @@ int mission_load(const struct mission_args *a, struct mission *m,
 	size_t h;
 	int rc;
 
-	if ((rc = stray_oem_read(a->oem, &m->oem, err)) != STRAY_OK ||
-	    (rc = stray_aem_read(a->aem, &m->aem, err)) != STRAY_OK ||
-	    (rc = load_heads(a->heads, m, err)) != STRAY_OK)
+	if (m->oem_text)	/* just written: fly that, not the disk */
+		rc = stray_oem_parse(m->oem_text, m->oem_len, a->oem, &m->oem, err);
+	else
+		rc = stray_oem_read(a->oem, &m->oem, err);
+	if (rc != STRAY_OK)
+		return rc;
+	if (m->aem_text)
+		rc = stray_aem_parse(m->aem_text, m->aem_len, a->aem, &m->aem, err);
+	else
+		rc = stray_aem_read(a->aem, &m->aem, err);
+	if (rc != STRAY_OK || (rc = load_heads(a->heads, m, err)) != STRAY_OK)
 		return rc;
 	m->t0 = fmax(m->oem.t[0], m->aem.t[0]);
 	t1 = fmin(m->oem.t[m->oem.n - 1], m->aem.t[m->aem.n - 1]);
@@ -282,6 +103,8 @@ void mission_free(struct mission *m)
 
 	stray_oem_free(&m->oem);
 	stray_aem_free(&m->aem);
+	free(m->oem_text);
+	free(m->aem_text);
 	for (h = 0; h < MISSION_HEADS_MAX; h++) {
 		free(m->head[h].mask);
 		free(m->head[h].stars);
@@ -467,13 +290,27 @@ static void shared_chunk(struct mission *m, struct block *b, size_t i0,
 	}
 }
 
-/* The block's albedo held from the epochs it was made at. */
-static void hold_albedo(struct mission *m, size_t i0, size_t nb)
+/* The block's albedo held from the epochs it was made at; the first
+ * epoch after a gap makes its own (NAN in a gap: nothing is fed). */
+static void hold_albedo(struct mission *m, const struct block *b, size_t i0,
+			size_t nb)
 {
 	size_t every = albedo_every(m), i;
 
-	for (i = i0; i < i0 + nb; i++)
-		m->albedo[i] = m->albedo[i - i % every];
+	for (i = i0; i < i0 + nb; i++) {
+		const size_t j = i - i0;
+		float pos[3] = { (float)b->r[j][0], (float)b->r[j][1],
+				 (float)b->r[j][2] };
+
+		if (b->bad[j])
+			m->albedo[i] = NAN;
+		else if (i % every == 0)
+			continue;
+		else if (i > 0 && isfinite(m->albedo[i - 1]))
+			m->albedo[i] = m->albedo[i - 1];
+		else
+			m->albedo[i] = (float)mission_cap_albedo(pos, b->sun[j]);
+	}
 }
 
 static void fly_head(struct mission *m, struct block *b, size_t h,
@@ -489,6 +326,17 @@ static void fly_head(struct mission *m, struct block *b, size_t h,
 		double mis[3][3];
 		int k, l;
 
+		if (b->bad[j]) {	/* in a gap: not flown */
+			hd->mask[i] = MISSION_UNCOVERED;
+			hd->after_gap = 1;
+			continue;
+		}
+		/* the module's latches do not carry over time unseen (not
+		 * fdrfw_init: the table's albedo is changed per frame, so
+		 * its CRC no longer holds) */
+		if (hd->after_gap)
+			hd->ctx.latched = 0;
+		hd->after_gap = 0;
 		memset(&in, 0, sizeof(in));
 		for (k = 0; k < 3; k++) {
 			in.pos_km[k] = (float)b->r[j][k];
@@ -544,13 +392,7 @@ int mission_fly(const struct mission_args *a, struct mission *m,
 		size_t nb = m->n - i0 < BLOCK ? m->n - i0 : BLOCK, j;
 		size_t i1 = i0 + nb, nb1 = m->n - i1 < BLOCK ? m->n - i1 : BLOCK;
 
-		hold_albedo(m, i0, nb);
-		for (j = 0; j < nb; j++)
-			if (b->bad[j]) {
-				rc = stray_error_at(err, STRAY_ERANGE, a->oem, 0,
-						    "epoch", "outside the ephemeris");
-				goto done;
-			}
+		hold_albedo(m, b, i0, nb);
 #pragma omp parallel
 #pragma omp single
 		{
@@ -570,6 +412,10 @@ int mission_fly(const struct mission_args *a, struct mission *m,
 		for (j = 0; j < nb; j++) {
 			uint8_t all = STRAY_AVAIL_BLIND;
 
+			if (b->bad[j]) {	/* in a gap: neither up nor down */
+				m->any_mask[i0 + j] = MISSION_UNCOVERED;
+				continue;
+			}
 			for (h = 0; h < m->n_heads; h++)
 				all &= m->head[h].mask[i0 + j] ? STRAY_AVAIL_BLIND : 0;
 			m->any_mask[i0 + j] = all;
@@ -598,11 +444,12 @@ done:
 
 		stray_avail_summarise(hd->mask, m->n, m->step_s, &hd->st);
 		for (i = 0; i < m->n; i++)
-			if (isfinite(hd->stars[i])) {
+			if (!(hd->mask[i] & MISSION_UNCOVERED) &&
+			    isfinite(hd->stars[i])) {
 				sum += hd->stars[i];
 				mx = fmax(mx, hd->stars[i]);
 			}
-		hd->stars_mean = sum / (double)m->n;
+		hd->stars_mean = hd->st.epochs ? sum / (double)hd->st.epochs : 0.0;
 		hd->stars_max = mx;
 	}
 	stray_avail_summarise(m->any_mask, m->n, m->step_s, &m->any);

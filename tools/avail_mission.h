@@ -13,7 +13,11 @@
 #include "stray/avail.h"
 #include "stray/oem.h"
 
-#define MISSION_HEADS_MAX 8
+#define MISSION_HEADS_MAX 8	/* AVAIL_HEADS_MAX */
+
+/* An epoch neither file covers (in a gap, stray_ccsds_gap_s): not flown,
+ * not counted (stray_avail_summarise). */
+#define MISSION_UNCOVERED STRAY_AVAIL_UNCOVERED
 #define MISSION_SKY_MAX 3000	/* points per path in a sky plot */
 
 struct mission_args {
@@ -29,6 +33,7 @@ struct mission_head {
 	double m_bs[3][3];		/* body -> head (rows: head axes) */
 	struct fdrfw_table table;	/* its flight table; albedo fed per epoch */
 	struct fdrfw_ctx ctx;
+	int after_gap;			/* ctx to be started afresh */
 	uint8_t *mask;			/* STRAY_AVAIL_* per epoch */
 	float *stars;			/* predicted false stars per frame */
 	double *sky[3][2];		/* Sun, Moon, Earth limb: x, y [deg] */
@@ -45,9 +50,15 @@ struct mission {
 	uint8_t *any_mask;		/* blind only where every head is */
 	float *albedo;			/* fed to the Earth term, per epoch */
 	struct stray_avail_stats any;
+	char *oem_text, *aem_text;	/* --write-*: what was written */
+	size_t oem_len, aem_len;
 };
 
-int mission_write_demo(const struct mission_args *a, struct stray_error *err);
+/* The demo mission written to a->write_oem and a->write_aem, its text
+ * kept in m->oem_text / aem_text for mission_load (the files themselves
+ * are renamed into place only when the command succeeds). */
+int mission_write_demo(const struct mission_args *a, struct mission *m,
+		       struct stray_error *err);
 int mission_load(const struct mission_args *a, struct mission *m,
 		 struct stray_error *err);
 int mission_fly(const struct mission_args *a, struct mission *m,

@@ -10,6 +10,7 @@
 #include "avail_mission.h"
 #include "cli.h"
 #include "plot.h"
+#include "stray/ccsds.h"
 
 #define TIMELINE_BINS 4000
 
@@ -37,18 +38,26 @@ static cJSON *stats_json(const char *name, const struct stray_avail_stats *s)
 int mission_summary(const struct mission_args *a, const struct mission *m)
 {
 	cJSON *o = cJSON_CreateObject(), *heads = cJSON_CreateArray();
-	double amean = 0.0;
+	double amean = 0.0, gap_s = (double)m->any.uncovered * m->step_s;
 	size_t h, i;
 
 	for (i = 0; i < m->n; i++)
-		amean += m->albedo[i];
-	amean /= (double)m->n;
+		if (isfinite(m->albedo[i]))
+			amean += m->albedo[i];
+	amean /= m->any.epochs ? (double)m->any.epochs : 1.0;
 	cJSON_AddStringToObject(o, "oem", a->oem);
 	cJSON_AddStringToObject(o, "aem", a->aem);
 	cJSON_AddNumberToObject(o, "epochs", (double)m->n);
 	cJSON_AddNumberToObject(o, "step_s", m->step_s);
 	cJSON_AddNumberToObject(o, "span_s", (double)(m->n - 1) * m->step_s);
 	cJSON_AddNumberToObject(o, "mean_earth_albedo", amean);
+	/* time in a gap of the OEM or AEM: not flown, in no fraction */
+	cJSON_AddNumberToObject(o, "covered_epochs", (double)m->any.epochs);
+	cJSON_AddNumberToObject(o, "not_covered_s", gap_s);
+	cJSON_AddNumberToObject(o, "oem_gaps", (double)stray_ccsds_gaps(
+		m->oem.t, m->oem.n, m->oem.gap_s));
+	cJSON_AddNumberToObject(o, "aem_gaps", (double)stray_ccsds_gaps(
+		m->aem.t, m->aem.n, m->aem.gap_s));
 	for (h = 0; h < m->n_heads; h++) {
 		const struct mission_head *hd = &m->head[h];
 		cJSON *j = stats_json(hd->name, &hd->st);
@@ -66,6 +75,10 @@ int mission_summary(const struct mission_args *a, const struct mission *m)
 	printf("stray availability: %zu epochs every %g s over %.2f h, %zu heads\n",
 	       m->n, m->step_s, (double)(m->n - 1) * m->step_s / 3600.0,
 	       m->n_heads);
+	if (m->any.uncovered)
+		printf("  not covered: %.0f s (%.2f h) in gaps of the OEM/AEM, "
+		       "not flown and in no fraction below\n", gap_s,
+		       gap_s / 3600.0);
 	printf("  mean Earth albedo fed to the flight module %.3f\n", amean);
 	printf("  %-8s %9s %7s %7s %7s %7s %10s %9s\n", "head", "available",
 	       "sun", "moon", "earth", "outages", "longest_s", "stars_max");

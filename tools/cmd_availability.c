@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "avail_mission.h"
 #include "cli.h"
@@ -48,7 +49,8 @@ static const char usage[] =
 	"                       orbit (LTAN 22:30), nadir pointing with yaw\n"
 	"                       steering, from 00:00 UTC of --epoch (2026-06-21)\n"
 	"                       for --hours (24) every --gen-step-s (60) s; with\n"
-	"                       --heads they are then read back and flown\n";
+	"                       --heads what was written is flown in the same run\n"
+	"                       (nothing is written if it fails)\n";
 
 static int parse_date(const char *text, struct mission_args *a)
 {
@@ -58,6 +60,37 @@ static int parse_date(const char *text, struct mission_args *a)
 		      &n) == 3 && text[n] == '\0' && a->year >= 1972 &&
 	       a->year <= 2065 && a->month >= 1 && a->month <= 12 &&
 	       a->day >= 1 && a->day <= 31;
+}
+
+/* The same file by name, or by device and inode when it exists. */
+static int same_file(const char *x, const char *y)
+{
+	struct stat sx, sy;
+
+	if (!x || !y)
+		return 0;
+	if (strcmp(x, y) == 0)
+		return 1;
+	return stat(x, &sx) == 0 && stat(y, &sy) == 0 &&
+	       sx.st_dev == sy.st_dev && sx.st_ino == sy.st_ino;
+}
+
+/* --write-oem, --write-aem, --heads and --out: no two the same file,
+ * checked before anything is written (the OEM would be overwritten by
+ * the AEM, or the heads file by a mission). */
+static int distinct_outputs(const char *cmd, const struct mission_args *a)
+{
+	const char *f[4] = { a->write_oem, a->write_aem, a->heads, a->csv };
+	static const char *const opt[4] = { "--write-oem", "--write-aem",
+					    "--heads", "--out" };
+	int i, j;
+
+	for (i = 0; i < 4; i++)
+		for (j = i + 1; j < 4; j++)
+			if (same_file(f[i], f[j]))
+				return cli_usage_error(cmd, "%s and %s are the same file '%s'",
+						       opt[i], opt[j], f[j]);
+	return CLI_OK;
 }
 
 static int parse_args(int argc, char **argv, struct mission_args *a)
@@ -112,8 +145,13 @@ static int parse_args(int argc, char **argv, struct mission_args *a)
 	if (!!a->write_oem != !!a->write_aem)
 		return cli_usage_error(cmd, "--write-oem and --write-aem go together");
 	if (a->write_oem) {
-		a->oem = a->oem ? a->oem : a->write_oem;
-		a->aem = a->aem ? a->aem : a->write_aem;
+		/* what is flown is what is written: one pair of files */
+		if (a->oem || a->aem)
+			return cli_usage_error(cmd, "--oem/--aem and --write-oem/--write-aem: give one pair");
+		if ((rc = distinct_outputs(cmd, a)) != CLI_OK)
+			return rc;
+		a->oem = a->write_oem;
+		a->aem = a->write_aem;
 	}
 	if (!a->write_oem && (!a->oem || !a->aem || !a->heads))
 		return cli_usage_error(cmd, "--oem, --aem and --heads are required");
@@ -149,16 +187,21 @@ int cmd_availability(int argc, char **argv)
 	if (a.write_oem) {
 		if (!a.hours_given)
 			a.hours = 24.0;	/* a day of the demo mission */
-		if (mission_write_demo(&a, &err) != STRAY_OK)
+		memset(&m, 0, sizeof(m));
+		if (mission_write_demo(&a, &m, &err) != STRAY_OK) {
+			mission_free(&m);
 			return cli_fail("availability", &err);
+		}
 		if (!a.heads) {
+			mission_free(&m);
 			if (!cli.json)
 				printf("stray availability: wrote %s and %s\n",
 				       a.write_oem, a.write_aem);
 			return CLI_OK;
 		}
 	}
-	memset(&m, 0, sizeof(m));
+	if (!a.write_oem)
+		memset(&m, 0, sizeof(m));
 	rc = mission_load(&a, &m, &err);
 	if (rc == STRAY_OK)
 		rc = mission_fly(&a, &m, &err);

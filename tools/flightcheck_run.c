@@ -87,8 +87,9 @@ static int one_frame(const struct stray_sweep_manifest *m,
 	if (rc == STRAY_OK)
 		rc = frame_time(&f, &t, err);
 	if (rc == STRAY_OK && stray_aem_attitude(aem, t, q) != STRAY_OK)
-		rc = stray_error_at(err, STRAY_ERANGE, path, 0, 0,
-				    "DATE-OBS: outside the AEM's span");
+		/* bad input (the frame or the AEM), exit 2 */
+		rc = stray_error_at(err, STRAY_EINVAL, path, 0, 0,
+			"DATE-OBS: outside the AEM's span or in a gap of it");
 	if (rc == STRAY_OK)
 		rc = stray_sweep_fits_read(&f, px, err);
 	if (rc == STRAY_OK) {

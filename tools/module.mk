@@ -83,3 +83,9 @@ $(B)/tests/tools/test_availability: $(B)/obj/tests/tools/test_availability.o \
 	$(CC) $(CFLAGS_BASE) -o $@ $< -lcmocka -lcjson -lerfa -lm
 # make bench: one year at 10 s for three heads (scripts/bench.sh runs it).
 BENCHES += bench/bench_availability.sh
+# Issue 31's CCSDS probes: ERFA says where leap seconds are; flightcheck
+# frames come from the generator.
+$(B)/tests/tools/test_hardening2_ccsds: $(B)/obj/tests/tools/test_hardening2_ccsds.o \
+		tests/tools/run_cli.h $(STRAY_BIN) $(FLIGHT_GEN)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_BASE) -o $@ $< -lcmocka -lcjson -lerfa -lm

@@ -132,14 +132,15 @@ static int data_line(struct aem_parse *p, const struct stray_kvn_line *l)
 {
 	struct stray_aem *a = p->aem;
 	double t, x[4], q[4], n;
-	int k, conj;
+	int k, conj, e;
 
 	if (l->n_field != 5)
 		return fail(p, "data", "not an epoch and 4 quaternion components",
 			    l->field[0]);
-	if (stray_ccsds_epoch(l->field[0], a->time_system, &t) != 0)
-		return fail(p, "epoch", "not a CCSDS epoch YYYY-MM-DDThh:mm:ss",
-			    l->field[0]);
+	if ((e = stray_ccsds_epoch(l->field[0], a->time_system, &t)) != 0)
+		return fail(p, "epoch", e == -2 ?
+			    "second 60 where no leap second is" :
+			    "not a CCSDS epoch YYYY-MM-DDThh:mm:ss", l->field[0]);
 	for (k = 0; k < 4; k++)
 		if (!stray_kvn_number(l->field[k + 1], &x[k]))
 			return fail(p, "data", "not a number", l->field[k + 1]);
@@ -262,6 +263,10 @@ int stray_aem_parse(const char *buf, size_t len, const char *file,
 		rc = fail(&p, "META_STOP", "missing at the end", "");
 	if (rc == STRAY_OK && aem->n < 2)
 		rc = fail(&p, "data", "fewer than 2 attitude records", "");
+	/* SLERP's window is the two records around an epoch */
+	if (rc == STRAY_OK &&
+	    (aem->gap_s = stray_ccsds_gap_s(aem->t, aem->n, 2)) < 0.0)
+		rc = stray_error_set(err, STRAY_ENOMEM, "records", NULL);
 	if (rc != STRAY_OK)
 		stray_aem_free(aem);
 	return rc;
@@ -357,18 +362,14 @@ void stray_q_slerp(const double a[4], const double b[4], double f,
 
 int stray_aem_attitude(const struct stray_aem *a, double t, double q[4])
 {
-	size_t lo = 0, hi;
+	size_t lo, hi;
 
-	if (a->n < 2 || !(t >= a->t[0] && t <= a->t[a->n - 1]))
+	if (a->n < 2 ||
+	    stray_ccsds_piece(a->t, a->n, a->gap_s, t, 0, &lo, &hi) != 0)
 		return STRAY_ERANGE;
-	hi = a->n - 1;
-	while (hi - lo > 1) {
-		size_t mid = lo + (hi - lo) / 2;
-
-		if (a->t[mid] <= t)
-			lo = mid;
-		else
-			hi = mid;
+	if (lo == hi) {		/* on a record at a gap's edge */
+		memcpy(q, a->q[lo], sizeof(a->q[lo]));
+		return STRAY_OK;
 	}
 	stray_q_slerp(a->q[lo], a->q[hi],
 		      (t - a->t[lo]) / (a->t[hi] - a->t[lo]), q);

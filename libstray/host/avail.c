@@ -27,10 +27,16 @@ void stray_avail_summarise(const uint8_t *mask, size_t n, double step_s,
 	size_t i, run = 0, avail = 0, sun = 0, moon = 0, earth = 0;
 
 	memset(s, 0, sizeof(*s));
-	s->epochs = n;
 	for (i = 0; i < n; i++) {
 		uint8_t m = mask[i];
 
+		if (m & STRAY_AVAIL_UNCOVERED) {
+			s->uncovered++;
+			if (run)
+				close_outage(s, (double)run * step_s);
+			run = 0;
+			continue;
+		}
 		sun += (m & STRAY_AVAIL_SUN) != 0;
 		moon += (m & STRAY_AVAIL_MOON) != 0;
 		earth += (m & STRAY_AVAIL_EARTH) != 0;
@@ -45,11 +51,14 @@ void stray_avail_summarise(const uint8_t *mask, size_t n, double step_s,
 	}
 	if (run)
 		close_outage(s, (double)run * step_s);
-	if (n) {
-		s->available_frac = (double)avail / (double)n;
-		s->sun_frac = (double)sun / (double)n;
-		s->moon_frac = (double)moon / (double)n;
-		s->earth_frac = (double)earth / (double)n;
+	s->epochs = n - s->uncovered;
+	if (s->epochs) {
+		double c = (double)s->epochs;
+
+		s->available_frac = (double)avail / c;
+		s->sun_frac = (double)sun / c;
+		s->moon_frac = (double)moon / c;
+		s->earth_frac = (double)earth / c;
 	}
 	if (s->outages)
 		s->mean_outage_s /= (double)s->outages;

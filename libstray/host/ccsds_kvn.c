@@ -135,6 +135,11 @@ int stray_ccsds_epoch(const char *text, int ts, double *t_tt)
 			return -1;
 		day = stray_ccsds_days_from_2000(y, a, b);
 	}
+	/* Second 60 exists only in UTC, at 23:59 of a day that ends in a
+	 * leap second (the table above: TAI - UTC steps the next day). */
+	if (ss >= 60.0 && (ts != STRAY_TS_UTC || hh != 23 || mm != 59 ||
+			   tai_minus_utc(day + 1) == tai_minus_utc(day)))
+		return -2;
 	*t_tt = (double)day * 86400.0 + hh * 3600.0 + mm * 60.0 + ss +
 		to_tt(ts, day) - 43200.0;
 	return 0;
@@ -165,10 +170,39 @@ void stray_ccsds_format_epoch(double t_tt, int ts, char *buf, size_t size)
 		 sec / 3600, sec / 60 % 60, s - (double)(sec - sec % 60));
 }
 
+/* A decimal number as CCSDS writes one: [+-]digits[.digits][E[+-]digits].
+ * strtod alone would also take hex floats (0x1p3), INF and NAN. */
+static int decimal(const char *s)
+{
+	int digits = 0;
+
+	if (*s == '+' || *s == '-')
+		s++;
+	for (; isdigit((unsigned char)*s); s++)
+		digits++;
+	if (*s == '.')
+		for (s++; isdigit((unsigned char)*s); s++)
+			digits++;
+	if (!digits)
+		return 0;
+	if (*s == 'e' || *s == 'E') {
+		s++;
+		if (*s == '+' || *s == '-')
+			s++;
+		if (!isdigit((unsigned char)*s))
+			return 0;
+		while (isdigit((unsigned char)*s))
+			s++;
+	}
+	return *s == '\0';
+}
+
 int stray_kvn_number(const char *s, double *x)
 {
 	char *end;
 
+	if (!decimal(s))
+		return 0;
 	*x = strtod(s, &end);
 	return end != s && *end == '\0' && isfinite(*x);
 }

@@ -12,6 +12,14 @@
 
 #define HERMITE_NODES_MAX 8
 
+/* Physical bounds of an Earth-centred state (docs/limits.md): inside the
+ * polar radius a point is under the surface at every latitude; 1e7 km is
+ * far past the Earth's Hill sphere (1.5e6 km); 25 km/s is the escape
+ * speed at the surface (11.2 km/s) with 22 km/s of hyperbolic excess. */
+#define R_POLAR_KM 6356.752
+#define R_MAX_KM 1e7
+#define V_MAX_KM_S 25.0
+
 enum { ST_HEADER, ST_META, ST_DATA, ST_COV };
 
 struct oem_parse {
@@ -23,6 +31,7 @@ struct oem_parse {
 	int state, segments, seg_records;
 	int have_frame, have_ts, have_center, have_interp;
 	int first;		/* no line read yet */
+	long cov_line;		/* the open COVARIANCE_START's line */
 };
 
 static int fail(struct oem_parse *p, const char *key, const char *why,
@@ -126,15 +135,16 @@ static int meta_stop(struct oem_parse *p)
 static int data_line(struct oem_parse *p, const struct stray_kvn_line *l)
 {
 	struct stray_oem *o = p->oem;
-	double t, x[6];
-	int k;
+	double t, x[6], rn, vn;
+	int k, e;
 
 	if (l->n_field != 7 && l->n_field != 10)
 		return fail(p, "data", "not an epoch and 6 (or 9) numbers",
 			    l->field[0]);
-	if (stray_ccsds_epoch(l->field[0], o->time_system, &t) != 0)
-		return fail(p, "epoch", "not a CCSDS epoch YYYY-MM-DDThh:mm:ss",
-			    l->field[0]);
+	if ((e = stray_ccsds_epoch(l->field[0], o->time_system, &t)) != 0)
+		return fail(p, "epoch", e == -2 ?
+			    "second 60 where no leap second is" :
+			    "not a CCSDS epoch YYYY-MM-DDThh:mm:ss", l->field[0]);
 	for (k = 1; k < l->n_field; k++) {
 		double a;
 
@@ -155,8 +165,16 @@ static int data_line(struct oem_parse *p, const struct stray_kvn_line *l)
 		o->r[o->n][k] = x[k];
 		o->v[o->n][k] = x[k + 3];
 	}
-	if (!(sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) < 1e7))
+	rn = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+	vn = sqrt(x[3] * x[3] + x[4] * x[4] + x[5] * x[5]);
+	if (!(rn < R_MAX_KM))
 		return fail(p, "data", "position beyond 1e7 km", l->field[1]);
+	if (!(rn > R_POLAR_KM))
+		return fail(p, "data", "position inside the Earth (|r| under 6356.752 km)",
+			    l->field[1]);
+	if (!(vn <= V_MAX_KM_S))
+		return fail(p, "data", "velocity over 25 km/s: not an Earth orbit",
+			    l->field[4]);
 	o->n++;
 	p->seg_records++;
 	return STRAY_OK;
@@ -175,6 +193,15 @@ static int first_line(struct oem_parse *p, const struct stray_kvn_line *l)
 	return STRAY_OK;
 }
 
+static int cov_unclosed(struct oem_parse *p)
+{
+	char at[48];
+
+	snprintf(at, sizeof(at), "COVARIANCE_START at line %ld", p->cov_line);
+	return fail(p, "COVARIANCE_STOP", "missing: the covariance block is not closed",
+		    at);
+}
+
 static int one_line(void *ctx, const struct stray_kvn_line *l)
 {
 	struct oem_parse *p = ctx;
@@ -184,9 +211,20 @@ static int one_line(void *ctx, const struct stray_kvn_line *l)
 		return first_line(p, l);
 	}
 	if (p->state == ST_COV) {
+		double t;
+
 		if (l->kind == STRAY_KVN_WORD &&
-		    strcmp(l->field[0], "COVARIANCE_STOP") == 0)
+		    strcmp(l->field[0], "COVARIANCE_STOP") == 0) {
 			p->state = ST_DATA;
+			return STRAY_OK;
+		}
+		/* a segment or an ephemeris line: the block was never closed,
+		 * and skipping on would drop the rest of the file */
+		if ((l->kind == STRAY_KVN_WORD &&
+		     !stray_kvn_number(l->field[0], &t)) ||
+		    (l->kind == STRAY_KVN_DATA &&
+		     stray_ccsds_epoch(l->field[0], STRAY_TS_TT, &t) != -1))
+			return cov_unclosed(p);
 		return STRAY_OK;
 	}
 	if (l->kind == STRAY_KVN_WORD) {
@@ -204,6 +242,7 @@ static int one_line(void *ctx, const struct stray_kvn_line *l)
 		}
 		if (strcmp(w, "COVARIANCE_START") == 0 && p->state == ST_DATA) {
 			p->state = ST_COV;
+			p->cov_line = p->line;
 			return STRAY_OK;
 		}
 		return fail(p, w, "out of place", w);
@@ -231,6 +270,18 @@ void stray_oem_free(struct stray_oem *oem)
 	memset(oem, 0, sizeof(*oem));
 }
 
+/* Records the interpolation takes around an epoch. */
+static size_t nodes(const struct stray_oem *o)
+{
+	size_t m;
+
+	if (o->interp == STRAY_INTERP_HERMITE) {
+		m = ((size_t)o->degree + 2) / 2;
+		return m < 2 ? 2 : m > HERMITE_NODES_MAX ? HERMITE_NODES_MAX : m;
+	}
+	return o->interp == STRAY_INTERP_LINEAR ? 2 : (size_t)o->degree + 1;
+}
+
 int stray_oem_parse(const char *buf, size_t len, const char *file,
 		    struct stray_oem *oem, struct stray_error *err)
 {
@@ -250,8 +301,13 @@ int stray_oem_parse(const char *buf, size_t len, const char *file,
 		rc = fail(&p, "CCSDS_OEM_VERS", "missing: the file is empty", "");
 	if (rc == STRAY_OK && p.state == ST_META)
 		rc = fail(&p, "META_STOP", "missing at the end", "");
+	if (rc == STRAY_OK && p.state == ST_COV)
+		rc = cov_unclosed(&p);
 	if (rc == STRAY_OK && oem->n < 2)
 		rc = fail(&p, "data", "fewer than 2 ephemeris records", "");
+	if (rc == STRAY_OK &&
+	    (oem->gap_s = stray_ccsds_gap_s(oem->t, oem->n, nodes(oem))) < 0.0)
+		rc = stray_error_set(err, STRAY_ENOMEM, "records", NULL);
 	if (rc != STRAY_OK)
 		stray_oem_free(oem);
 	return rc;
@@ -345,20 +401,20 @@ int stray_oem_state(const struct stray_oem *o, double t, double r[3],
 		    double v[3])
 {
 	double x[STRAY_OEM_DEGREE_MAX + 1];
-	size_t m, k, j;
+	size_t m = nodes(o), k, j, lo, hi;
 	int c;
 
-	if (o->n < 2 || !(t >= o->t[0] && t <= o->t[o->n - 1]))
+	if (o->n < 2 ||
+	    stray_ccsds_piece(o->t, o->n, o->gap_s, t, m, &lo, &hi) != 0)
 		return STRAY_ERANGE;
-	if (o->interp == STRAY_INTERP_HERMITE) {
-		m = ((size_t)o->degree + 2) / 2;
-		m = m < 2 ? 2 : m > HERMITE_NODES_MAX ? HERMITE_NODES_MAX : m;
-	} else {
-		m = o->interp == STRAY_INTERP_LINEAR ? 2 : (size_t)o->degree + 1;
+	if (lo == hi) {		/* a record alone between gaps, at its epoch */
+		memcpy(r, o->r[lo], sizeof(o->r[lo]));
+		memcpy(v, o->v[lo], sizeof(o->v[lo]));
+		return STRAY_OK;
 	}
-	if (m > o->n)
-		m = o->n;
-	k = window(o->t, o->n, t, m);
+	if (m > hi - lo + 1)
+		m = hi - lo + 1;
+	k = lo + window(o->t + lo, hi - lo + 1, t, m);
 	for (j = 0; j < m; j++)
 		x[j] = o->t[k + j] - o->t[k];
 	if (o->interp != STRAY_INTERP_HERMITE) {

@@ -24,6 +24,7 @@ struct stray_aem {
 	double *t;		/* TT seconds since J2000.0, increasing */
 	double (*q)[4];		/* q_ib (q_c, e1, e2, e3), unit, hemisphere-continuous */
 	int time_system;
+	double gap_s;		/* longer steps are gaps (stray_ccsds_gap_s) */
 	char object_name[64];
 };
 
@@ -33,7 +34,9 @@ int stray_aem_read(const char *path, struct stray_aem *aem,
 		   struct stray_error *err);
 void stray_aem_free(struct stray_aem *aem);
 
-/* q_ib at t by SLERP between the records around it; STRAY_ERANGE outside. */
+/* q_ib at t by SLERP between the records around it; STRAY_ERANGE outside
+ * the records or inside a gap (a step over twice the median, never
+ * bridged: stray_ccsds_gap_s). */
 int stray_aem_attitude(const struct stray_aem *aem, double t, double q[4]);
 
 /* M(q) of CCSDS 504.0 (above), rows first. */

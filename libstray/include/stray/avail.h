@@ -13,6 +13,8 @@
 #define STRAY_AVAIL_MOON 0x02u
 #define STRAY_AVAIL_EARTH 0x04u
 #define STRAY_AVAIL_INVALID 0x80u
+/* Not flown: the epoch is in a gap of the orbit or attitude records. */
+#define STRAY_AVAIL_UNCOVERED 0x40u
 #define STRAY_AVAIL_BLIND (STRAY_AVAIL_SUN | STRAY_AVAIL_MOON | \
 			   STRAY_AVAIL_EARTH | STRAY_AVAIL_INVALID)
 
@@ -20,7 +22,8 @@
 #define STRAY_AVAIL_BINS 5
 
 struct stray_avail_stats {
-	size_t epochs;
+	size_t epochs;		/* covered: every fraction is of these */
+	size_t uncovered;	/* STRAY_AVAIL_UNCOVERED epochs */
 	double available_frac;	/* no blinding bit */
 	double sun_frac, moon_frac, earth_frac;	/* each bit (may overlap) */
 	size_t outages;		/* maximal runs of blind epochs */
@@ -30,7 +33,9 @@ struct stray_avail_stats {
 
 /*
  * Statistics of n epochs step_s apart: an outage of k consecutive blind
- * epochs lasts k step_s (each epoch stands for its step).
+ * epochs lasts k step_s (each epoch stands for its step).  Uncovered
+ * epochs count for nothing (neither available nor blind) and end an
+ * outage: what happened in a gap is not known.
  */
 void stray_avail_summarise(const uint8_t *mask, size_t n, double step_s,
 			   struct stray_avail_stats *s);

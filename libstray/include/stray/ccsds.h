@@ -25,9 +25,30 @@ int stray_ccsds_inertial_frame(const char *text);
  * "YYYY-MM-DDThh:mm:ss[.f]" or "YYYY-DDDThh:mm:ss[.f]" (an optional
  * trailing Z) in time system ts, to TT seconds since J2000.0.  UTC takes
  * the leap seconds of 1972-2017 (TAI - UTC = 37 s since 2017-01-01).
- * Returns 0, or -1 if the text is not an epoch.
+ * Returns 0, -1 if the text is not an epoch, -2 if its second is 60 where
+ * no leap second is (only UTC has them, at 23:59:60 of the days of the
+ * table).
  */
 int stray_ccsds_epoch(const char *text, int ts, double *t_tt);
+
+/*
+ * The gap rule (docs/limits.md): a step between records is a gap when it
+ * is longer than the interpolation window's nominal span, (nodes - 1)
+ * times the median step and never under 2 of them; interpolation never
+ * crosses one.  stray_ccsds_gap_s gives that length for records t[0..n)
+ * (-1 out of memory); stray_ccsds_gaps counts the gaps.
+ */
+double stray_ccsds_gap_s(const double *t, size_t n, size_t nodes);
+size_t stray_ccsds_gaps(const double *t, size_t n, double gap_s);
+
+/*
+ * The records around `at` that interpolation may use: t[*lo .. *hi], no
+ * gap among them, at most `reach` records to either side of the step
+ * holding `at`.  Returns 0, or -1 when `at` is outside t[0 .. n-1] or
+ * inside a gap (a record on a gap's edge is covered, alone if need be).
+ */
+int stray_ccsds_piece(const double *t, size_t n, double gap_s, double at,
+		      size_t reach, size_t *lo, size_t *hi);
 
 /* Days from 2000-01-01 to the civil date y-m-d (negative before). */
 long stray_ccsds_days_from_2000(long y, long m, long d);
@@ -35,7 +56,8 @@ long stray_ccsds_days_from_2000(long y, long m, long d);
 /* The inverse for writing: t_tt to "YYYY-MM-DDThh:mm:ss.ffffff" in ts. */
 void stray_ccsds_format_epoch(double t_tt, int ts, char *buf, size_t size);
 
-/* A whole finite number (strtod, nothing after it): 1, else 0. */
+/* A finite decimal number, [+-]d[.d][E[+-]d] and nothing after it (no
+ * hex float, INF or NAN, which strtod alone takes): 1, else 0. */
 int stray_kvn_number(const char *s, double *x);
 
 /* One KVN line split in place (the line buffer is modified). */

@@ -6,7 +6,10 @@
  * TIME_SYSTEM UTC/TAI/TT/GPS, INTERPOLATION LAGRANGE/HERMITE/LINEAR with
  * INTERPOLATION_DEGREE; several segments, whose epochs must follow each
  * other (an epoch repeated at a segment boundary is kept once);
- * covariance blocks are skipped.  Anything else is refused with the line
+ * covariance blocks are skipped (one left open is refused); positions
+ * above the Earth's surface and under 1e7 km, speeds up to 25 km/s; a
+ * step longer than the interpolation window is a gap, never bridged.
+ * Anything else is refused with the line
  * and keyword named.
  */
 #ifndef STRAY_OEM_H
@@ -30,6 +33,7 @@ struct stray_oem {
 	int interp;		/* enum stray_interp */
 	int degree;
 	int time_system;	/* enum stray_time_system, of the file */
+	double gap_s;		/* longer steps are gaps (stray_ccsds_gap_s) */
 	char object_name[64], ref_frame[16];
 };
 
@@ -49,7 +53,8 @@ void stray_oem_free(struct stray_oem *oem);
  * of degree d on the d+1 records around t (position and velocity each);
  * Hermite on m = max(2, ceil((d+1)/2)) records with their velocities
  * (degree 2m-1, exact on polynomials up to it, velocity its derivative).
- * STRAY_ERANGE outside the records.
+ * Never across a gap (stray_ccsds_gap_s): the records of t's side only.
+ * STRAY_ERANGE outside the records or inside a gap.
  */
 int stray_oem_state(const struct stray_oem *oem, double t, double r[3],
 		    double v[3]);
