@@ -84,6 +84,7 @@ struct trace_args {
 	const char *spectrum, *response;	/* tracer/spectral.h */
 	double map_angle;
 	int dump_count, map_size;
+	const char *scene_note;	/* what loading the scene changed */
 	int auto_angles;	/* no --angles, or "auto": fitted grid */
 	double cutoff_deg;	/* the direct cut-off it found */
 	const char *sets[SETS_MAX];
@@ -269,6 +270,8 @@ static int add_meta(struct stray_curve *c, const struct trace_args *a,
 		rc = stray_curve_add_meta(c, "scene", buf, err);
 	if (!rc && a->lens)	/* a curve path or ideal:DEG */
 		rc = stray_curve_add_meta(c, "lens", a->lens, err);
+	if (!rc && a->scene_note)
+		rc = stray_curve_add_meta(c, "mesh", a->scene_note, err);
 	snprintf(buf, sizeof(buf), "stray trace, adjoint Monte Carlo with "
 		 "next-event connections; %llu paths, seed %llu",
 		 (unsigned long long)a->o.n_paths,
@@ -543,6 +546,10 @@ int cmd_trace(int argc, char **argv, const struct tracer_runner *runner)
 	tracer_scene_init(&s);
 	stray_file_defer();	/* every output renamed at the end, or none */
 	rc = load_scene(&a, &s, &err);
+	if (!rc && s.note[0]) {	/* a CAD mesh put right: say what */
+		fprintf(stderr, "stray trace: %s: %s\n", a.scene, s.note);
+		a.scene_note = s.note;
+	}
 	if (!rc && (a.out || cli.json || a.paths_out || a.top || a.plot ||
 		    a.plot_orders || a.dump || a.map ||
 		    focal_map_wanted(&a.fm)))

@@ -488,6 +488,8 @@ int tracer_scene_file_load_sets(const char *path, const char *const *sets,
 			rc = assign(&c, root, s);
 		if (!rc)
 			rc = detector_and_beam(&c, root, s);
+		if (!rc)	/* before edge rounding: it needs outward */
+			rc = tracer_scene_mesh_checks(path, s, err);
 		if (!rc)
 			rc = mesh_sets(path, sets, n_sets, s, err);
 	}

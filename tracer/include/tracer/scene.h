@@ -33,6 +33,7 @@ struct tracer_scene {
 	struct tracer_detector det;
 	struct tracer_beam beam;
 	struct tracer_rt *rt;		/* set by tracer_scene_commit */
+	char note[256];			/* what loading changed ("" none) */
 };
 
 struct tracer_hit {

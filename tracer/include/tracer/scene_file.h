@@ -22,4 +22,13 @@ int tracer_scene_file_load_sets(const char *path, const char *const *sets,
  * 0 otherwise (a mesh scene, or unreadable: the load says why). */
 int tracer_scene_file_is_vanes(const char *path);
 
+/*
+ * A CAD scene's checks once loaded (scene_checks.c): the winding made
+ * outward (tracer/mesh_orient.h; what was turned said in s->note) and
+ * the mesh's extent against its detector (a file in metres or inches is
+ * refused with the scale_mm it needs).
+ */
+int tracer_scene_mesh_checks(const char *path, struct tracer_scene *s,
+			     struct stray_error *err);
+
 #endif /* TRACER_SCENE_FILE_H */
