@@ -14,6 +14,7 @@
 #include "image_cv.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"
+#include "stray/sweep_store.h"
 #include "stray/sensor_geom.h"
 #include "stray/sensor_io.h"
 #include "stray/table.h"
@@ -155,6 +156,7 @@ static void fits_keys(fitsfile *fp, const struct focal_map_args *f,
 
 	fits_write_key(fp, TSTRING, "BUNIT", "E_px/E_src",
 		       "pixel irradiance / source irradiance", st);
+	stray_sweep_fits_provenance(fp, st);
 	fits_write_key(fp, TDOUBLE, "THETA", &theta, "source angle, deg", st);
 	fits_write_key(fp, TDOUBLE, "ALPHA", (void *)&f->alpha,
 		       "alpha(theta) = P(theta)/P(0)", st);

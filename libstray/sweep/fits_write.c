@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "stray/errfmt.h"
+#include "stray/provenance.h"
 #include "stray/sweep_store.h"
 #include "sweep_priv.h"
 
@@ -96,7 +97,25 @@ static int write_keys(fitsfile *f, const struct stray_sweep_image *img,
 			       STRAY_SWEEP_INSTRUME_RIG,
 			       "written by the straylight lab daemon", status);
 	write_extra(f, m, status);
+	stray_sweep_fits_provenance(f, status);
 	return *status;
+}
+
+void stray_sweep_fits_provenance(void *fptr, int *status)
+{
+	char creator[96];
+	const char *cmd = stray_provenance_command();
+
+	snprintf(creator, sizeof(creator), "stray %s",
+		 stray_provenance_version());
+	fits_write_key((fitsfile *)fptr, TSTRING, "CREATOR", creator,
+		       "program that wrote this file", status);
+	if (cmd[0]) {	/* HISTORY cards, continued as cfitsio splits them */
+		char line[4200];
+
+		snprintf(line, sizeof(line), "command: %s", cmd);
+		fits_write_history((fitsfile *)fptr, line, status);
+	}
 }
 
 /* The frame as FITS bytes in a malloc'd *buf (*len of them): built in

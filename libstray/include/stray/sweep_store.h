@@ -161,6 +161,11 @@ struct stray_sweep_key {
 /* INSTRUME when a frame names no instrument. */
 #define STRAY_SWEEP_INSTRUME_RIG "strayrigd"
 
+/* How a FITS file was made (stray/provenance.h): CREATOR, the program
+ * and its git revision, and HISTORY cards with the full command line, in
+ * the open header fptr (a fitsfile *); cfitsio's status convention. */
+void stray_sweep_fits_provenance(void *fptr, int *status);
+
 /* What a frame's FITS header says beyond its image. */
 struct stray_sweep_frame {
 	int type;		/* enum stray_sweep_frametyp */
