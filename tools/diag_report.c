@@ -133,6 +133,9 @@ void diag_report_text(const struct diag_data *d, const struct diag_eval *e,
 		       "(%s)\n", r->worst_theta_deg, r->worst_pull,
 		       r->worst_pull > 0 ? "measured above model" :
 		       "measured below model");
+	if (r->by_surface)
+		printf("(The registry's best tentative model below; the "
+		       "surface at fault's gain is in its section.)\n");
 	printf("Gain: chi2 %.1f -> %.1f (reduced %.2f -> %.2f), RMS log10 "
 	       "residual %.3f -> %.3f (x%.1f)\n", r->chi2_before,
 	       r->chi2_after, r->chi2_before / r->dof_before,
