@@ -252,6 +252,27 @@ int fdrfw_table_build_verdict(const struct stray_curve_view *curve,
 	return table_refused(t, err);
 }
 
+int fdrfw_table_sun_verdict(const struct fdrfw_table *t,
+			    struct stray_exclusion *sun,
+			    struct stray_error *err)
+{
+	double th[FDRFW_CURVE_MAX], al[FDRFW_CURVE_MAX];
+	struct stray_curve_view v = { t->n_curve, th, al, NULL };
+	uint32_t i;
+
+	if (t->n_curve < 2u || t->n_curve > FDRFW_CURVE_MAX)
+		return stray_error_set_value(err, STRAY_EINVAL, "n_curve",
+			"must lie in [2, 128]", (double)t->n_curve);
+	for (i = 0; i < t->n_curve; i++) {
+		th[i] = (double)t->theta_deg[i];
+		/* the floor stands for alpha = 0 (curve_fill) */
+		al[i] = t->log10_alpha[i] <= FDRFW_LOG10_ALPHA_FLOOR ? 0.0 :
+			pow(10.0, (double)t->log10_alpha[i]);
+	}
+	return stray_exclusion_interval(&v, (double)t->alpha_req_sun, 0.0,
+					sun, err);
+}
+
 static void write_floats(FILE *out, const char *field, const float *v,
 			 uint32_t n)
 {

@@ -207,6 +207,55 @@ static void test_exclusion_one_verdict(void **state)
 	assert_int_equal(r.err_lines, 1);
 }
 
+/* `stray availability` flies the design's table: it says, per head, that
+ * the baffle never excludes the Sun (libstray's verdict on the table). */
+static void test_availability_says_so(void **state)
+{
+	char *oem = path("o.oem"), *aem = path("a.aem"), *heads;
+	FILE *f;
+	cJSON *j;
+	int i;
+
+	(void)state;
+	STRAY("firmware-table", "--curve", user_curve(), "--sensor",
+	      path("cam1280.json"), "--out-bin", path("user.bin"));
+	expect_status(0, NULL);
+	f = fopen(oem, "w");
+	assert_non_null(f);
+	fprintf(f, "CCSDS_OEM_VERS = 2.0\nCREATION_DATE = 2026-03-01T00:00:00\n"
+		"ORIGINATOR = test\nMETA_START\nOBJECT_NAME = T\nOBJECT_ID = T\n"
+		"CENTER_NAME = EARTH\nREF_FRAME = EME2000\nTIME_SYSTEM = UTC\n"
+		"INTERPOLATION = LAGRANGE\nINTERPOLATION_DEGREE = 1\nMETA_STOP\n");
+	for (i = 0; i < 4; i++) {
+		double u = 0.6 * i;
+
+		fprintf(f, "2026-03-20T00:%02d:00 %.6f %.6f %.6f %.6f %.6f %.6f\n",
+			10 * i, 7000 * cos(u), 4200 * sin(u), 5600 * sin(u),
+			-7.0 * sin(u), 4.2 * cos(u), 5.6 * cos(u));
+	}
+	fclose(f);
+	f = fopen(aem, "w");
+	assert_non_null(f);
+	fprintf(f, "CCSDS_AEM_VERS = 1.0\nCREATION_DATE = 2026-03-01T00:00:00\n"
+		"ORIGINATOR = test\nMETA_START\nOBJECT_NAME = T\nOBJECT_ID = T\n"
+		"REF_FRAME_A = EME2000\nREF_FRAME_B = SC_BODY_1\nATTITUDE_DIR = B2A\n"
+		"TIME_SYSTEM = UTC\nATTITUDE_TYPE = QUATERNION\n"
+		"QUATERNION_TYPE = FIRST\nMETA_STOP\nDATA_START\n");
+	for (i = 0; i < 4; i++)
+		fprintf(f, "2026-03-20T00:%02d:00 1 0 0 0\n", 10 * i);
+	fprintf(f, "DATA_STOP\n");
+	fclose(f);
+	heads = put_text("heads.json", "{\"heads\": [{\"name\": \"U\", "
+			 "\"boresight_body\": [0, 0, 1], \"table\": \"user.bin\"}]}\n");
+	STRAY("availability", "--oem", oem, "--aem", aem, "--heads", heads,
+	      "--step-s", "600", "--json");
+	expect_status(0, NULL);
+	j = out_json();
+	assert_true(cJSON_IsFalse(at(cJSON_GetArrayItem(at(j, "heads"), 0),
+				     "sun_excluded_by_baffle")));
+	cJSON_Delete(j);
+}
+
 /* A curve zero everywhere but on axis is no baffle's curve. */
 static void test_spike_refused(void **state)
 {
@@ -365,6 +414,7 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_exclusion_one_verdict),
+		cmocka_unit_test(test_availability_says_so),
 		cmocka_unit_test(test_spike_refused),
 		cmocka_unit_test(test_diagnose_user_scene),
 		cmocka_unit_test(test_diagnose_cause_choice),

@@ -53,6 +53,15 @@ int fdrfw_table_build_verdict(const struct stray_curve_view *curve,
 			      struct stray_exclusion *sun,
 			      struct stray_error *err);
 
+/*
+ * libstray's verdict on a sealed table's own curve and Sun alpha_req (a
+ * table from before the verdict may carry 89.98 deg for a Sun the baffle
+ * never excludes): what `stray availability` reports per head.
+ */
+int fdrfw_table_sun_verdict(const struct fdrfw_table *t,
+			    struct stray_exclusion *sun,
+			    struct stray_error *err);
+
 /* The word of the table a status of fdrfw_table_check or fdrfw_init
  * refuses (FDRFW_EFIELD_OF), -1 for any other status; its name, or NULL. */
 #define FDRFW_FIELD_OF(rc) (((rc) >= FDRFW_EFIELD && \
