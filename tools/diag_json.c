@@ -17,18 +17,16 @@ static cJSON *fit_json(const struct diag_fit *f)
 	for (c = 0; c < f->n_causes; c++) {
 		const struct diag_cause *cs = f->cause[c];
 		cJSON *it = cJSON_CreateObject(), *p = cJSON_CreateObject();
-		cJSON *ci = cJSON_CreateObject();
+		cJSON *ci = cJSON_CreateObject(), *nom = cJSON_CreateObject();
 
 		cJSON_AddStringToObject(it, "name", cs->name);
 		cJSON_AddStringToObject(it, "side", cs->needs_lens ? "lens" :
 					"baffle or measurement");
 		for (k = 0; k < cs->n_params; k++, o++) {
 			cJSON *pair = cJSON_CreateArray();
-			char key[48];
 
 			/* the scene's own value (diagnose/scene_causes.c) */
-			snprintf(key, sizeof(key), "%s_nominal", cs->param[k].name);
-			cJSON_AddItemToObject(p, key,
+			cJSON_AddItemToObject(nom, cs->param[k].name,
 					      cli_json_number(cs->param[k].nominal));
 
 			cJSON_AddItemToObject(p, cs->param[k].name,
@@ -39,6 +37,7 @@ static cJSON *fit_json(const struct diag_fit *f)
 		}
 		cJSON_AddItemToObject(it, "params", p);
 		cJSON_AddItemToObject(it, "intervals", ci);
+		cJSON_AddItemToObject(it, "nominal", nom);
 		cJSON_AddItemToArray(list, it);
 	}
 	return list;
@@ -52,6 +51,7 @@ static void surface_causes(cJSON *list, const struct diag_surfaces *s)
 	for (k = 0; k < s->n_named; k++) {
 		cJSON *it = cJSON_CreateObject(), *p = cJSON_CreateObject();
 		cJSON *ci = cJSON_CreateObject(), *pair = cJSON_CreateArray();
+		cJSON *rpair = cJSON_CreateArray(), *nom = cJSON_CreateObject();
 		int c = s->named[k];
 
 		cJSON_AddStringToObject(it, "name", s->abg[c] ?
@@ -62,13 +62,20 @@ static void surface_causes(cJSON *list, const struct diag_surfaces *s)
 				      cli_json_number(pow(10.0, s->log10_f[k])));
 		cJSON_AddItemToObject(p, "reflectance", cli_json_number(
 			s->rho[c] * pow(10.0, s->log10_f[k])));
-		cJSON_AddItemToObject(p, "reflectance_nominal",
+		cJSON_AddItemToObject(nom, "factor", cJSON_CreateNumber(1.0));
+		cJSON_AddItemToObject(nom, "reflectance",
 				      cli_json_number(s->rho[c]));
 		cJSON_AddItemToArray(pair, cli_json_number(pow(10.0, s->ci_lo[k])));
 		cJSON_AddItemToArray(pair, cli_json_number(pow(10.0, s->ci_hi[k])));
+		cJSON_AddItemToArray(rpair, cli_json_number(s->rho[c] *
+						pow(10.0, s->ci_lo[k])));
+		cJSON_AddItemToArray(rpair, cli_json_number(s->rho[c] *
+						pow(10.0, s->ci_hi[k])));
 		cJSON_AddItemToObject(ci, "factor", pair);
+		cJSON_AddItemToObject(ci, "reflectance", rpair);
 		cJSON_AddItemToObject(it, "params", p);
 		cJSON_AddItemToObject(it, "intervals", ci);
+		cJSON_AddItemToObject(it, "nominal", nom);
 		cJSON_AddItemToArray(list, it);
 	}
 }

@@ -305,7 +305,7 @@ static void test_diagnose_user_scene(void **state)
 		if (strcmp(at(c, "name")->valuestring, "reflectance") == 0) {
 			const cJSON *p = at(c, "params");
 
-			assert_near(at(p, "reflectance_nominal")->valuedouble,
+			assert_near(at(at(c, "nominal"), "reflectance")->valuedouble,
 				    0.05, 1e-9);
 			assert_near(at(p, "reflectance")->valuedouble, 0.09,
 				    0.015);
