@@ -9,12 +9,34 @@
 #include "diagnose/diag_data.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"
+#include "stray/table.h"
 
 const char *const diag_region_name[DIAG_REGIONS] = {
 	"source in field", "transition", "scatter only"
 };
 
 #define DIAG_ANGLES_MAX 2000	/* input limit, docs/limits.md */
+
+/* The file line of data row i (the curve keeps none), or 0. */
+static long row_line(const char *path, size_t i)
+{
+	struct stray_table t;
+	struct stray_error e;
+	long line = 0;
+
+	stray_error_clear(&e);
+	if (stray_table_read(path, &t, &e) == STRAY_OK && i < t.n_rows)
+		line = t.line[i];
+	stray_table_free(&t);
+	return line;
+}
+
+/* The row `stray trace` writes at theta 0: exactly 1 by normalisation. */
+static int normalisation_row(const struct stray_curve *c, size_t i)
+{
+	return c->theta_deg[i] == 0.0 && c->sigma[i] == 0.0 &&
+	       fabs(c->alpha[i] - 1.0) <= 1e-9;
+}
 
 int diag_data_load(const char *path, struct diag_data *d,
 		   struct stray_error *err)
@@ -43,6 +65,10 @@ int diag_data_load(const char *path, struct diag_data *d,
 		const char *bad = NULL;
 		double v = 0.0;
 
+		if (normalisation_row(&c, i)) {
+			d->normalised = 1;
+			continue;
+		}
 		if (!(c.alpha[i] > 0.0))
 			bad = "alpha", v = c.alpha[i];
 		else if (!(c.sigma[i] > 0.0))
@@ -53,11 +79,16 @@ int diag_data_load(const char *path, struct diag_data *d,
 			rc = stray_error_set_value(err, STRAY_EINVAL, bad,
 				"must be > 0 (alpha, sigma) and theta in [0, 90) "
 				"for a log-space fit", v);
-			stray_error_locate(err, path, 0);
+			stray_error_locate(err, path, row_line(path, i));
 		}
 	}
+	if (!rc && c.n - (size_t)d->normalised < 3) {
+		rc = stray_error_set_value(err, STRAY_EINVAL, "theta_deg",
+			"at least 3 measured angles are needed besides the "
+			"theta 0 normalisation row", (double)c.n);
+		stray_error_locate(err, path, 0);
+	}
 	if (!rc) {
-		d->n = c.n;
 		d->theta_deg = malloc(c.n * sizeof(double));
 		d->alpha = malloc(c.n * sizeof(double));
 		d->sigma = malloc(c.n * sizeof(double));
@@ -66,10 +97,12 @@ int diag_data_load(const char *path, struct diag_data *d,
 			rc = stray_error_set(err, STRAY_ENOMEM, "diagnose",
 					     "out of memory");
 	}
-	if (!rc) {
-		memcpy(d->theta_deg, c.theta_deg, c.n * sizeof(double));
-		memcpy(d->alpha, c.alpha, c.n * sizeof(double));
-		memcpy(d->sigma, c.sigma, c.n * sizeof(double));
+	for (i = 0; !rc && i < c.n; i++) {
+		if (normalisation_row(&c, i))
+			continue;
+		d->theta_deg[d->n] = c.theta_deg[i];
+		d->alpha[d->n] = c.alpha[i];
+		d->sigma[d->n++] = c.sigma[i];
 	}
 	stray_curve_free(&c);
 	if (rc)

@@ -52,6 +52,8 @@ int diag_eval_prepare(struct diag_eval *e, struct stray_error *err)
 	for (a = 0; a < DIAG_GEO_N; a++)
 		nominal[a] = NAN;
 	rc = diag_trace_get(e, nominal, 0, &t, err);
+	if (!rc)	/* the registry fitted to the scene */
+		rc = diag_eval_causes(e, t->base_rho, err);
 	if (rc)
 		return rc;
 	e->direct_share = malloc((e->n ? e->n : 1) * sizeof(double));
@@ -85,18 +87,6 @@ void diag_eval_free(struct diag_eval *e)
 	diag_lens_free(e);
 }
 
-/* The retrace cause of an axis (its nodes and nominal), or NULL. */
-static const struct diag_cause *axis_cause(int axis)
-{
-	int i;
-
-	for (i = 0; diag_causes[i]; i++)
-		if (diag_causes[i]->kind == DIAG_RETRACE &&
-		    diag_causes[i]->geo_axis == axis)
-			return diag_causes[i];
-	return NULL;
-}
-
 /* A node value as a cache key: the scene's own value is NaN, so the
  * nominal node shares the nominal trace. */
 static double node_key(const struct diag_cause *c, double v)
@@ -111,13 +101,14 @@ struct corners {
 	double lo[DIAG_GEO_N], hi[DIAG_GEO_N], t[DIAG_GEO_N];
 };
 
-static void bracket(const struct diag_state *s, struct corners *c)
+static void bracket(const struct diag_eval *e, const struct diag_state *s,
+		    struct corners *c)
 {
 	int a, k;
 
 	c->n_axis = 0;
 	for (a = 0; a < DIAG_GEO_N; a++) {
-		const struct diag_cause *cs = axis_cause(a);
+		const struct diag_cause *cs = diag_eval_axis_cause(e, a);
 		double v = s->geo[a];
 		int m = c->n_axis;
 
@@ -181,7 +172,7 @@ static int blend_geometry(struct diag_eval *e, const struct diag_state *s,
 	double *p, *var, *a_c, *rv_c, *la, *lin;
 	int corner, n_corner, rc = STRAY_OK;
 
-	bracket(s, &c);
+	bracket(e, s, &c);
 	n_corner = 1 << c.n_axis;
 	nt = e->n * DIAG_SUB + 1;	/* bounds every trace's angle count */
 	p = work;

@@ -164,8 +164,21 @@ int diag_lens_prepare(struct diag_eval *e, const double *alpha_nominal,
 	e->lens_bin_first = floor(field - 0.5) + 1.5;
 	if (e->lens_bin_first - field < 0.05)
 		e->lens_bin_first += DIAG_LENS_BIN_DEG;
+	if (!(field < 90.0)) {	/* nothing beyond the field to scale */
+		rc = stray_error_set_value(err, STRAY_EINVAL, "alpha",
+			"the lens table stays above half its on-axis value to "
+			"90 deg: no out-of-field part for the lens causes",
+			tracer_lens_transmission(&told, 90.0));
+		stray_error_locate(err, e->lens, 0);
+		goto out;
+	}
+	/* a field edge beyond DIAG_LENS_BIN_TOP (a wide lens) leaves its
+	 * edge bin and the one to 180 deg: never fewer than two bins (the
+	 * count went negative, calloc's size huge: "out of memory") */
 	e->n_lens_bins = 2 + (int)ceil((DIAG_LENS_BIN_TOP -
 					e->lens_bin_first) / DIAG_LENS_BIN_DEG);
+	if (e->n_lens_bins < 2)
+		e->n_lens_bins = 2;
 	if (e->n_lens_bins > DIAG_LENS_BINS_MAX)
 		e->n_lens_bins = DIAG_LENS_BINS_MAX;
 	e->lens_bin = calloc((size_t)(e->n_lens_bins + 1) * (e->n ? e->n : 1),

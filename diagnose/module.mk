@@ -9,7 +9,8 @@
 DIAG_SRC := $(wildcard diagnose/*.c)
 DIAG_OBJ := $(DIAG_SRC:%.c=$(B)/obj/%.o)
 DIAG_LIB := $(B)/lib/libdiagnose.a
-DIAG_CFLAGS := -Idiagnose/include -Itracer/include -D_DEFAULT_SOURCE
+DIAG_CFLAGS := -Idiagnose/include -Itracer/include -D_DEFAULT_SOURCE \
+	-I/usr/include/cjson
 
 $(DIAG_OBJ): EXTRA_CFLAGS += $(DIAG_CFLAGS) -Idiagnose
 $(DIAG_LIB): $(DIAG_OBJ)

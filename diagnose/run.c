@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "diagnose/diag_result.h"
+#include "diagnose/diag_surfaces.h"
 #include "stray/errfmt.h"
 
 #define P_FINAL 1e-3	/* the best model must not fail worse than this */
@@ -100,10 +101,24 @@ static int usable(const struct diag_eval *e, const struct diag_cause *c)
 
 	if (c->needs_lens && !e->lens)
 		return 0;
+	if (c->needs_unnormalised && e->normalised)
+		return 0;
 	for (i = 0; c->needs_unnormalised && i < e->n; i++)
 		if (e->theta_deg[i] == 0.0)
 			return 0;
 	return e->parametric || !c->needs_baffle;
+}
+
+/* A cause of the registry fitted to the scene, by name, or NULL. */
+static const struct diag_cause *scene_cause(const struct diag_eval *e,
+					    const char *name)
+{
+	int i;
+
+	for (i = 0; e->causes[i]; i++)
+		if (strcmp(e->causes[i]->name, name) == 0)
+			return e->causes[i];
+	return NULL;
 }
 
 /* Greedy forward steps from `cur`; each must lower BIC by the margin.
@@ -120,13 +135,13 @@ static int forward(struct diag_eval *e, const struct diag_data *d,
 		struct diag_fit best, f;
 
 		best.bic = INFINITY;
-		for (i = 0; diag_causes[i] && !rc; i++) {
-			if (uses(cur, diag_causes[i]) ||
-			    !usable(e, diag_causes[i]) ||
-			    !earned_alone(r, diag_causes[i]))
+		for (i = 0; e->causes[i] && !rc; i++) {
+			if (uses(cur, e->causes[i]) ||
+			    !usable(e, e->causes[i]) ||
+			    !earned_alone(r, e->causes[i]))
 				continue;
 			f = *cur;
-			f.cause[f.n_causes++] = diag_causes[i];
+			f.cause[f.n_causes++] = e->causes[i];
 			rc = diag_fit_run(e, d, &f, 1, err);
 			if (!rc && f.bic < best.bic)
 				best = f;
@@ -193,7 +208,7 @@ static int simplify(struct diag_eval *e, const struct diag_data *d,
 		const struct diag_cause *c = cur->cause[i], *s;
 		struct diag_fit f;
 
-		s = c->nests ? diag_cause_find(c->nests) : NULL;
+		s = c->nests ? scene_cause(e, c->nests) : NULL;
 		if (!s || uses(cur, s) || !usable(e, s))
 			continue;
 		without(cur, i, &f);
@@ -217,18 +232,18 @@ static int fit_singles(struct diag_eval *e, const struct diag_data *d,
 	int i, rc = STRAY_OK;
 
 	r->n_single = 0;
-	for (i = 0; diag_causes[i] && !rc; i++) {
+	for (i = 0; e->causes[i] && !rc; i++) {
 		struct diag_fit *f = &r->single[r->n_single];
 
-		if (!usable(e, diag_causes[i]))
+		if (!usable(e, e->causes[i]))
 			continue;
 		memset(f, 0, sizeof(*f));
 		f->n_causes = 1;
-		f->cause[0] = diag_causes[i];
+		f->cause[0] = e->causes[i];
 		rc = diag_fit_run(e, d, f, 0, err);
 		if (!rc)
 			say(log, "  %-18s chi2 %10.1f  BIC %10.1f",
-			    diag_causes[i]->name, f->chi2, f->bic);
+			    e->causes[i]->name, f->chi2, f->bic);
 		r->n_single++;
 	}
 	return rc;
@@ -363,14 +378,33 @@ int diag_run(struct diag_eval *e, const struct diag_data *d,
 		rc = final_curves(e, d, r, &none, err);
 	}
 	if (!rc)
-		rc = diag_sun_exclusion(d->theta_deg, r->model_before, d->n,
+		rc = diag_sun_exclusion(e->sensor, d->theta_deg,
+					r->model_before, d->n,
 					&r->sun_deg_before, &r->sun_alpha_req,
-					err);
+					r->sensor, err);
 	if (!rc)
-		rc = diag_sun_exclusion(d->theta_deg, r->model_after, d->n,
+		rc = diag_sun_exclusion(e->sensor, d->theta_deg,
+					r->model_after, d->n,
 					&r->sun_deg_after, &r->sun_alpha_req,
-					err);
+					NULL, err);
 	return rc;
+}
+
+int diag_result_surfaces(struct diag_result *r,
+			 const struct diag_surfaces *s)
+{
+	int dof = s->n_fit - s->n_named;
+	double p;
+
+	if (r->explained || !r->significant || s->n_named == 0 || dof <= 0)
+		return 0;
+	p = diag_chi2_pvalue(s->chi2_after, dof);
+	if (!(p >= DIAG_P_ACCEPT))
+		return 0;
+	r->by_surface = 1;
+	r->p_surface = p;
+	r->explained = 1;
+	return 1;
 }
 
 void diag_result_free(struct diag_result *r)

@@ -238,6 +238,20 @@ int diag_scene_build(const struct diag_eval *e, const double *geo,
 	return rc;
 }
 
+int diag_geometry_check(const struct diag_eval *e, const double *geo,
+			struct stray_error *err)
+{
+	char buf[3][64];
+	const char *sets[DIAG_SETS_MAX + 3];
+	struct tracer_scene s;
+	int n = geometry_sets(e, geo, buf, sets), rc;
+
+	tracer_scene_init(&s);
+	rc = tracer_scene_load(e->scene, sets, n, &s, err);
+	tracer_scene_free(&s);
+	return rc;
+}
+
 void diag_scene_free(struct diag_scene *ds)
 {
 	tracer_scene_free(&ds->s);
@@ -436,16 +450,6 @@ static int new_trace(const struct diag_eval *e, const double *geo, int fine,
 	return rc;
 }
 
-static const struct diag_cause *pivot_cause(void)
-{
-	int i;
-
-	for (i = 0; diag_causes[i]; i++)
-		if (diag_causes[i]->kind == DIAG_RETRACE &&
-		    diag_causes[i]->geo_axis == DIAG_GEO_PIVOT)
-			return diag_causes[i];
-	return NULL;
-}
 
 /*
  * A pivot-offset node: it and every other node of the pivot axis at the
@@ -455,7 +459,7 @@ static const struct diag_cause *pivot_cause(void)
 static int trace_pivot_nodes(struct diag_eval *e, const double *geo,
 			     struct stray_error *err)
 {
-	const struct diag_cause *c = pivot_cause();
+	const struct diag_cause *c = diag_eval_axis_cause(e, DIAG_GEO_PIVOT);
 	struct diag_trace *ts[DIAG_PIVOT_NODES_MAX + 1];
 	double key[DIAG_GEO_N];
 	size_t K = 0, k;

@@ -42,6 +42,9 @@ struct diag_scene {
 int diag_scene_build(const struct diag_eval *e, const double *geo,
 		     struct diag_scene *ds, struct stray_error *err);
 void diag_scene_free(struct diag_scene *ds);
+/* Can the scene be built at this geometry (scene_causes.c's grid)? */
+int diag_geometry_check(const struct diag_eval *e, const double *geo,
+			struct stray_error *err);
 
 /* The options every trace of the cache uses (t's angles and paths). */
 void diag_trace_opts(const struct diag_eval *e, const struct diag_trace *t,

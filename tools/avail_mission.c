@@ -13,6 +13,7 @@
 #include "avail_mission.h"
 #include "fdrfw/earth.h"
 #include "fdrfw/ephem.h"
+#include "fdrfw/table_build.h"
 #include "fdrfw/vec.h"
 #include "flight_table.h"
 #include "stray/ccsds.h"
@@ -92,6 +93,15 @@ int mission_load(const struct mission_args *a, struct mission *m,
 		if (fdrfw_init(&hd->ctx, &hd->table) != FDRFW_OK)
 			return stray_error_at(err, STRAY_EINVAL, a->heads, 0,
 					      "table", "the flight module refuses it");
+		{	/* the one exclusion verdict (libstray) */
+			struct stray_exclusion ex;
+
+			if ((rc = fdrfw_table_sun_verdict(&hd->table, &ex,
+							  err)) != STRAY_OK)
+				return rc;
+			hd->sun_excluded = ex.excluded;
+			hd->sun_reason = ex.reason;
+		}
 	}
 	return STRAY_OK;
 }

@@ -39,6 +39,10 @@ struct mission_head {
 	double *sky[3][2];		/* Sun, Moon, Earth limb: x, y [deg] */
 	struct stray_avail_stats st;
 	double stars_mean, stars_max;
+	/* libstray's verdict on the table's curve: 0 when the baffle never
+	 * excludes the Sun (reason: why), whatever angle the table carries */
+	int sun_excluded;
+	const char *sun_reason;
 };
 
 struct mission {

@@ -64,6 +64,10 @@ int mission_summary(const struct mission_args *a, const struct mission *m)
 
 		cJSON_AddNumberToObject(j, "false_stars_mean", hd->stars_mean);
 		cJSON_AddNumberToObject(j, "false_stars_max", hd->stars_max);
+		cJSON_AddBoolToObject(j, "sun_excluded_by_baffle",
+				      hd->sun_excluded);
+		if (!hd->sun_excluded)
+			cJSON_AddStringToObject(j, "sun_reason", hd->sun_reason);
 		cJSON_AddItemToArray(heads, j);
 	}
 	cJSON_AddItemToObject(o, "heads", heads);
@@ -93,6 +97,11 @@ int mission_summary(const struct mission_args *a, const struct mission *m)
 	}
 	printf("  %-8s %8.2f%% %31zu %10.0f\n", "any", 100.0 * m->any.available_frac,
 	       m->any.outages, m->any.longest_outage_s);
+	for (h = 0; h < m->n_heads; h++)
+		if (!m->head[h].sun_excluded)
+			printf("  %s: the Sun is not excluded by its baffle (%s): "
+			       "blind wherever the Sun is in front of it\n",
+			       m->head[h].name, m->head[h].sun_reason);
 	cJSON_Delete(o);
 	return CLI_OK;
 }

@@ -16,12 +16,14 @@
 #include "diag_report.h"
 #include "diagnose/diag_spectral.h"
 #include "stray/errfmt.h"
+#include "stray/sensor_io.h"
 
 static const char usage[] =
 	"usage: stray diagnose MEASURED.csv --scene SCENE [--rays N]\n"
 	"                      [--seed K] [--threads T] [--set key=value]...\n"
 	"                      [--spectrum S] [--response R]\n"
-	"                      [--plot F.png] [--causes] [--json]\n"
+	"                      [--plot F.png] [--causes [a,b]] [--without a,b]\n"
+	"                      [--sensor S] [--json]\n"
 	"                      [--lens L.csv] [--surfaces] [--write-model M.json]\n"
 	"\n"
 	"Compares a measured attenuation curve (CSV with a sigma column) with\n"
@@ -51,12 +53,19 @@ static const char usage[] =
 	"                    (it runs anyway when a significant residual is left)\n"
 	"  --write-model M.json  the extended model as a scene file (and M.obj),\n"
 	"                    for `stray trace --scene M.json`\n"
-	"  --causes          list the registered causes and exit\n"
+	"  --causes a,b      fit only these causes (alone: list the registered\n"
+	"                    causes and exit)\n"
+	"  --without a,b     fit every cause but these\n"
+	"  --sensor S        the sensor of the Sun exclusion angle (a name or\n"
+	"                    JSON file; default st16-like)\n"
+	"  (a theta 0 row of alpha 1 and sigma 0, as `stray trace` writes it,\n"
+	"  normalises the curve and is kept out of the fit; each cause's\n"
+	"  range and nominal value are the scene's own)\n"
 	"  --json            machine-readable output\n";
 
 struct diag_args {
 	const char *measured, *scene, *plot, *spectrum, *response, *lens;
-	const char *model;
+	const char *model, *only, *without, *sensor;
 	const char *sets[DIAG_SETS_MAX];
 	int n_sets, list, surfaces;
 	double rays, seed, threads;
@@ -73,7 +82,9 @@ static int parse_args(int argc, char **argv, struct diag_args *a)
 		{ "plot", required_argument, NULL, 'p' },
 		{ "spectrum", required_argument, NULL, 'Q' },
 		{ "response", required_argument, NULL, 'R' },
-		{ "causes", no_argument, NULL, 'c' },
+		{ "causes", optional_argument, NULL, 'c' },
+		{ "without", required_argument, NULL, 'w' },
+		{ "sensor", required_argument, NULL, 'X' },
 		{ "lens", required_argument, NULL, 'L' },
 		{ "surfaces", no_argument, NULL, 'G' },
 		{ "write-model", required_argument, NULL, 'W' },
@@ -82,6 +93,7 @@ static int parse_args(int argc, char **argv, struct diag_args *a)
 		{ NULL, 0, NULL, 0 }
 	};
 	int opt, rc = CLI_OK;
+	char bad[128];
 
 	while (!rc && (opt = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
 		switch (opt) {
@@ -89,7 +101,29 @@ static int parse_args(int argc, char **argv, struct diag_args *a)
 		case 'p': a->plot = optarg; break;
 		case 'Q': a->spectrum = optarg; break;
 		case 'R': a->response = optarg; break;
-		case 'c': a->list = 1; break;
+		case 'c':	/* `--causes a,b` or `--causes=a,b`; alone: list */
+			if (!optarg && optind < argc &&
+			    !diag_causes_check(argv[optind], bad, sizeof(bad)))
+				optarg = argv[optind++];
+			if (!optarg)
+				a->list = 1;
+			else if (diag_causes_check(optarg, bad, sizeof(bad)))
+				return cli_usage_error("diagnose", "option "
+					"'--causes': '%s' is not a registered "
+					"cause (stray diagnose --causes lists "
+					"them)", bad);
+			else
+				a->only = optarg;
+			break;
+		case 'w':
+			if (diag_causes_check(optarg, bad, sizeof(bad)))
+				return cli_usage_error("diagnose", "option "
+					"'--without': '%s' is not a registered "
+					"cause (stray diagnose --causes lists "
+					"them)", bad);
+			a->without = optarg;
+			break;
+		case 'X': a->sensor = optarg; break;
 		case 'L': a->lens = optarg; break;
 		case 'G': a->surfaces = 1; break;
 		case 'W': a->model = optarg; break;
@@ -217,6 +251,12 @@ int cmd_diagnose(int argc, char **argv, const struct tracer_runner *runner)
 	if ((a.spectrum || a.response) &&	/* cause_spectral_slope.c */
 	    diag_band_set(a.spectrum, a.response, &err))
 		return cli_fail("diagnose", &err);
+	if (a.sensor) {	/* refused before any trace, not after */
+		struct stray_sensor sn;
+
+		if (stray_sensor_load(a.sensor, &sn, &err))
+			return cli_fail("diagnose", &err);
+	}
 	if (diag_data_load(a.measured, &d, &err))
 		return cli_fail("diagnose", &err);
 	diag_eval_init(&e, a.scene, d.theta_deg, d.n, runner);
@@ -224,6 +264,10 @@ int cmd_diagnose(int argc, char **argv, const struct tracer_runner *runner)
 	e.seed = (uint64_t)a.seed;
 	e.threads = (int)a.threads;
 	e.lens = a.lens;
+	e.only = a.only;
+	e.without = a.without;
+	e.sensor = a.sensor;
+	e.normalised = d.normalised;
 	for (i = 0; i < a.n_sets; i++)
 		e.sets[e.n_sets++] = a.sets[i];
 	memset(&r, 0, sizeof(r));
@@ -236,6 +280,8 @@ int cmd_diagnose(int argc, char **argv, const struct tracer_runner *runner)
 		rc = base ? surfaces(&e, &d, &r, a.model, &surf, base, &err) :
 			stray_error_set(&err, STRAY_ENOMEM, "diagnose",
 					"out of memory");
+		if (!rc)	/* one verdict: the surface at fault named */
+			diag_result_surfaces(&r, &surf);
 	}
 	if (!rc && a.plot)
 		rc = diag_plot(a.plot, &d, &r, &err);

@@ -58,14 +58,11 @@ static int solve_body(const struct fdr_setup *s, const struct excl_args *a,
 	rc = stray_fdr_alpha_required(&m, s->rate, &b->alpha_req, err);
 	if (rc != STRAY_OK)
 		return rc;
+	/* libstray's one verdict: not excluded (NaN, a reason) is a result */
 	rc = stray_exclusion_interval(v, b->alpha_req, a->k_sigma, &b->ex, err);
-	b->excluded = rc == STRAY_OK;
-	if (rc == STRAY_ERANGE) {	/* a result: not excluded in range */
-		stray_error_clear(err);
-		b->ex.theta_deg = NAN;
+	b->excluded = rc == STRAY_OK && b->ex.excluded;
+	if (!b->excluded)
 		b->ex.has_interval = 0;
-		rc = STRAY_OK;
-	}
 	b->angle_deg = b->ex.theta_deg;
 	return rc;
 }
@@ -77,6 +74,8 @@ static cJSON *body_json(const struct body *b)
 	cJSON_AddItemToObject(o, "alpha_required", cli_json_number(b->alpha_req));
 	cJSON_AddItemToObject(o, "flux", cli_json_number(b->flux));
 	cJSON_AddBoolToObject(o, "excluded_within_curve", b->excluded);
+	if (!b->excluded)
+		cJSON_AddStringToObject(o, "reason", b->ex.reason);
 	cJSON_AddItemToObject(o, "curve_deg", cli_json_number(b->ex.theta_deg));
 	if (b->ex.has_interval) {
 		cJSON_AddItemToObject(o, "deg_lo", cli_json_number(b->ex.theta_lo_deg));
@@ -117,8 +116,8 @@ static void print_text(const struct fdr_setup *s, const struct excl_args *a,
 	fdr_setup_print_normalisation(s);
 	for (i = 0; i < nb; i++) {
 		printf("  %-6s alpha_required %.3e  ", b[i].name, b[i].alpha_req);
-		if (!b[i].excluded && isnan(b[i].angle_deg)) {
-			printf("not excluded: curve still above at its last angle\n");
+		if (!b[i].excluded) {
+			printf("not excluded by the baffle: %s\n", b[i].ex.reason);
 			continue;
 		}
 		printf("exclusion %6.2f deg", b[i].angle_deg);
@@ -235,8 +234,9 @@ int cmd_exclusion(int argc, char **argv)
 	fflush(stdout);
 	for (i = 0; i < nb; i++)	/* a result, not an error: exit 0 */
 		if (!b[i].excluded)
-			fprintf(stderr, "stray exclusion: %s: %s not excluded within the curve (it ends above alpha_required %.3g)\n",
-				a.curve, b[i].name, b[i].alpha_req);
+			fprintf(stderr, "stray exclusion: %s: %s not excluded within the curve (alpha_required %.3g): %s\n",
+				a.curve, b[i].name, b[i].alpha_req,
+				b[i].ex.reason);
 	return rc;
 }
 

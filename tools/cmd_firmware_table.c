@@ -157,7 +157,8 @@ static int write_outputs(const struct ft_args *a, const struct fdrfw_table *t,
 	return rc;
 }
 
-static int print_summary(const struct ft_args *a, const struct fdrfw_table *t)
+static int print_summary(const struct ft_args *a, const struct fdrfw_table *t,
+			 const struct stray_exclusion *sun)
 {
 	if (cli.json) {
 		cJSON *o = cJSON_CreateObject();
@@ -173,7 +174,14 @@ static int print_summary(const struct ft_args *a, const struct fdrfw_table *t)
 				      cli_json_number((double)t->i_sdt_e));
 		cJSON_AddItemToObject(o, "alpha_required_sun",
 				      cli_json_number((double)t->alpha_req_sun));
-		cJSON_AddItemToObject(o, "sun_deg",
+		/* libstray's verdict, as `stray exclusion` gives it; the
+		 * table's own field apart (firmware_fdr/README.md) */
+		cJSON_AddItemToObject(o, "sun_deg", cli_json_number(
+			sun->excluded ? (double)t->exclusion_sun_deg : NAN));
+		cJSON_AddBoolToObject(o, "sun_excluded", sun->excluded);
+		if (!sun->excluded)
+			cJSON_AddStringToObject(o, "reason", sun->reason);
+		cJSON_AddItemToObject(o, "table_exclusion_sun_deg",
 				      cli_json_number((double)t->exclusion_sun_deg));
 		cJSON_AddItemToObject(o, "hysteresis_deg",
 				      cli_json_number((double)t->hysteresis_deg));
@@ -189,6 +197,11 @@ static int print_summary(const struct ft_args *a, const struct fdrfw_table *t)
 	       (double)t->k_px,
 	       (double)t->i_sdt_e, (double)t->alpha_req_sun,
 	       (double)t->exclusion_sun_deg, (double)t->hysteresis_deg);
+	if (!sun->excluded)
+		printf("  Sun not excluded by the baffle: %s; the table carries "
+		       "%.3f deg (the Sun blinds the tracker wherever it is in "
+		       "front of the aperture plane)\n", sun->reason,
+		       (double)t->exclusion_sun_deg);
 	return CLI_OK;
 }
 
@@ -201,6 +214,7 @@ int cmd_firmware_table(int argc, char **argv)
 	struct fdr_setup s;
 	struct stray_curve c;
 	struct stray_curve_view v;
+	struct stray_exclusion sun;
 	struct stray_error err;
 	int rc;
 
@@ -221,7 +235,7 @@ int cmd_firmware_table(int argc, char **argv)
 	p.earth_albedo = a.albedo;
 	p.normalisation = s.normalisation;
 	v = stray_curve_view_of(&c);
-	rc = fdrfw_table_build(&v, &s.sensor, &p, &t, &err);
+	rc = fdrfw_table_build_verdict(&v, &s.sensor, &p, &t, &sun, &err);
 	stray_curve_free(&c);
 	if (rc == STRAY_OK)
 		rc = write_outputs(&a, &t, &err);
@@ -230,5 +244,5 @@ int cmd_firmware_table(int argc, char **argv)
 			stray_error_locate(&err, a.curve, 0);
 		return cli_fail("firmware-table", &err);
 	}
-	return print_summary(&a, &t);
+	return print_summary(&a, &t, &sun);
 }

@@ -278,15 +278,13 @@ static int judge(const struct sweep_args *a, const struct stray_curve *c,
 {
 	struct stray_curve_view v = stray_curve_view_of(c);
 	struct stray_exclusion ex;
+	/* libstray's one verdict: NaN (JSON null) where not excluded */
 	int k, rc = stray_exclusion_interval(&v, alpha_req, 1.0, &ex, err);
 
-	if (rc == STRAY_ERANGE) {	/* a result: not excluded in range */
-		stray_error_clear(err);
-		ex.theta_deg = ex.theta_lo_deg = ex.theta_hi_deg = NAN;
-		rc = STRAY_OK;
-	}
+	if (rc != STRAY_OK)
+		return rc;
 	d->sun_deg = ex.theta_deg;
-	d->sun_lo_deg = ex.theta_lo_deg;
+	d->sun_lo_deg = ex.excluded ? ex.theta_lo_deg : NAN;
 	d->sun_hi_deg = ex.hi_reached ? ex.theta_hi_deg : NAN;
 	for (k = 0; k < a->n_at; k++)
 		d->alpha_at[k] = stray_curve_alpha_at(&v, a->at[k]);

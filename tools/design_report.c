@@ -88,8 +88,11 @@ void design_print_text(const struct sweep_summary *s)
 	for (i = 0; i < s->n; i++) {
 		const struct design_result *d = &s->d[i];
 
-		printf("%-4zu %8.2f  [%5.2f, %5.2f]", i, d->sun_deg,
-		       d->sun_lo_deg, d->sun_hi_deg);
+		if (isfinite(d->sun_deg))
+			printf("%-4zu %8.2f  [%5.2f, %5.2f]", i, d->sun_deg,
+			       d->sun_lo_deg, d->sun_hi_deg);
+		else	/* libstray's verdict: not excluded by the baffle */
+			printf("%-4zu %8s  %15s", i, "none", "(not excluded)");
 		for (k = 0; k < s->n_at; k++)
 			printf("  %11.3e", d->alpha_at[k]);
 		printf("  %s%s\n", d->label, d->resumed ? " (resumed)" : "");
@@ -108,7 +111,7 @@ void design_print_text(const struct sweep_summary *s)
 		       s->d[second].sun_deg - s->d[best].sun_deg, second);
 	if (best >= 0)
 		printf("%s\n", excluded_count(s) < s->n ? "; the others with "
-		       "sun_deg nan are not excluded within the traced angles" :
+		       "sun_deg none (JSON null) are not excluded by the baffle" :
 		       "");
 }
 
@@ -132,6 +135,7 @@ int design_print_json(const struct sweep_summary *s)
 		cJSON_AddNumberToObject(e, "design", (double)i);
 		cJSON_AddStringToObject(e, "settings", d->label);
 		cJSON_AddItemToObject(e, "sun_deg", cli_json_number(d->sun_deg));
+		cJSON_AddBoolToObject(e, "excluded", isfinite(d->sun_deg));
 		cJSON_AddItemToObject(e, "sun_deg_lo",
 				      cli_json_number(d->sun_lo_deg));
 		cJSON_AddItemToObject(e, "sun_deg_hi",

@@ -4,6 +4,7 @@
  * of the diagnosis.
  */
 #include <math.h>
+#include <stdio.h>
 
 #include "cli.h"
 #include "diag_report.h"
@@ -16,13 +17,17 @@ static cJSON *fit_json(const struct diag_fit *f)
 	for (c = 0; c < f->n_causes; c++) {
 		const struct diag_cause *cs = f->cause[c];
 		cJSON *it = cJSON_CreateObject(), *p = cJSON_CreateObject();
-		cJSON *ci = cJSON_CreateObject();
+		cJSON *ci = cJSON_CreateObject(), *nom = cJSON_CreateObject();
 
 		cJSON_AddStringToObject(it, "name", cs->name);
 		cJSON_AddStringToObject(it, "side", cs->needs_lens ? "lens" :
 					"baffle or measurement");
 		for (k = 0; k < cs->n_params; k++, o++) {
 			cJSON *pair = cJSON_CreateArray();
+
+			/* the scene's own value (diagnose/scene_causes.c) */
+			cJSON_AddItemToObject(nom, cs->param[k].name,
+					      cli_json_number(cs->param[k].nominal));
 
 			cJSON_AddItemToObject(p, cs->param[k].name,
 					      cli_json_number(f->p[o]));
@@ -32,9 +37,47 @@ static cJSON *fit_json(const struct diag_fit *f)
 		}
 		cJSON_AddItemToObject(it, "params", p);
 		cJSON_AddItemToObject(it, "intervals", ci);
+		cJSON_AddItemToObject(it, "nominal", nom);
 		cJSON_AddItemToArray(list, it);
 	}
 	return list;
+}
+
+/* The surface groups at fault as named causes (diag_result_surfaces). */
+static void surface_causes(cJSON *list, const struct diag_surfaces *s)
+{
+	int k;
+
+	for (k = 0; k < s->n_named; k++) {
+		cJSON *it = cJSON_CreateObject(), *p = cJSON_CreateObject();
+		cJSON *ci = cJSON_CreateObject(), *pair = cJSON_CreateArray();
+		cJSON *rpair = cJSON_CreateArray(), *nom = cJSON_CreateObject();
+		int c = s->named[k];
+
+		cJSON_AddStringToObject(it, "name", s->abg[c] ?
+			"surface_abg_scale" : "surface_reflectance");
+		cJSON_AddStringToObject(it, "surface", s->name[c]);
+		cJSON_AddStringToObject(it, "side", "baffle or measurement");
+		cJSON_AddItemToObject(p, "factor",
+				      cli_json_number(pow(10.0, s->log10_f[k])));
+		cJSON_AddItemToObject(p, "reflectance", cli_json_number(
+			s->rho[c] * pow(10.0, s->log10_f[k])));
+		cJSON_AddItemToObject(nom, "factor", cJSON_CreateNumber(1.0));
+		cJSON_AddItemToObject(nom, "reflectance",
+				      cli_json_number(s->rho[c]));
+		cJSON_AddItemToArray(pair, cli_json_number(pow(10.0, s->ci_lo[k])));
+		cJSON_AddItemToArray(pair, cli_json_number(pow(10.0, s->ci_hi[k])));
+		cJSON_AddItemToArray(rpair, cli_json_number(s->rho[c] *
+						pow(10.0, s->ci_lo[k])));
+		cJSON_AddItemToArray(rpair, cli_json_number(s->rho[c] *
+						pow(10.0, s->ci_hi[k])));
+		cJSON_AddItemToObject(ci, "factor", pair);
+		cJSON_AddItemToObject(ci, "reflectance", rpair);
+		cJSON_AddItemToObject(it, "params", p);
+		cJSON_AddItemToObject(it, "intervals", ci);
+		cJSON_AddItemToObject(it, "nominal", nom);
+		cJSON_AddItemToArray(list, it);
+	}
 }
 
 static cJSON *regions_json(const double *rms, const int *count)
@@ -100,13 +143,21 @@ int diag_report_json_surf(const struct diag_data *d,
 			  const struct diag_surfaces *sf, const char *model)
 {
 	cJSON *o = cJSON_CreateObject(), *single = cJSON_CreateObject();
+	cJSON *causes = fit_json(&r->named), *notes = cJSON_CreateArray();
 	int i;
 
+	if (r->by_surface && sf)
+		surface_causes(causes, sf);
+	for (i = 0; i < e->n_notes; i++)
+		cJSON_AddItemToArray(notes, cJSON_CreateString(e->notes[i]));
 	cJSON_AddStringToObject(o, "scene", e->scene);
+	cJSON_AddStringToObject(o, "sensor", r->sensor);
+	cJSON_AddBoolToObject(o, "normalised", d->normalised);
+	cJSON_AddItemToObject(o, "scene_notes", notes);
 	cJSON_AddNumberToObject(o, "n", (double)d->n);
 	cJSON_AddBoolToObject(o, "significant", r->significant);
 	cJSON_AddBoolToObject(o, "explained", r->explained);
-	cJSON_AddItemToObject(o, "causes", fit_json(&r->named));
+	cJSON_AddItemToObject(o, "causes", causes);
 	cJSON_AddItemToObject(o, "interval_delta_chi2",
 			      cli_json_number(DIAG_CI_DCHI2));
 	cJSON_AddItemToObject(o, "tentative", fit_json(&r->tentative));

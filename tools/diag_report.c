@@ -75,7 +75,8 @@ static void describe_residual(const struct diag_data *d, const double *r,
 static void print_angle(double deg)
 {
 	if (isnan(deg))
-		printf("(not excluded within the measured angles)");
+		printf("(not excluded by the baffle within the measured "
+		       "angles)");
 	else
 		printf("%.2f deg", deg);
 }
@@ -88,6 +89,11 @@ void diag_report_text(const struct diag_data *d, const struct diag_eval *e,
 	printf("Diagnosis of %zu measured angles against scene %s "
 	       "(%zu traces, %.1f s of tracing)\n", d->n, e->scene,
 	       e->n_traces, e->trace_seconds);
+	if (d->normalised)
+		printf("The theta 0 row (alpha 1, sigma 0) normalises the "
+		       "curve: kept out of the fit.\n");
+	for (i = 0; i < e->n_notes; i++)
+		printf("Scene: %s\n", e->notes[i]);
 	printf("Baseline: chi2 %.1f for %d points, p = %.3g\n",
 	       r->chi2_before, r->dof_before, r->p_before);
 	describe_residual(d, r->resid_before, r->rsig_before);
@@ -108,6 +114,10 @@ void diag_report_text(const struct diag_data *d, const struct diag_eval *e,
 		       "(intervals: profile chi2 + %.0f, 3 sigma):\n",
 		       DIAG_BIC_MARGIN, DIAG_CI_DCHI2);
 		print_fit_params(&r->named);
+	} else if (r->by_surface) {
+		printf("The registry's causes leave the residual; the surface "
+		       "at fault explains it (p = %.2g, below): its groups are "
+		       "the named cause(s).\n", r->p_surface);
 	} else if (r->tentative.n_causes) {
 		printf("UNEXPLAINED RESIDUAL: the best model of the registry "
 		       "still fails (chi2 %.1f for %d dof, p = %.2g); nothing "
@@ -123,6 +133,9 @@ void diag_report_text(const struct diag_data *d, const struct diag_eval *e,
 		       "(%s)\n", r->worst_theta_deg, r->worst_pull,
 		       r->worst_pull > 0 ? "measured above model" :
 		       "measured below model");
+	if (r->by_surface)
+		printf("(The registry's best tentative model below; the "
+		       "surface at fault's gain is in its section.)\n");
 	printf("Gain: chi2 %.1f -> %.1f (reduced %.2f -> %.2f), RMS log10 "
 	       "residual %.3f -> %.3f (x%.1f)\n", r->chi2_before,
 	       r->chi2_after, r->chi2_before / r->dof_before,
@@ -131,8 +144,8 @@ void diag_report_text(const struct diag_data *d, const struct diag_eval *e,
 	       r->rms_after > 0 ? r->rms_before / r->rms_after : INFINITY);
 	print_regions("before", r->rms_region_before, r->n_region);
 	print_regions("after ", r->rms_region_after, r->n_region);
-	printf("In orbit (st16-like, alpha_required %.3g for the Sun): Sun "
-	       "exclusion ", r->sun_alpha_req);
+	printf("In orbit (%s, alpha_required %.3g for the Sun): Sun "
+	       "exclusion ", r->sensor, r->sun_alpha_req);
 	print_angle(r->sun_deg_before);
 	printf(" -> ");
 	print_angle(r->sun_deg_after);

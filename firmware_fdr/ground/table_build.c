@@ -82,11 +82,29 @@ static int curve_fill(const struct stray_curve_view *c, struct fdrfw_table *t,
 	return STRAY_OK;
 }
 
+/* A Sun the baffle does not exclude: the first sample in or beyond the
+ * aperture plane after the last one at or above alpha_req (the curve is
+ * below it from there on: the module's own check holds), NaN when the
+ * curve ends above. */
+static double sun_not_excluded(const struct stray_curve_view *c,
+			       const struct stray_exclusion *ex)
+{
+	if (ex->reason != NULL &&
+	    strcmp(ex->reason, STRAY_EXCL_PLANE_ONLY) == 0) {
+		size_t i;
+
+		for (i = 0; i < c->n; i++)
+			if (c->theta_deg[i] > ex->last_above_deg)
+				return c->theta_deg[i];
+	}
+	return NAN;
+}
+
 /* The model constants, the threshold and the Sun's ground results. */
 static int model_fill(const struct stray_curve_view *c,
 		      const struct stray_sensor *s,
 		      const struct fdrfw_build_params *p, struct fdrfw_table *t,
-		      struct stray_error *err)
+		      struct stray_exclusion *ex, struct stray_error *err)
 {
 	struct stray_fdr_model m;
 	double i_sdt, alpha_req, theta_x;
@@ -97,8 +115,15 @@ static int model_fill(const struct stray_curve_view *c,
 	m.k_px = stray_sensor_k_px(s, p->normalisation);
 	if ((rc = stray_fdr_threshold(&m, &i_sdt, err)) != STRAY_OK ||
 	    (rc = stray_fdr_alpha_required(&m, rate, &alpha_req, err)) ||
-	    (rc = stray_exclusion_angle(c, alpha_req, &theta_x, err)))
+	    (rc = stray_exclusion_interval(c, alpha_req, 0.0, ex, err)))
 		return rc;
+	theta_x = ex->excluded ? ex->theta_deg : sun_not_excluded(c, ex);
+	if (isnan(theta_x))
+		return stray_error_set_value(err, STRAY_EINVAL, "alpha",
+			"the Sun is not excluded by the baffle and the curve "
+			"ends above its alpha_required: no angle the flight "
+			"module accepts (trace to the aperture plane, 90 deg)",
+			c->alpha[c->n - 1]);
 	fdrfw_table_from_model(&m, t);
 	t->i_sdt_e = (float)i_sdt;
 	t->fdr_tolerated = (float)rate;
@@ -198,19 +223,54 @@ int fdrfw_table_build(const struct stray_curve_view *curve,
 		      const struct fdrfw_build_params *p,
 		      struct fdrfw_table *t, struct stray_error *err)
 {
+	return fdrfw_table_build_verdict(curve, sensor, p, t, NULL, err);
+}
+
+int fdrfw_table_build_verdict(const struct stray_curve_view *curve,
+			      const struct stray_sensor *sensor,
+			      const struct fdrfw_build_params *p,
+			      struct fdrfw_table *t,
+			      struct stray_exclusion *sun,
+			      struct stray_error *err)
+{
+	struct stray_exclusion own;
 	int rc;
+
+	if (!sun)
+		sun = &own;
 
 	memset(t, 0, sizeof(*t));
 	if ((rc = params_check(p, err)) != STRAY_OK ||
 	    (rc = stray_sensor_check(sensor, err)) != STRAY_OK ||
 	    (rc = stray_curve_check(curve, err)) != STRAY_OK ||
 	    (rc = curve_fill(curve, t, err)) != STRAY_OK ||
-	    (rc = model_fill(curve, sensor, p, t, err)) != STRAY_OK)
+	    (rc = model_fill(curve, sensor, p, t, sun, err)) != STRAY_OK)
 		return rc;
 	t->magic = FDRFW_TABLE_MAGIC;
 	t->version = FDRFW_TABLE_VERSION;
 	fdrfw_table_seal(t);
 	return table_refused(t, err);
+}
+
+int fdrfw_table_sun_verdict(const struct fdrfw_table *t,
+			    struct stray_exclusion *sun,
+			    struct stray_error *err)
+{
+	double th[FDRFW_CURVE_MAX], al[FDRFW_CURVE_MAX];
+	struct stray_curve_view v = { t->n_curve, th, al, NULL };
+	uint32_t i;
+
+	if (t->n_curve < 2u || t->n_curve > FDRFW_CURVE_MAX)
+		return stray_error_set_value(err, STRAY_EINVAL, "n_curve",
+			"must lie in [2, 128]", (double)t->n_curve);
+	for (i = 0; i < t->n_curve; i++) {
+		th[i] = (double)t->theta_deg[i];
+		/* the floor stands for alpha = 0 (curve_fill) */
+		al[i] = t->log10_alpha[i] <= FDRFW_LOG10_ALPHA_FLOOR ? 0.0 :
+			pow(10.0, (double)t->log10_alpha[i]);
+	}
+	return stray_exclusion_interval(&v, (double)t->alpha_req_sun, 0.0,
+					sun, err);
 }
 
 static void write_floats(FILE *out, const char *field, const float *v,

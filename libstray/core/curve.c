@@ -76,24 +76,29 @@ static double shifted(const struct stray_curve_view *c, size_t i, double k)
 }
 
 /*
- * The crossing of alpha_req after the last sample at or above it; *reached
- * is 0 when that sample is the last one (no exclusion within the curve).
+ * The crossing of alpha_req after the last sample at or above it.  *verdict
+ * is 0 when excluded, else the reason: that sample is the last one, or the
+ * sample after it lies in or beyond the aperture plane (only the geometric
+ * zero there takes the curve below).
  */
 static void crossing(const struct stray_curve_view *c, double alpha_req,
-		     double k, double *theta_deg, int *reached)
+		     double k, double *theta_deg, const char **why,
+		     double *last_above)
 {
 	size_t i = c->n;
 	double a0, a1, x0, x1, t;
 
 	while (i > 0 && shifted(c, i - 1, k) < alpha_req)
 		i--;
-	*reached = i < c->n;
+	*why = NULL;
+	*last_above = i > 0 ? c->theta_deg[i - 1] : (double)NAN;
 	if (i == 0) {		/* never at or above: excluded everywhere */
 		*theta_deg = c->theta_deg[0];
 		return;
 	}
-	if (i == c->n) {
-		*theta_deg = c->theta_deg[c->n - 1];
+	if (i == c->n || !(c->theta_deg[i] < STRAY_APERTURE_PLANE_DEG)) {
+		*why = i == c->n ? STRAY_EXCL_ENDS_ABOVE : STRAY_EXCL_PLANE_ONLY;
+		*theta_deg = (double)NAN;
 		return;
 	}
 	/* Sample i-1 is at or above alpha_req, sample i below it. */
@@ -119,16 +124,17 @@ static int req_check(double alpha_req, struct stray_error *err)
 int stray_exclusion_angle(const struct stray_curve_view *c, double alpha_req,
 			  double *theta_deg, struct stray_error *err)
 {
-	int rc, reached;
+	const char *why;
+	double last;
+	int rc;
 
 	if ((rc = req_check(alpha_req, err)) != STRAY_OK ||
 	    (rc = stray_curve_check(c, err)) != STRAY_OK)
 		return rc;
-	crossing(c, alpha_req, 0.0, theta_deg, &reached);
-	if (!reached)
+	crossing(c, alpha_req, 0.0, theta_deg, &why, &last);
+	if (why)
 		return stray_error_set_value(err, STRAY_ERANGE, "theta_deg",
-			STRAY_MSG("curve is still above alpha_required at its last angle"),
-			*theta_deg);
+					     STRAY_MSG(why), last);
 	return STRAY_OK;
 }
 
@@ -137,17 +143,23 @@ int stray_exclusion_interval(const struct stray_curve_view *c,
 			     struct stray_exclusion *out,
 			     struct stray_error *err)
 {
-	int rc, reached;
+	const char *why;
+	double last;
+	int rc;
 
-	rc = stray_exclusion_angle(c, alpha_req, &out->theta_deg, err);
-	if (rc != STRAY_OK)
+	if ((rc = req_check(alpha_req, err)) != STRAY_OK ||
+	    (rc = stray_curve_check(c, err)) != STRAY_OK)
 		return rc;
+	crossing(c, alpha_req, 0.0, &out->theta_deg, &out->reason,
+		 &out->last_above_deg);
+	out->excluded = out->reason == NULL;
 	out->has_interval = c->sigma != 0;
 	out->theta_lo_deg = out->theta_hi_deg = out->theta_deg;
-	out->hi_reached = 1;
+	out->hi_reached = out->excluded;
 	if (!c->sigma)
 		return STRAY_OK;
-	crossing(c, alpha_req, -k_sigma, &out->theta_lo_deg, &reached);
-	crossing(c, alpha_req, k_sigma, &out->theta_hi_deg, &out->hi_reached);
+	crossing(c, alpha_req, -k_sigma, &out->theta_lo_deg, &why, &last);
+	crossing(c, alpha_req, k_sigma, &out->theta_hi_deg, &why, &last);
+	out->hi_reached = why == NULL;
 	return STRAY_OK;
 }

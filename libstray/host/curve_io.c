@@ -44,7 +44,7 @@ static int check_rows(const char *name, const struct stray_table *t,
 		      struct stray_error *err)
 {
 	size_t i;
-	int any_light = 0;
+	int any_light = 0, off_axis = 0, off_axis_light = 0;
 
 	for (i = 0; i < t->n_rows; i++) {
 		const double *row = t->cell + i * t->n_cols;
@@ -77,11 +77,19 @@ static int check_rows(const char *name, const struct stray_table *t,
 					"by the on-axis beam)", row[c_alpha]);
 		}
 		any_light |= row[c_alpha] > 0.0;
+		off_axis |= row[c_theta] > 0.0;
+		off_axis_light |= row[c_theta] > 0.0 && row[c_alpha] > 0.0;
 	}
 	if (!any_light)
 		return stray_error_at(err, STRAY_EPARSE, name, 0, "alpha",
 				      "every value is 0 (an all-zero curve is "
 				      "not a measurement)");
+	/* a curve must show a baffle, not a spike: light on axis alone
+	 * would seal a Sun exclusion inside the first step (1 deg) */
+	if (off_axis && !off_axis_light)
+		return stray_error_at(err, STRAY_EPARSE, name, 0, "alpha",
+				      "every value beyond theta_deg 0 is 0 (a "
+				      "spike on axis, not a baffle's curve)");
 	return STRAY_OK;
 }
 

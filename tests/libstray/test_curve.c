@@ -114,6 +114,42 @@ static void test_exclusion_interval_from_sigma(void **state)
 	assert_near(ex.theta_hi_deg, -5.0 * log(1e-5 / 1.2), 1e-11);
 }
 
+/* Issue 23: a curve that stays above alpha_req until the Sun lies in the
+ * aperture plane, where a trace drops to its geometric zero, is not
+ * excluded by the baffle (not 89.98 deg interpolated into that zero);
+ * cut at 89 deg it says the same; where the curve itself falls below
+ * before 90 deg, that crossing. */
+static void test_exclusion_not_by_the_aperture_plane(void **state)
+{
+	double th[] = { 0, 30, 60, 89, 90 }, al[] = { 1, 1e-4, 5e-7, 4.8e-7, 0 };
+	double th2[] = { 0, 30, 60, 89, 89.5, 90 };
+	double al2[] = { 1, 1e-4, 5e-7, 4.8e-7, 1e-8, 0 };
+	struct stray_curve_view c = { 5, th, al, NULL }, cut = { 4, th, al, NULL },
+				ok = { 6, th2, al2, NULL };
+	struct stray_exclusion ex;
+	struct stray_error err;
+	double theta = -1.0;
+
+	(void)state;
+	stray_error_clear(&err);
+	assert_int_equal(stray_exclusion_angle(&c, 6.45e-8, &theta, &err),
+			 STRAY_ERANGE);
+	assert_int_equal(stray_exclusion_interval(&c, 6.45e-8, 1.0, &ex, &err),
+			 STRAY_OK);
+	assert_false(ex.excluded);
+	assert_true(isnan(ex.theta_deg));
+	assert_string_equal(ex.reason, STRAY_EXCL_PLANE_ONLY);
+	assert_near(ex.last_above_deg, 89.0, 0.0);
+	assert_int_equal(stray_exclusion_interval(&cut, 6.45e-8, 1.0, &ex, &err),
+			 STRAY_OK);
+	assert_false(ex.excluded);
+	assert_string_equal(ex.reason, STRAY_EXCL_ENDS_ABOVE);
+	assert_int_equal(stray_exclusion_interval(&ok, 6.45e-8, 1.0, &ex, &err),
+			 STRAY_OK);
+	assert_true(ex.excluded && ex.reason == NULL);
+	assert_true(ex.theta_deg > 89.0 && ex.theta_deg < 89.5);
+}
+
 static void test_curve_check_rejects_bad_curves(void **state)
 {
 	double th[] = { 0, 10, 10 }, al[] = { 1, 0.5, 0.1 };
@@ -143,6 +179,7 @@ int main(void)
 		cmocka_unit_test(test_exclusion_after_the_last_crossing),
 		cmocka_unit_test(test_exclusion_edge_cases),
 		cmocka_unit_test(test_exclusion_interval_from_sigma),
+		cmocka_unit_test(test_exclusion_not_by_the_aperture_plane),
 		cmocka_unit_test(test_curve_check_rejects_bad_curves),
 	};
 

@@ -15,6 +15,9 @@
 
 #define DIAG_SETS_MAX 32	/* user --set overrides */
 #define DIAG_LENS_BINS_MAX 64
+#define DIAG_CAUSES_MAX 24	/* causes in the registry */
+#define DIAG_NODES_MAX 16	/* grid nodes of a re-trace cause */
+#define DIAG_NOTES_MAX 16	/* what the scene changed, said in the report */
 
 struct tracer_runner;
 struct diag_trace;	/* a cached trace (diagnose/trace_cache.h) */
@@ -42,6 +45,19 @@ struct diag_eval {
 	int n_lens_bins;
 	double lens_bin_lo, lens_bin_first;	/* field edge, 2nd bin */
 	double *lens_bin, *lens_alpha_nom;
+	/* the registry fitted to this scene (diag_eval_prepare,
+	 * diagnose/scene_causes.c): nominal values the scene's own, grid
+	 * nodes the scene cannot be built with dropped (and said in notes),
+	 * only the causes `only` names and none `without` names (comma
+	 * lists, NULL: all); NULL-terminated; what the run fits */
+	const char *only, *without;
+	const char *sensor;	/* for the Sun exclusion; NULL: st16-like */
+	int normalised;		/* the curve has its theta = 0 row */
+	const struct diag_cause *causes[DIAG_CAUSES_MAX + 1];
+	struct diag_cause cause_own[DIAG_CAUSES_MAX];
+	double node_own[DIAG_CAUSES_MAX][DIAG_NODES_MAX];
+	char notes[DIAG_NOTES_MAX][200];
+	int n_notes;
 };
 
 #define DIAG_SUB 9		/* fine-grid points per angle: -4..4 steps */
@@ -57,5 +73,18 @@ int diag_eval_model(struct diag_eval *e, const struct diag_state *s,
 		    double *alpha, double *sigma, double *relcov,
 		    struct stray_error *err);
 void diag_eval_free(struct diag_eval *e);
+
+/* A comma list of cause names: NULL, or the first name not registered
+ * (into bad, size n). */
+const char *diag_causes_check(const char *list, char *bad, size_t n);
+
+/* Fill e->causes from the registry for e's scene (called by
+ * diag_eval_prepare after the nominal trace). */
+int diag_eval_causes(struct diag_eval *e, double base_rho,
+		     struct stray_error *err);
+
+/* The retrace cause of a geometry axis among e->causes, or NULL. */
+const struct diag_cause *diag_eval_axis_cause(const struct diag_eval *e,
+					      int axis);
 
 #endif /* DIAGNOSE_DIAG_EVAL_H */

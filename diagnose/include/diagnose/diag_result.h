@@ -33,6 +33,11 @@ struct diag_result {
 	double *rsig_before, *rsig_after;
 	double worst_theta_deg, worst_pull;	/* largest final residual */
 	double sun_deg_before, sun_deg_after, sun_alpha_req;
+	char sensor[64];	/* whose FDR model gives sun_alpha_req */
+	/* the surface at fault explains what the registry left (one
+	 * verdict: diag_result_surfaces): its groups are named causes */
+	int by_surface;
+	double p_surface;
 };
 
 /* Run the whole diagnosis; progress lines go to log when not NULL. */
@@ -41,12 +46,24 @@ int diag_run(struct diag_eval *e, const struct diag_data *d,
 	     struct stray_error *err);
 void diag_result_free(struct diag_result *r);
 
+struct diag_surfaces;
+/* The surface at fault's verdict (issue 23): when the registry left the
+ * residual unexplained and the named surface groups fit (p >=
+ * DIAG_P_ACCEPT over the points fitted), they are the named causes and
+ * the residual is explained (r->by_surface, r->explained).  1 then. */
+int diag_result_surfaces(struct diag_result *r,
+			 const struct diag_surfaces *s);
+
 /* Survival function of chi2 with dof degrees of freedom. */
 double diag_chi2_pvalue(double chi2, int dof);
 
-/* Sun exclusion angle of a curve at the sensor (st16-like by default). */
-int diag_sun_exclusion(const double *theta_deg, const double *alpha,
-		       size_t n, double *theta_excl, double *alpha_req,
+/* Sun exclusion angle of a curve at the sensor (a name or JSON file;
+ * NULL: st16-like), by libstray's one verdict: NaN where the curve does
+ * not exclude the Sun (stray_exclusion_angle); name (64 bytes, may be
+ * NULL) gets the sensor's name. */
+int diag_sun_exclusion(const char *sensor, const double *theta_deg,
+		       const double *alpha, size_t n, double *theta_excl,
+		       double *alpha_req, char *name,
 		       struct stray_error *err);
 
 #endif /* DIAGNOSE_DIAG_RESULT_H */

@@ -30,12 +30,37 @@ struct fdrfw_build_params {
 
 /*
  * Fill and seal a table: I_sdt (eq. 2.16), the Sun's alpha_req (fig. 2.7)
- * and exclusion angle (fig. 5.1) by libstray; the curve as log10 alpha.
+ * and exclusion angle (fig. 5.1) by libstray's one verdict
+ * (stray_exclusion_interval); the curve as log10 alpha.  A Sun the baffle
+ * does not exclude (the curve reaches alpha_req only at the geometric zero
+ * of the aperture plane) is carried as the first traced angle in or beyond
+ * that plane (90 deg for a curve traced to 90): the Sun is in the
+ * exclusion zone wherever it is in front of the tracker.  A curve that
+ * ends above the Sun's alpha_req has no angle the module could accept:
+ * refused (STRAY_EINVAL).
  */
 int fdrfw_table_build(const struct stray_curve_view *curve,
 		      const struct stray_sensor *sensor,
 		      const struct fdrfw_build_params *p,
 		      struct fdrfw_table *t, struct stray_error *err);
+
+/* The same, with the Sun's verdict (sun->excluded, reason) when sun is
+ * not NULL: what `stray firmware-table` reports beside the table. */
+int fdrfw_table_build_verdict(const struct stray_curve_view *curve,
+			      const struct stray_sensor *sensor,
+			      const struct fdrfw_build_params *p,
+			      struct fdrfw_table *t,
+			      struct stray_exclusion *sun,
+			      struct stray_error *err);
+
+/*
+ * libstray's verdict on a sealed table's own curve and Sun alpha_req (a
+ * table from before the verdict may carry 89.98 deg for a Sun the baffle
+ * never excludes): what `stray availability` reports per head.
+ */
+int fdrfw_table_sun_verdict(const struct fdrfw_table *t,
+			    struct stray_exclusion *sun,
+			    struct stray_error *err);
 
 /* The word of the table a status of fdrfw_table_check or fdrfw_init
  * refuses (FDRFW_EFIELD_OF), -1 for any other status; its name, or NULL. */

@@ -30,26 +30,48 @@ double stray_curve_alpha_at(const struct stray_curve_view *c,
 			    double theta_deg);
 
 /*
- * The exclusion angle (fig. 5.1): the smallest theta beyond which the curve
- * stays below alpha_req, found from the last sample at or above alpha_req
- * and the log-linear crossing after it.  When no sample reaches alpha_req,
- * the first angle.  STRAY_ERANGE when the last sample is still at or above
- * alpha_req (the curve ends before the source is excluded).
+ * The Sun in the aperture plane: a traced curve drops to its geometric zero
+ * there (no projected aperture), whatever the baffle does.
+ */
+#define STRAY_APERTURE_PLANE_DEG 90.0
+
+/*
+ * The one exclusion verdict (fig. 5.1) that every command uses: a source is
+ * excluded from theta on when the curve, after its last sample at or above
+ * alpha_req, falls below alpha_req at a sample *below the aperture plane*
+ * (theta < 90 deg); the angle is the log-linear crossing (linear into an
+ * exact 0).  When no sample reaches alpha_req, the first angle.  A curve
+ * that ends above alpha_req, or reaches it only by dropping to the
+ * geometric zero at 90 deg, is not excluded by the baffle: STRAY_ERANGE,
+ * with the reason in err (the caller reports it, exit 0).
  */
 int stray_exclusion_angle(const struct stray_curve_view *c, double alpha_req,
 			  double *theta_deg, struct stray_error *err);
 
 struct stray_exclusion {
-	double theta_deg;	/* from the curve itself */
-	double theta_lo_deg;	/* from alpha - k sigma (optimistic) */
+	double theta_deg;	/* from the curve itself; NaN: not excluded */
+	double theta_lo_deg;	/* from alpha - k sigma (optimistic); NaN: never */
 	double theta_hi_deg;	/* from alpha + k sigma (pessimistic) */
 	int has_interval;	/* 0 when the curve has no sigma */
-	int hi_reached;		/* 0 when alpha + k sigma never falls below */
+	int hi_reached;		/* 0 when alpha + k sigma is never excluded */
+	int excluded;		/* 0: not excluded by the baffle (reason) */
+	const char *reason;	/* why not (static text), NULL when excluded */
+	double last_above_deg;	/* last angle at or above alpha_req, or NaN */
 };
 
+/* Why a source is not excluded (the texts of stray_exclusion.reason). */
+#define STRAY_EXCL_ENDS_ABOVE \
+	"the curve ends above alpha_required at its last angle"
+#define STRAY_EXCL_PLANE_ONLY \
+	"the curve stays above alpha_required below the aperture plane " \
+	"(90 deg): it falls under it only at the geometric zero of the " \
+	"plane, not by the baffle"
+
 /*
- * The exclusion angle with its uncertainty: the same crossing for the
- * curves alpha -/+ k_sigma * sigma (sigma from the curve) brackets it.
+ * The verdict with its uncertainty: the same rule for the curves
+ * alpha -/+ k_sigma * sigma (sigma from the curve) brackets the angle.
+ * STRAY_OK whether or not the source is excluded (out->excluded says;
+ * out->theta_deg is NaN when not); an error only for bad input.
  */
 int stray_exclusion_interval(const struct stray_curve_view *c,
 			     double alpha_req, double k_sigma,
