@@ -67,7 +67,8 @@ one() {	# one target; writes $out/results/NAME
 	# assimp (C++, no frame pointers) is seen by the suppression only
 	# through the slow unwinder; the fast one stops at operator new.
 	case $name in
-	fuzz_scene_json) local -x ASAN_OPTIONS=fast_unwind_on_malloc=0 ;;
+	fuzz_scene_json|fuzz_mesh_file)
+		local -x ASAN_OPTIONS=fast_unwind_on_malloc=0 ;;
 	esac
 	"$bin" "${opts[@]}" -print_final_stats=1 -timeout=10 \
 		-rss_limit_mb=2048 -artifact_prefix="$out/artifacts/$name-" \

@@ -76,6 +76,20 @@ build/fuzz/fuzz_scene_json: tests/fuzz/fuzz_scene_json.c $(wildcard tracer/*.c) 
 	$(CLANG) $(FUZZ_CFLAGS) -D_DEFAULT_SOURCE -Itracer/include -o $@ $^ \
 		$(TRACER_LDLIBS) -lstdc++ $(STRAY_LDLIBS)
 
+# One mesh file: the byte count pre-scan, then assimp (tracer/mesh_prescan.c).
+build/fuzz/fuzz_mesh_file: tests/fuzz/fuzz_mesh_file.c $(wildcard tracer/*.c) \
+		$(FUZZ_LIB_SRC)
+	@mkdir -p $(dir $@)
+	$(CLANG) $(FUZZ_CFLAGS) -D_DEFAULT_SOURCE -Itracer/include -o $@ $^ \
+		$(TRACER_LDLIBS) -lstdc++ $(STRAY_LDLIBS)
+
+# The pre-scan alone, without assimp (fast).
+build/fuzz/fuzz_mesh_prescan: tests/fuzz/fuzz_mesh_prescan.c \
+		tracer/mesh_prescan.c $(FUZZ_LIB_SRC)
+	@mkdir -p $(dir $@)
+	$(CLANG) $(FUZZ_CFLAGS) -D_DEFAULT_SOURCE -Itracer/include -o $@ $^ \
+		-lcsv -lcjson -lm
+
 .PHONY: fuzz fuzz-ci fuzz-smoke fuzz-merge
 fuzz-ci:
 	@$(MAKE) --no-print-directory -j$(FUZZ_JOBS) $(FUZZ_TARGETS)

@@ -105,6 +105,45 @@ static void html_escaped(FILE *f, const char *s)
 	}
 }
 
+/*
+ * User-supplied text in report.md (the title, values of the stages'
+ * files): a raw "<script>" or "](javascript:" would reach any Markdown
+ * viewer that passes HTML through, and a '|' or a newline breaks the
+ * table.  HTML's three specials become entities, Markdown's inline
+ * punctuation is backslash-escaped, line breaks become spaces.
+ */
+static void md_escaped(FILE *f, const char *s)
+{
+	for (; *s; s++) {
+		switch (*s) {
+		case '<': fputs("&lt;", f); break;
+		case '>': fputs("&gt;", f); break;
+		case '&': fputs("&amp;", f); break;
+		case '\n': case '\r': fputc(' ', f); break;
+		case '\\': case '`': case '*': case '_': case '[': case ']':
+		case '|': case '#': case '!':
+			fputc('\\', f);
+			fputc(*s, f);
+			break;
+		default: fputc(*s, f);
+		}
+	}
+}
+
+/* A code fence longer than any run of backticks in text (so a file's
+ * own "```" cannot close it and turn the rest into Markdown). */
+static void md_fence(FILE *f, const char *text)
+{
+	size_t run = 0, most = 0, i;
+
+	for (; *text; text++) {
+		run = *text == '`' ? run + 1 : 0;
+		most = run > most ? run : most;
+	}
+	for (i = 0; i < (most < 3 ? 3 : most + 1); i++)
+		fputc('`', f);
+}
+
 /* A scalar as text: numbers to 5 significant digits. */
 static void scalar_text(const cJSON *v, char *buf, size_t size)
 {
@@ -147,7 +186,9 @@ static void cell(struct sink *s, const char *text, int head)
 		html_escaped(s->f, text);
 		fputs(head ? "</th>" : "</td>", s->f);
 	} else {
-		fprintf(s->f, " %s |", text);
+		fputc(' ', s->f);
+		md_escaped(s->f, text);
+		fputs(" |", s->f);
 	}
 }
 
@@ -296,12 +337,17 @@ static int render_section(struct sink *s, const char *dir,
 		snprintf(path, sizeof(path), "%s/%s", dir, sec->txt);
 		stray_error_clear(&err);
 		if (stray_file_read(path, &text, &len, &err) == STRAY_OK) {
-			fputs(s->html ? "<pre>" : "```\n", s->f);
-			if (s->html)
+			if (s->html) {
+				fputs("<pre>", s->f);
 				html_escaped(s->f, text);
-			else
-				fputs(text, s->f);
-			fputs(s->html ? "</pre>\n" : "```\n\n", s->f);
+				fputs("</pre>\n", s->f);
+			} else {
+				md_fence(s->f, text);
+				fprintf(s->f, "\n%s%s", text,
+					len && text[len - 1] == '\n' ? "" : "\n");
+				md_fence(s->f, text);
+				fputs("\n\n", s->f);
+			}
 			shown = 1;
 			free(text);
 		}
@@ -386,8 +432,11 @@ static int write_report(const char *dir, const char *title, int html,
 		}
 		fprintf(s.f, html_head, t, t);
 		free(t);
-	} else
-		fprintf(s.f, "# %s\n", title);
+	} else {
+		fputs("# ", s.f);
+		md_escaped(s.f, title);
+		fputc('\n', s.f);
+	}
 	for (i = 0, *shown = 0; i < N_SECTIONS; i++)
 		*shown += render_section(&s, dir, &sections[i]);
 	if (html)

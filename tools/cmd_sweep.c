@@ -206,13 +206,16 @@ static int resume(const char *path, const char *key, struct stray_curve *c)
 	if (access(path, F_OK) != 0)
 		return 0;
 	stray_error_clear(&err);
-	if (stray_curve_load(path, c, &err))
+	if (stray_curve_load(path, c, &err)) {
+		stray_file_forget_input(path);	/* broken: traced anew */
 		return 0;
+	}
 	snprintf(want, sizeof(want), " sweep_run: %s", key);
 	for (i = 0; i < c->n_meta; i++)
 		if (strcmp(c->meta[i], want) == 0)
 			return 1;
 	stray_curve_free(c);
+	stray_file_forget_input(path);	/* another run's: traced anew */
 	return 0;
 }
 

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <vector>
+#include <cerrno>
+#include <cstring>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -67,16 +69,22 @@ static int write_png(const char *path, const cv::Mat &img, char *msg,
 	}
 	stray_error_clear(&err);
 	if (stray_file_open_atomic(&out, path, &err) != STRAY_OK) {
-		set_msg(msg, msg_size, "cannot write the PNG file");
+		set_msg(msg, msg_size, err.reason ? err.reason
+				       : "cannot write the PNG file");
 		return -1;
 	}
 	if (fwrite(png.data(), 1, png.size(), out.f) != png.size()) {
+		int saved = errno;
+
 		stray_file_abort(&out);
-		set_msg(msg, msg_size, "cannot write the PNG file");
+		set_msg(msg, msg_size, saved ? strerror(saved)
+				       : "cannot write the PNG file");
 		return -1;
 	}
 	if (stray_file_commit(&out, &err) != STRAY_OK) {
-		set_msg(msg, msg_size, "cannot write the PNG file");
+		/* the errno text ("No space left on device"), not a guess */
+		set_msg(msg, msg_size, err.reason ? err.reason
+				       : "cannot write the PNG file");
 		return -1;
 	}
 	return 0;

@@ -187,9 +187,50 @@ static void draw_frame(const struct plot_spec *p, double x0, double x1,
 static int open_png(const char *path, struct stray_file_out *out,
 		    struct stray_error *err)
 {
-	if (stray_file_open_atomic(out, path, err) != STRAY_OK)
-		return stray_error_at(err, STRAY_EIO, path, 0, "plot",
-				      "cannot create file");
+	/* the library's reason stands ("is also an input of this run",
+	 * "Permission denied"), not a vaguer one of ours */
+	return stray_file_open_atomic(out, path, err);
+}
+
+/*
+ * A device or a pipe (/dev/stdout, /dev/full) is written in place, and
+ * PLplot would write it by name and ignore a failed write: the figure is
+ * drawn into a private temporary and copied through out->f, whose commit
+ * reports the errno ("No space left on device").  *scratch gets the
+ * temporary's name ("" when none is needed).
+ */
+static int device_scratch(struct stray_file_out *out, char *scratch,
+			  size_t size, struct stray_error *err)
+{
+	int fd;
+
+	scratch[0] = '\0';
+	if (out->tmp[0])
+		return STRAY_OK;
+	snprintf(scratch, size, "/tmp/stray_plot_XXXXXX");
+	if ((fd = mkstemp(scratch)) < 0) {
+		scratch[0] = '\0';
+		return stray_error_at(err, STRAY_EIO, out->path, 0, "plot",
+				      "cannot create a temporary file");
+	}
+	close(fd);
+	return STRAY_OK;
+}
+
+static int copy_scratch(const char *scratch, struct stray_file_out *out,
+			struct stray_error *err)
+{
+	FILE *f = fopen(scratch, "rb");
+	char buf[65536];
+	size_t n;
+
+	if (!f)
+		return stray_error_at(err, STRAY_EIO, out->path, 0, "plot",
+				      "PLplot wrote no file");
+	while ((n = fread(buf, 1, sizeof(buf), f)) > 0)
+		if (fwrite(buf, 1, n, out->f) != n)
+			break;	/* the commit reports errno */
+	fclose(f);
 	return STRAY_OK;
 }
 
@@ -200,10 +241,15 @@ int plot_render(const struct plot_spec *p, struct stray_error *err)
 	PLFLT *bx, *by, *bz;
 	char geom[32];
 	struct stray_file_out out;
+	char scratch[64];
 	int rc = open_png(p->path, &out, err);
 
 	if (rc != STRAY_OK)
 		return rc;
+	if ((rc = device_scratch(&out, scratch, sizeof(scratch), err))) {
+		stray_file_abort(&out);
+		return rc;
+	}
 	for (s = 0; s < p->n_series; s++)
 		nmax = p->series[s].n > nmax ? p->series[s].n : nmax;
 	bx = malloc(nmax * sizeof(PLFLT));
@@ -217,7 +263,7 @@ int plot_render(const struct plot_spec *p, struct stray_error *err)
 	axis_limits(p, 1, &y0, &y1);
 	snprintf(geom, sizeof(geom), "%dx%d", PLOT_W_PX, PLOT_H_PX);
 	plsdev("pngcairo");
-	plsfnam(out.tmp[0] ? out.tmp : p->path);	/* else a device */
+	plsfnam(out.tmp[0] ? out.tmp : scratch);
 	plsetopt("geometry", geom);
 	plscmap0(pal_r, pal_g, pal_b, (PLINT)(sizeof(pal_r) / sizeof(pal_r[0])));
 	plinit();
@@ -237,9 +283,13 @@ int plot_render(const struct plot_spec *p, struct stray_error *err)
 			rc = stray_error_at(err, STRAY_EIO, p->path, 0, "plot",
 					    "PLplot wrote no file");
 	}
+	if (rc == STRAY_OK && scratch[0])
+		rc = copy_scratch(scratch, &out, err);
 	if (rc == STRAY_OK)
 		rc = stray_file_commit(&out, err);
 out_free:
+	if (scratch[0])
+		unlink(scratch);
 	if (rc != STRAY_OK)
 		stray_file_abort(&out);
 	free(bx);

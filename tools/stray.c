@@ -97,6 +97,10 @@ static int run_all_or_nothing(const struct cmd *c, int argc, char **argv)
 
 	for (i = 0; i < sizeof(deferred) / sizeof(deferred[0]); i++)
 		defer |= strcmp(c->name, deferred[i]) == 0;
+	/* one run: its outputs may not replace its inputs or each other */
+	stray_file_run_begin();
+	if ((rc = cli_check_outputs(c->name, argc, argv)) != CLI_OK)
+		return rc;
 	if (defer)
 		stray_file_defer();
 	rc = c->run(argc, argv);

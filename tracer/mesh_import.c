@@ -18,7 +18,6 @@
 #include "tracer/mesh_import.h"
 #include "tracer/mesh_locate.h"
 
-#define TRACER_MESH_TRI_MAX 5000000u	/* input limit, docs/limits.md */
 
 /* The surface group of one assimp mesh: forced, OBJ group, material. */
 static const char *group_of(const struct aiScene *sc,
@@ -84,6 +83,10 @@ int tracer_mesh_import(struct tracer_mesh *m, const char *path,
 				"input limit (docs/limits.md)"
 				: "is not a regular file");
 	}
+	/* counted before assimp takes gigabytes (issue 31) */
+	if ((rc = tracer_mesh_prescan(path, m->n_tri, err)) != STRAY_OK)
+		return rc;
+	stray_file_note_input(path);	/* no output of the run may replace it */
 	sc = aiImportFile(path, aiProcess_Triangulate |
 				aiProcess_JoinIdenticalVertices |
 				aiProcess_FindInvalidData);

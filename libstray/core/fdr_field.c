@@ -169,6 +169,11 @@ static stray_real polyplet_perimeter(unsigned s)
 	return s < 8 ? b[s] : b[7] + STRAY_R(2.57) * (stray_real)(s - 7);
 }
 
+/* Past this mean the pixel tail is Gaussian: a cluster threshold is a
+ * few sigma, where the skew error z^3 / (6 sqrt(mu)) is < 1e-3 (fdr.c's
+ * POISSON_GAUSS_MEAN, same reasoning). */
+#define CLUSTER_GAUSS_MEAN STRAY_R(1e8)
+
 int stray_fdr_log_rate_clusters(stray_real n_px, stray_real mu_e,
 				stray_real var_e, stray_real t_e,
 				unsigned min_px, stray_real *log_fdr,
@@ -192,6 +197,11 @@ int stray_fdr_log_rate_clusters(stray_real n_px, stray_real mu_e,
 
 	if (a <= 0) {
 		lp = 0;
+		rc = STRAY_OK;
+	} else if (mu > CLUSTER_GAUSS_MEAN) {
+		/* the series would need > 1e5 terms ("did not converge" at
+		 * alpha 0.1): the Gaussian limit, as fdr.c does past 1e8 */
+		lp = stray_log_gauss_q((a - mu) / stray_sqrt(mu));
 		rc = STRAY_OK;
 	} else {
 		rc = stray_log_gamma_p(a, mu, &lp, err);

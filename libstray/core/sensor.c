@@ -53,6 +53,19 @@ static int check_finite(double v, const char *field, struct stray_error *err)
 	return STRAY_OK;
 }
 
+/* A whole number of pixels within the side limit (positive already):
+ * frames, maps and windows are allocated and indexed by it. */
+static int check_pixels(double v, const char *field, struct stray_error *err)
+{
+	if (!(v <= STRAY_SENSOR_SIDE_MAX))
+		return stray_error_set_value(err, STRAY_EINVAL, field,
+			STRAY_MSG("must be <= 65536 (docs/limits.md)"), v);
+	if ((double)(long)v != v)
+		return stray_error_set_value(err, STRAY_EINVAL, field,
+			STRAY_MSG("must be a whole number of pixels"), v);
+	return STRAY_OK;
+}
+
 int stray_sensor_check(const struct stray_sensor *s, struct stray_error *err)
 {
 	int rc;
@@ -68,6 +81,13 @@ int stray_sensor_check(const struct stray_sensor *s, struct stray_error *err)
 	    (rc = check_finite(s->vega_mag, "vega_mag", err)) ||
 	    (rc = check_finite(s->moon_mag, "moon_mag", err)))
 		return rc;
+	if ((rc = check_pixels(s->pixels_x, "pixels_x", err)) ||
+	    (rc = check_pixels(s->pixels_y, "pixels_y", err)))
+		return rc;
+	if (!(s->pixels_x * s->pixels_y <= STRAY_SENSOR_PIXELS_MAX))
+		return stray_error_set_value(err, STRAY_EINVAL, "pixels_y",
+			STRAY_MSG("pixels_x * pixels_y must be <= 1e8 "
+				  "(docs/limits.md)"), s->pixels_y);
 	if (!(s->star_window_px >= 1.0 &&
 	      s->star_window_px <= s->pixels_x * s->pixels_y))
 		return stray_error_set_value(err, STRAY_EINVAL, "star_window_px",

@@ -79,6 +79,7 @@ int stray_file_read(const char *path, char **buf, size_t *len,
 		return stray_error_at(err, STRAY_EIO, path, 0, 0, "read error");
 	}
 	fclose(f);
+	stray_file_note_input(path);	/* its outputs may not replace it */
 	b[n] = '\0';
 	*buf = b;
 	*len = n;
@@ -258,6 +259,8 @@ int stray_file_open_atomic(struct stray_file_out *out, const char *path,
 	out->path = path;
 	out->f = NULL;
 	out->tmp[0] = '\0';
+	if (stray_file_claim_output(path, err) != STRAY_OK)
+		return STRAY_EINVAL;
 	if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
 		/* /dev/stdout, a pipe: written in place, never renamed over
 		 * (as root that would replace the device node) */
@@ -358,6 +361,8 @@ int stray_dir_open_atomic(struct stray_dir_out *out, const char *path,
 
 	out->path = path;
 	out->tmp[0] = '\0';
+	if (stray_file_claim_output(path, err) != STRAY_OK)
+		return STRAY_EINVAL;
 	if (stat(path, &st) == 0) {
 		if (!S_ISDIR(st.st_mode))
 			return stray_error_at(err, STRAY_EINVAL, path, 0, 0,

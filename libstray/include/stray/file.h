@@ -68,4 +68,26 @@ int stray_dir_open_atomic(struct stray_dir_out *out, const char *path,
 int stray_dir_commit(struct stray_dir_out *out, struct stray_error *err);
 void stray_dir_abort(struct stray_dir_out *out);
 
+/*
+ * One run's inputs and outputs (file_guard.c): after stray_file_run_begin,
+ * an output that is a file this run has read (stray_file_read records
+ * every file it reads; other readers - cfitsio, assimp - call
+ * stray_file_note_input), or that another output of the run already
+ * named, is refused by stray_file_open_atomic / stray_dir_open_atomic as
+ * bad input (STRAY_EINVAL) before anything is written.  Without
+ * stray_file_run_begin nothing is recorded or refused.
+ */
+void stray_file_run_begin(void);
+void stray_file_run_end(void);
+void stray_file_note_input(const char *path);
+/* A file this run read and now replaces on purpose (a stale entry of a
+ * resumable store): no longer an input. */
+void stray_file_forget_input(const char *path);
+/* The refusal itself (also for writers outside stray_file_open_atomic);
+ * records path as an output when accepted. */
+int stray_file_claim_output(const char *path, struct stray_error *err);
+/* path with its folder resolved (realpath of the parent + the name);
+ * 0, or -1 when it does not fit in size. */
+int stray_file_canonical(const char *path, char *out, size_t size);
+
 #endif /* STRAY_FILE_H */

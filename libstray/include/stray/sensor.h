@@ -13,6 +13,12 @@
 #define STRAY_NAME_MAX 64
 #define STRAY_PATH_MAX 512
 
+/* Detector size limits (docs/limits.md): whole pixels, at most 65536 a
+ * side and 1e8 in all (frames and maps allocate several bytes per pixel;
+ * 1e10 pixels asked for 2^63 bytes). */
+#define STRAY_SENSOR_SIDE_MAX 65536.0
+#define STRAY_SENSOR_PIXELS_MAX 1e8
+
 struct stray_sensor {
 	char name[STRAY_NAME_MAX];
 	double pixels_x, pixels_y;	/* n_tot = pixels_x * pixels_y */

@@ -7,6 +7,8 @@
 #ifndef TRACER_MESH_IMPORT_H
 #define TRACER_MESH_IMPORT_H
 
+#include <stddef.h>
+
 #include "stray/error.h"
 #include "tracer/mesh.h"
 
@@ -18,5 +20,18 @@
 int tracer_mesh_import(struct tracer_mesh *m, const char *path,
 		       const char *group, double scale_mm,
 		       struct stray_error *err);
+
+/* Input limit (docs/limits.md): triangles in one scene. */
+#define TRACER_MESH_TRI_MAX 5000000u
+
+/*
+ * The size of path counted from its bytes, before any import (binary
+ * STL's declared count; OBJ faces and vertices, ASCII STL facets, by one
+ * streaming pass): more than TRACER_MESH_TRI_MAX - tri_before triangles,
+ * or more than 3 x that many vertices, is refused (STRAY_EINVAL) in
+ * constant memory.  Unreadable files pass (the importer names them).
+ */
+int tracer_mesh_prescan(const char *path, size_t tri_before,
+			struct stray_error *err);
 
 #endif /* TRACER_MESH_IMPORT_H */
