@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "farm.h"
+#include "stray/file.h"
 #include "stray/provenance.h"
 #include "tools/entry.h"
 #include "tracer/runner.h"
@@ -157,6 +158,11 @@ static int run_command(int argc, char **argv)
 	argc -= optind;
 	argv += optind;
 	optind = 0;
+	/* as `stray` does: no output may replace an input or another */
+	stray_file_run_begin();
+	if ((rc = cli_check_outputs(argv[0], argc, argv)) != CLI_OK)
+		return rc;
+	optind = 0;	/* the check parsed argv too */
 	return cmd(argc, argv, &farm);
 }
 

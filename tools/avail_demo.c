@@ -3,6 +3,7 @@
  * --write-aem`: a sun-synchronous orbit, nadir pointing with yaw
  * steering, written as OEM and AEM and kept in memory for the same run.
  */
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -83,8 +84,11 @@ static int make_text(const char *path, char **text, size_t *len,
 	if ((rc = stray_file_open_atomic(&fo, path, err)) != STRAY_OK)
 		return rc;
 	if (fwrite(*text, 1, *len, fo.f) != *len) {
+		int e = errno;
+
 		stray_file_abort(&fo);
-		return stray_error_at(err, STRAY_EIO, path, 0, 0, "write failed");
+		return stray_error_at(err, STRAY_EIO, path, 0, 0,
+				      e ? strerror(e) : "write failed");
 	}
 	return stray_file_commit(&fo, err);
 }

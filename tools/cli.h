@@ -52,11 +52,5 @@ int cli_json_emit(cJSON *obj);
 /* A JSON number, or null where v is not finite (JSON has no inf/nan). */
 cJSON *cli_json_number(double v);
 
-/*
- * Before a command runs (cli_outputs.c): an output option naming a file
- * that is also an input of the command line, or another output, is bad
- * input (one line, 2); CLI_OK otherwise.  argv[0] is the command.
- */
-int cli_check_outputs(const char *cmd, int argc, char **argv);
 
 #endif /* STRAY_TOOLS_CLI_H */

@@ -128,6 +128,7 @@ static int open_map(const char *path, fitsfile **fp, long naxes[2],
 		stray_error_text(err, text);
 		return STRAY_ENOTFOUND;
 	}
+	stray_file_note_input(path);	/* no output of the run may replace it */
 	if (fits_get_img_dim(*fp, &nax, &st) || nax != 2 ||
 	    fits_get_img_size(*fp, 2, naxes, &st) || naxes[0] < 1 ||
 	    naxes[1] < 1)

@@ -16,6 +16,13 @@ enum cli_exit { CLI_OK = 0, CLI_FAIL = 1, CLI_USAGE = 2 };
 /* The name messages start with ("stray" unless set). */
 void cli_set_prog(const char *prog);
 
+/*
+ * Before a command runs (cli_outputs.c): an output option naming a file
+ * that is also an input of the command line, or another output, is bad
+ * input (one line, 2); CLI_OK otherwise.  argv[0] is the command.
+ */
+int cli_check_outputs(const char *cmd, int argc, char **argv);
+
 /* argv[0] is the command's name; the exit code. */
 int cmd_trace(int argc, char **argv, const struct tracer_runner *runner);
 int cmd_sweep(int argc, char **argv, const struct tracer_runner *runner);
