@@ -257,7 +257,7 @@ int fdrfw_table_sun_verdict(const struct fdrfw_table *t,
 			    struct stray_error *err)
 {
 	double th[FDRFW_CURVE_MAX], al[FDRFW_CURVE_MAX];
-	struct stray_curve_view v = { t->n_curve, th, al, NULL };
+	struct stray_curve_view v;
 	uint32_t i;
 
 	if (t->n_curve < 2u || t->n_curve > FDRFW_CURVE_MAX)
@@ -269,6 +269,10 @@ int fdrfw_table_sun_verdict(const struct fdrfw_table *t,
 		al[i] = t->log10_alpha[i] <= FDRFW_LOG10_ALPHA_FLOOR ? 0.0 :
 			pow(10.0, (double)t->log10_alpha[i]);
 	}
+	v.n = t->n_curve;	/* the view made once the arrays are filled */
+	v.theta_deg = th;
+	v.alpha = al;
+	v.sigma = NULL;
 	return stray_exclusion_interval(&v, (double)t->alpha_req_sun, 0.0,
 					sun, err);
 }
