@@ -384,8 +384,16 @@ void fc_frame_analyse(const struct fc_cfg *c, struct fc_work *w,
 	radius = atan(0.5 * hypot(c->cols, c->rows) / c->f_px +
 		      hypot(c->cx - 0.5 * c->cols, c->cy - 0.5 * c->rows) /
 		      c->f_px) / DEG + 0.2;
-	stray_catalogue_cone(c->cat_seed, dir, radius, FC_MAG_CAL, w->cat,
-			     w->cat_max, &n_cat);
+	if (c->starcat) {	/* the real sky at the frame's epoch */
+		stray_starcat_cone(c->starcat, stray_jyear_of_tt(t_tt), dir,
+				   radius, FC_MAG_CAL, w->cat, w->cat_max,
+				   &n_cat);
+		if (c->colour)
+			stray_colour_apply(c->colour, w->cat, n_cat);
+	} else {
+		stray_catalogue_cone(c->cat_seed, dir, radius, FC_MAG_CAL,
+				     w->cat, w->cat_max, &n_cat);
+	}
 	n_pred = stray_camera_stars(&cam, w->cat, n_cat, c->cols, c->rows,
 				    0.0, c->f0_e, w->pred, w->pred_max);
 	o->n_pred = (int)n_pred;
@@ -401,6 +409,16 @@ void fc_frame_analyse(const struct fc_cfg *c, struct fc_work *w,
 			w->my[n_match] = my;
 			idx[n_match++] = (int)i;
 		}
+	}
+	/* the stars too bright to be missed, and how many were found */
+	for (k = 0, i = 0; i < n_pred; i++) {
+		if (w->pred[i].photons_e / c->gain_e_per_dn <
+		    FC_SURE_SNR * o->noise_dn)
+			continue;
+		o->n_sure++;
+		while (k < n_match && idx[k] < (int)i)
+			k++;
+		o->n_sure_found += k < n_match && idx[k] == (int)i;
 	}
 	/* refine on the matches, reject the worst (> 3 px) once, again */
 	refine(c, w->pred, idx, w->mx, w->my, n_match, sol);
@@ -466,6 +484,16 @@ void fc_summarise(const struct fc_cfg *c, const struct fc_frame *f,
 
 	memset(s, 0, sizeof(*s));
 	for (i = 0; i < n; i++) {
+		s->n_pred += f[i].n_pred;
+		s->n_match += f[i].n_match;
+		s->n_sure += f[i].n_sure;
+		s->n_sure_found += f[i].n_sure_found;
+		s->resid_px += f[i].resid_px * f[i].resid_px * f[i].n_match;
+	}
+	s->match_frac = s->n_sure > 0 ? (double)s->n_sure_found / s->n_sure
+				       : 0.0;
+	s->resid_px = s->n_match > 0 ? sqrt(s->resid_px / s->n_match) : 0.0;
+	for (i = 0; i < n; i++) {
 		sw += f[i].cal_sw;
 		swr += f[i].cal_swr;
 		swr2 += f[i].cal_swr2;
@@ -483,6 +511,10 @@ void fc_summarise(const struct fc_cfg *c, const struct fc_frame *f,
 		double st;
 
 		fc_cfg_exposure(c, f[i].t_exp_s, &at);	/* its own EXPTIME */
+		if (f[i].gain_e_per_dn > 0.0)		/* its own GAIN, BIAS */
+			at.gain_e_per_dn = f[i].gain_e_per_dn;
+		if (f[i].bias_dn > 0.0)
+			at.bias_dn = f[i].bias_dn;
 		st = f[i].bg_dn - at.bias_dn - at.dark_e / at.gain_e_per_dn;
 		pts[i].theta_deg = f[i].theta_deg;
 		pts[i].alpha_px = st / (s->dn_per_e * at.sun_e);

@@ -16,20 +16,107 @@
 
 #define PATH_LEN (STRAY_SWEEP_DIR_MAX + STRAY_SWEEP_FILE_MAX + 2)
 
-/* DATE-OBS (UTC) of an open frame, as TT seconds since J2000. */
+/* A string keyword; 0 when present. */
+static int key_str(struct stray_sweep_fits *f, const char *key, char *v)
+{
+	int status = 0;
+
+	return fits_read_key((fitsfile *)f->fptr, TSTRING, key, v, NULL,
+			     &status) ? -1 : 0;
+}
+
+/*
+ * The attitude time of an open frame, TT seconds since J2000: its
+ * mid-exposure, DATE-AVG, else the middle of DATE-BEG and DATE-END, else
+ * DATE-BEG + EXPTIME/2, else DATE-OBS (taken as mid-exposure: the
+ * standard fixes no meaning for it), in the frame's TIMESYS (UTC when
+ * absent; UTC, TAI, TT, GPS).
+ */
 static int frame_time(struct stray_sweep_fits *f, double *t_tt,
 		      struct stray_error *err)
 {
-	char v[FLEN_VALUE];
+	char v[FLEN_VALUE], w[FLEN_VALUE];
+	const char *key = "DATE-AVG";
+	int ts = stray_ccsds_time_system("UTC");
+	double t2;
+
+	if (key_str(f, "TIMESYS", v) == 0 &&
+	    (ts = stray_ccsds_time_system(v)) < 0)
+		return stray_error_at(err, STRAY_EPARSE, f->path, 0, "TIMESYS",
+				      "not UTC, TAI, TT or GPS");
+	if (key_str(f, key, v) != 0) {
+		key = "DATE-BEG";
+		if (key_str(f, key, v) != 0) {
+			key = "DATE-OBS";
+			if (key_str(f, key, v) != 0)
+				return stray_error_at(err, STRAY_EPARSE, f->path, 0,
+					"DATE-OBS", "missing (and no DATE-AVG or DATE-BEG)");
+		}
+	}
+	if (stray_ccsds_epoch(v, ts, t_tt))
+		return stray_error_at(err, STRAY_EPARSE, f->path, 0, key,
+				      "not an ISO 8601 epoch");
+	if (strcmp(key, "DATE-BEG") == 0) {
+		if (key_str(f, "DATE-END", w) == 0) {
+			if (stray_ccsds_epoch(w, ts, &t2) || t2 < *t_tt)
+				return stray_error_at(err, STRAY_EPARSE, f->path, 0,
+					"DATE-END", "not an epoch at or after DATE-BEG");
+			*t_tt = 0.5 * (*t_tt + t2);
+		} else {
+			*t_tt += 0.5 * f->h.exptime_s;
+		}
+	}
+	return STRAY_OK;
+}
+
+/* A numeric keyword; 1 when absent, 0 with *v, or an error. */
+static int key_num(struct stray_sweep_fits *f, const char *key, double *v,
+		   double lo, double hi, struct stray_error *err)
+{
 	int status = 0;
 
-	if (fits_read_key((fitsfile *)f->fptr, TSTRING, "DATE-OBS", v, NULL,
-			  &status))
-		return stray_error_at(err, STRAY_EPARSE, f->path, 0, 0,
-				      "keyword DATE-OBS: missing");
-	if (stray_ccsds_epoch(v, stray_ccsds_time_system("UTC"), t_tt))
-		return stray_error_at(err, STRAY_EPARSE, f->path, 0, 0,
-				      "keyword DATE-OBS: not a UTC epoch");
+	if (fits_read_key((fitsfile *)f->fptr, TDOUBLE, key, v, NULL, &status)) {
+		if (status == KEY_NO_EXIST)
+			return 1;
+		return stray_error_at(err, STRAY_EPARSE, f->path, 0, key,
+				      "not a number");
+	}
+	if (!(*v >= lo && *v <= hi))
+		return stray_error_at(err, STRAY_EINVAL, f->path, 0, key,
+				      "out of range (docs/limits.md)");
+	return 0;
+}
+
+/*
+ * The camera of the frame, from its keywords: BIAS (or PEDESTAL, DN)
+ * and GAIN (e- per DN) are required, nothing is assumed for them;
+ * SATURATE (DN) when present, else SATLEVEL.
+ */
+static int frame_camera(struct stray_sweep_fits *f, struct fc_cfg *at,
+			struct fc_frame *out, struct stray_error *err)
+{
+	double v;
+	int rc;
+
+	if ((rc = key_num(f, "BIAS", &v, 0.0, 65535.0, err)) == 1)
+		rc = key_num(f, "PEDESTAL", &v, 0.0, 65535.0, err);
+	if (rc == 1)
+		return stray_error_at(err, STRAY_EINVAL, f->path, 0, "BIAS",
+			"missing: the frame's bias level (DN, or PEDESTAL) is not assumed");
+	if (rc)
+		return rc;
+	at->bias_dn = out->bias_dn = v;
+	if ((rc = key_num(f, "GAIN", &v, 1e-3, 1e4, err)) == 1)
+		return stray_error_at(err, STRAY_EINVAL, f->path, 0, "GAIN",
+			"missing: the frame's gain (e- per DN) is not assumed");
+	if (rc)
+		return rc;
+	at->gain_e_per_dn = out->gain_e_per_dn = v;
+	if ((rc = key_num(f, "SATURATE", &v, 1.0, 65535.0, err)) == 1)
+		v = (double)f->h.satlevel;
+	else if (rc)
+		return rc;
+	at->sat_dn = v;
 	return STRAY_OK;
 }
 
@@ -93,10 +180,19 @@ static int one_frame(const struct stray_sweep_manifest *m,
 	if (rc == STRAY_OK)
 		rc = stray_sweep_fits_read(&f, px, err);
 	if (rc == STRAY_OK) {
-		/* each frame's stars and dark counts with its own EXPTIME */
+		/* each frame's stars and dark counts with its own EXPTIME,
+		 * its camera with its own keywords */
+		struct fc_frame cam;
+
 		fc_cfg_exposure(cfg, f.h.exptime_s, &at);
-		fc_frame_analyse(&at, w, px, q, t, out);
-		out->t_exp_s = f.h.exptime_s;
+		memset(&cam, 0, sizeof(cam));
+		rc = frame_camera(&f, &at, &cam, err);
+		if (rc == STRAY_OK) {
+			fc_frame_analyse(&at, w, px, q, t, out);
+			out->t_exp_s = f.h.exptime_s;
+			out->gain_e_per_dn = cam.gain_e_per_dn;
+			out->bias_dn = cam.bias_dn;
+		}
 	}
 	stray_sweep_fits_close(&f);
 	return rc;
@@ -128,6 +224,15 @@ int fc_run_dir(const char *dir, const struct stray_aem *aem,
 	       struct fc_cfg *cfg, struct fc_frame **frames, size_t *n,
 	       struct stray_error *err)
 {
+	return fc_run_dir_sky(dir, aem, s, fl, NULL, NULL, cfg, frames, n, err);
+}
+
+int fc_run_dir_sky(const char *dir, const struct stray_aem *aem,
+		   const struct stray_sensor *s, const struct stray_fluxes *fl,
+		   const struct stray_starcat *cat,
+		   const struct stray_colour *colour, struct fc_cfg *cfg,
+		   struct fc_frame **frames, size_t *n, struct stray_error *err)
+{
 	struct stray_sweep_manifest m;
 	struct stray_error bad_err;
 	size_t i, nf = 0, *which;
@@ -150,6 +255,8 @@ int fc_run_dir(const char *dir, const struct stray_aem *aem,
 	}
 	if ((rc = first_frame(&m, &m.e[which[0]], s, fl, cfg, err)))
 		goto out;
+	cfg->starcat = cat;
+	cfg->colour = colour;
 	*frames = calloc(nf, sizeof(**frames));
 	if (!*frames) {
 		rc = stray_error_set(err, STRAY_ENOMEM, "flightcheck", "out of memory");
@@ -202,4 +309,20 @@ out:
 	free(which);
 	stray_sweep_manifest_free(&m);
 	return rc;
+}
+
+int fc_verdict(const struct fc_summary *s, char *why, size_t n)
+{
+	if (s->n_cal < FC_MIN_CAL)
+		snprintf(why, n, "%d calibration stars (at least %d needed)",
+			 s->n_cal, FC_MIN_CAL);
+	else if (!(s->match_frac >= FC_MIN_MATCH))
+		snprintf(why, n, "%d of the %d predicted stars that cannot be missed found (%.2f; at least %.2f needed): the attitude, time or catalogue does not fit the frames",
+			 s->n_sure_found, s->n_sure, s->match_frac, FC_MIN_MATCH);
+	else if (!(s->resid_px <= FC_MAX_RESID_PX))
+		snprintf(why, n, "plate residual %.2f px (at most %.1f allowed)",
+			 s->resid_px, FC_MAX_RESID_PX);
+	else
+		return 0;
+	return 1;
 }

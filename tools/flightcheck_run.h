@@ -24,4 +24,12 @@ int fc_run_dir(const char *dir, const struct stray_aem *aem,
 	       struct fc_cfg *cfg, struct fc_frame **frames, size_t *n,
 	       struct stray_error *err);
 
+/* As fc_run_dir with a real catalogue cat (NULL: the synthetic sky) and
+ * its colour term (NULL: none). */
+int fc_run_dir_sky(const char *dir, const struct stray_aem *aem,
+		   const struct stray_sensor *s, const struct stray_fluxes *fl,
+		   const struct stray_starcat *cat,
+		   const struct stray_colour *colour, struct fc_cfg *cfg,
+		   struct fc_frame **frames, size_t *n, struct stray_error *err);
+
 #endif /* STRAY_TOOLS_FLIGHTCHECK_RUN_H */

@@ -34,3 +34,7 @@ $(B)/bench/bench_flightcheck: $(B)/obj/bench/bench_flightcheck.o \
 $(B)/obj/tests/flightcheck/test_flightcheck_diag.o: EXTRA_CFLAGS += \
 	-I/usr/include/cjson
 $(B)/tests/flightcheck/test_flightcheck_diag: $(STRAY_BIN)
+# The real-sky test runs make_flight and build/bin/stray.
+$(B)/obj/tests/flightcheck/test_flightcheck_sky.o: EXTRA_CFLAGS += \
+	-I/usr/include/cjson
+$(B)/tests/flightcheck/test_flightcheck_sky: $(STRAY_BIN) $(FLIGHT_GEN)

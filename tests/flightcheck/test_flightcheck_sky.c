@@ -1,0 +1,200 @@
+/*
+ * test_flightcheck_sky.c - issue 24's hidden-effect test on the real sky:
+ * full flight frames rendered by the generator (make_flight, truth.c:
+ * test side only) from the shipped Hipparcos extract with the stars'
+ * colours and proper motion to 2026, a 40" attitude error, exposures of
+ * 0.05, 0.1 and 0.2 s, a 1.6 e-/DN gain, a 180 DN bias (BIAS, GAIN
+ * keywords) and the times as DATE-BEG/DATE-END in TT; the stray light
+ * 1.45 x the model's level, hidden.  `stray flightcheck --catalogue`
+ * must recover the scale within 5 % with a 95 % interval that holds it,
+ * and DN per photo-electron within 3 % of 1/1.6.  A catalogue of too few
+ * stars, and the wrong sky, are refused with their reason (exit 1),
+ * never a number.  STRAY_BIN=/work/old/bin/stray fails every test.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "tools/run_cli.h"
+#include "scratch.h"
+#include "stray/starcat.h"
+
+#define MAKE_FLIGHT "build/tests/flightcheck/make_flight"
+#define CATALOGUE "libstray/data/hip2_hp6.5.dat"
+#define HIDDEN_SCALE 1.45
+#define GAIN_E_PER_DN 1.6	/* make_flight's real-sky camera */
+
+static char work[] = "/tmp/fc_sky_XXXXXX";
+static char frames[128], aem[128], model[128];
+
+static int setup(void **state)
+{
+	char cmd[1024];
+	FILE *f;
+	int i;
+
+	(void)state;
+	if (!mkdtemp(work))
+		return -1;
+	snprintf(frames, sizeof(frames), "%s/frames", work);
+	snprintf(aem, sizeof(aem), "%s/fl.aem", work);
+	snprintf(model, sizeof(model), "%s/model.csv", work);
+	/* the model's shape is the truth's: only the level is hidden */
+	if (!(f = fopen(model, "w")))
+		return -1;
+	fprintf(f, "theta_deg,alpha\n");
+	for (i = 0; i < 15; i++) {
+		double th = 15.0 + 5.5 * i;
+
+		fprintf(f, "%g,%.6e\n", th, 2e-7 * pow(10.0, -(th - 20.0) / 35.0));
+	}
+	fclose(f);
+	/* 12 full frames, Sun offset 20 - 90 deg */
+	snprintf(cmd, sizeof(cmd), MAKE_FLIGHT " '%s' '%s' '%s' %g 12 0 20 90 "
+		 CATALOGUE, frames, aem, model, HIDDEN_SCALE);
+	return system(cmd) == 0 ? 0 : -1;
+}
+
+static int teardown(void **state)
+{
+	(void)state;
+	return scratch_remove(work);
+}
+
+static struct cli_run r;
+
+static int flightcheck(const char *cat, int json)
+{
+	char *argv[10] = { "stray", "flightcheck", frames, "--aem", aem,
+			   "--model", model, NULL };
+	int k = 7;
+
+	if (json)
+		argv[k++] = "--json";
+	if (cat) {
+		argv[k++] = "--catalogue";
+		argv[k++] = (char *)cat;
+	}
+	argv[k] = NULL;
+	return run_stray(&r, argv);
+}
+
+static double num(const cJSON *o, const char *k)
+{
+	const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, k);
+
+	assert_non_null(v);
+	return v->valuedouble;
+}
+
+/* The hidden scale and the gain, from the real sky. */
+static void test_real_sky_scale(void **state)
+{
+	cJSON *o, *iv;
+	double s, lo, hi, g;
+
+	(void)state;
+	assert_int_equal(flightcheck(CATALOGUE, 1), 0);
+	assert_non_null(o = cJSON_Parse(r.out));
+	s = num(o, "scale_over_k_px");
+	iv = cJSON_GetObjectItemCaseSensitive(o, "scale_over_k_px_interval");
+	assert_true(cJSON_IsArray(iv) && cJSON_GetArraySize(iv) == 2);
+	lo = cJSON_GetArrayItem(iv, 0)->valuedouble;
+	hi = cJSON_GetArrayItem(iv, 1)->valuedouble;
+	g = num(o, "dn_per_e");
+	printf("# real sky: scale/k_px %.4f [%.4f, %.4f] (truth %.2f); DN/e- %.4f +- %.4f (truth %.4f) from %d stars; %d of %d found, residual %.2f px\n",
+	       s, lo, hi, HIDDEN_SCALE, g, num(o, "dn_per_e_sigma"),
+	       1.0 / GAIN_E_PER_DN, (int)num(o, "calibration_stars"),
+	       (int)num(o, "stars_matched"), (int)num(o, "stars_predicted"),
+	       num(o, "plate_residual_px"));
+	assert_true(fabs(s / HIDDEN_SCALE - 1.0) < 0.05);
+	assert_true(lo <= HIDDEN_SCALE && HIDDEN_SCALE <= hi);
+	assert_true(fabs(g * GAIN_E_PER_DN - 1.0) < 0.03);
+	assert_true(num(o, "calibration_stars") >= 10);
+	assert_non_null(strstr(cJSON_GetObjectItemCaseSensitive(o, "catalogue")->valuestring,
+			       "hip2"));
+	cJSON_Delete(o);
+}
+
+/* The same stars as a CSV (positions at J1991.25, proper motions): the
+ * same answer, so the CSV reader and the epoch are the hip2 reader's. */
+static void test_csv_catalogue(void **state)
+{
+	struct stray_starcat c;
+	struct stray_error err = { 0 };
+	char csv[160];
+	cJSON *o;
+	double s_hip, s_csv;
+	size_t i;
+	FILE *f;
+
+	(void)state;
+	assert_int_equal(stray_starcat_load(CATALOGUE, &c, &err), STRAY_OK);
+	snprintf(csv, sizeof(csv), "%s/stars.csv", work);
+	assert_non_null(f = fopen(csv, "w"));
+	fprintf(f, "hip,ra_deg,dec_deg,v_mag,b_v,pmra_mas_yr,pmdec_mas_yr,epoch_jyear\n");
+	for (i = 0; i < c.n; i++)
+		fprintf(f, "%ld,%.10f,%.10f,%.5f,%.4f,%.3f,%.3f,%.2f\n", c.s[i].id,
+			c.s[i].ra_deg, c.s[i].dec_deg, c.s[i].v_mag, c.s[i].b_v,
+			c.s[i].pmra_mas_yr, c.s[i].pmdec_mas_yr, c.s[i].epoch_jyear);
+	fclose(f);
+	stray_starcat_free(&c);
+	assert_int_equal(flightcheck(CATALOGUE, 1), 0);
+	assert_non_null(o = cJSON_Parse(r.out));
+	s_hip = num(o, "scale_over_k_px");
+	cJSON_Delete(o);
+	assert_int_equal(flightcheck(csv, 1), 0);
+	assert_non_null(o = cJSON_Parse(r.out));
+	s_csv = num(o, "scale_over_k_px");
+	cJSON_Delete(o);
+	assert_true(fabs(s_csv / s_hip - 1.0) < 1e-3);
+}
+
+/* Three stars cannot calibrate 12 frames: refused, with the reason. */
+static void test_too_few_stars(void **state)
+{
+	char csv[160];
+	FILE *f;
+
+	(void)state;
+	snprintf(csv, sizeof(csv), "%s/three.csv", work);
+	assert_non_null(f = fopen(csv, "w"));
+	fprintf(f, "ra_deg,dec_deg,v_mag,b_v\n10,10,5,0.5\n20,20,5,0.5\n30,30,5,0.5\n");
+	fclose(f);
+	assert_int_equal(flightcheck(csv, 0), 1);
+	assert_non_null(strstr(r.err, "cannot be calibrated"));
+	assert_non_null(strstr(r.err, "calibration stars (at least 3"));
+	assert_int_equal(r.err_lines, 1);
+	assert_null(strstr(r.out, "consistent"));
+	assert_null(strstr(r.out, "scale"));
+}
+
+/* The synthetic sky against frames of the real one: the stars that
+ * "match" are chance; refused, never a scale printed as consistent. */
+static void test_wrong_sky_refused(void **state)
+{
+	(void)state;
+	assert_int_equal(flightcheck(NULL, 0), 1);
+	assert_non_null(strstr(r.err, "cannot be calibrated"));
+	assert_null(strstr(r.out, "consistent"));
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_real_sky_scale),
+		cmocka_unit_test(test_csv_catalogue),
+		cmocka_unit_test(test_too_few_stars),
+		cmocka_unit_test(test_wrong_sky_refused),
+	};
+
+	return cmocka_run_group_tests(tests, setup, teardown);
+}
