@@ -60,6 +60,16 @@ static int bad(struct ctx *x, const char *field, const char *why)
 	return stray_error_at(x->err, STRAY_EPARSE, x->name, x->line, field, why);
 }
 
+/* A catalogue number: a whole number in [0, 1e9) (fuzzing found a
+ * 1e26 cast to long, undefined behaviour). */
+static int ident(struct ctx *x, double v, long *id)
+{
+	if (!(v >= 0.0 && v < 1e9) || v != floor(v))
+		return bad(x, "id", "not a whole number in [0, 1e9)");
+	*id = (long)v;
+	return STRAY_OK;
+}
+
 static int push(struct ctx *x, const struct stray_starcat_star *s)
 {
 	if (!(s->dec_deg >= -90.0 && s->dec_deg <= 90.0))
@@ -118,8 +128,7 @@ static int hip2_line(struct ctx *x, const char *l, size_t n)
 	s.dec_deg = de * 180.0 / PI;
 	s.epoch_jyear = 1991.25;
 	s.v_mag = stray_hp_to_v(hp, s.b_v);
-	s.id = (long)hip;
-	return push(x, &s);
+	return ident(x, hip, &s.id) ? STRAY_EPARSE : push(x, &s);
 }
 
 /* The k-th (0-based) `|` field of an I/239 record, or NULL. */
@@ -166,7 +175,8 @@ static int hip1_line(struct ctx *x, const char *l, size_t n)
 		if (r == 1)
 			v[i] = 0.0;
 	}
-	s.id = (long)v[0];
+	if (ident(x, v[0], &s.id))
+		return STRAY_EPARSE;
 	s.v_mag = v[1];
 	s.ra_deg = v[2];
 	s.dec_deg = v[3];
@@ -208,8 +218,7 @@ static int bsc5_line(struct ctx *x, const char *l, size_t n)
 	s.pmra_mas_yr = pa * 1000.0;
 	s.pmdec_mas_yr = pd * 1000.0;
 	s.epoch_jyear = 2000.0;
-	s.id = (long)hr;
-	return push(x, &s);
+	return ident(x, hr, &s.id) ? STRAY_EPARSE : push(x, &s);
 }
 
 /* CSV columns by name; -1 when absent. */
@@ -290,7 +299,8 @@ static int csv_line(struct ctx *x, const char *l, size_t n,
 	s.dec_deg = v[1];
 	s.b_v = v[3];
 	s.v_mag = blank[2] ? stray_hp_to_v(v[8], v[3]) : v[2];
-	s.id = (long)v[4];
+	if (ident(x, v[4], &s.id))
+		return STRAY_EPARSE;
 	s.pmra_mas_yr = v[5];
 	s.pmdec_mas_yr = v[6];
 	s.epoch_jyear = blank[7] ? 2000.0 : v[7];

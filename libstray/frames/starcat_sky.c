@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "stray/starcat.h"
-#include "stray/sweep_store.h"
+#include "stray/file.h"
 
 #define PI 3.14159265358979323846
 #define DEG (PI / 180.0)
@@ -39,14 +39,15 @@ double stray_jyear_of_tt(double t_tt_s)
 int stray_starcat_load(const char *path, struct stray_starcat *c,
 		       struct stray_error *err)
 {
-	/* the toolkit's one whole-file read: no symlink, FIFO or device */
-	struct stray_sweep_buf b = { NULL, 0, 0 };
-	int rc = stray_sweep_file_load(path, &b, err);
+	/* the toolkit's whole-file read: no folder or device, a size limit */
+	char *buf = NULL;
+	size_t len = 0;
+	int rc = stray_file_read(path, &buf, &len, err);
 
 	memset(c, 0, sizeof(*c));
 	if (rc == STRAY_OK)
-		rc = stray_starcat_parse((const char *)b.data, b.len, path, c, err);
-	stray_sweep_buf_free(&b);
+		rc = stray_starcat_parse(buf, len, path, c, err);
+	free(buf);
 	return rc;
 }
 

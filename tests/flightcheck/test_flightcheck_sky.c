@@ -73,7 +73,7 @@ static struct cli_run r;
 
 static int flightcheck(const char *cat, int json)
 {
-	char *argv[10] = { "stray", "flightcheck", frames, "--aem", aem,
+	char *argv[12] = { "stray", "flightcheck", frames, "--aem", aem,
 			   "--model", model, NULL };
 	int k = 7;
 

@@ -20,7 +20,7 @@
 #include "stray/error.h"
 
 #define STRAY_STARCAT_MAX_STARS 2000000	/* docs/limits.md */
-#define STRAY_STARCAT_MAX_BYTES (512u << 20)
+#define STRAY_STARCAT_MAX_BYTES (256u << 20)	/* STRAY_FILE_READ_MAX */
 #define STRAY_STARCAT_PM_MAX_MAS_YR 20000.0	/* Barnard's star: 10.4"/yr */
 
 enum stray_starcat_kind {
