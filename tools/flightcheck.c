@@ -410,16 +410,6 @@ void fc_frame_analyse(const struct fc_cfg *c, struct fc_work *w,
 			idx[n_match++] = (int)i;
 		}
 	}
-	/* the stars too bright to be missed, and how many were found */
-	for (k = 0, i = 0; i < n_pred; i++) {
-		if (w->pred[i].photons_e / c->gain_e_per_dn <
-		    FC_SURE_SNR * o->noise_dn)
-			continue;
-		o->n_sure++;
-		while (k < n_match && idx[k] < (int)i)
-			k++;
-		o->n_sure_found += k < n_match && idx[k] == (int)i;
-	}
 	/* refine on the matches, reject the worst (> 3 px) once, again */
 	refine(c, w->pred, idx, w->mx, w->my, n_match, sol);
 	for (k = 0, i = 0; k < n_match; k++) {
@@ -436,6 +426,17 @@ void fc_frame_analyse(const struct fc_cfg *c, struct fc_work *w,
 	}
 	n_match = (int)i;
 	refine(c, w->pred, idx, w->mx, w->my, n_match, sol);
+	/* the stars too bright to be missed, and how many were found
+	 * (the matches kept by the plate solution, in order) */
+	for (k = 0, i = 0; i < n_pred; i++) {
+		if (w->pred[i].photons_e / c->gain_e_per_dn <
+		    FC_SURE_SNR * o->noise_dn)
+			continue;
+		o->n_sure++;
+		while (k < n_match && idx[k] < (int)i)
+			k++;
+		o->n_sure_found += k < n_match && idx[k] == (int)i;
+	}
 	o->n_match = n_match;
 	o->dx_px = sol[0];
 	o->dy_px = sol[1];
