@@ -3,7 +3,9 @@
  * per-frame step (flightcheck_run.h).  Frames are analysed in parallel
  * (OpenMP), each thread with its own buffers.
  */
+#include <errno.h>
 #include <fitsio.h>
+#include <sys/stat.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -123,8 +125,9 @@ static int frame_camera(struct stray_sweep_fits *f, struct fc_cfg *at,
 /*
  * Open one listed frame as reduce does: read once by the toolkit (no
  * symlink, FIFO or device; cfitsio never sees the name), its bytes held
- * to the manifest's SHA-256, decoded from memory; its EXPTIME the
- * manifest's.  f is open on success only.
+ * to the manifest's SHA-256 and its EXPTIME to the manifest's when there
+ * is a manifest, decoded from memory, no lab keyword required.  f is
+ * open on success only.
  */
 static int open_frame(const struct stray_sweep_manifest *m,
 		      const struct stray_sweep_entry *e,
@@ -135,12 +138,12 @@ static int open_frame(const struct stray_sweep_manifest *m,
 
 	snprintf(path, PATH_LEN, "%s/%s", m->dir, e->file);
 	rc = stray_sweep_file_load(path, b, err);
-	if (rc == STRAY_OK)
+	if (rc == STRAY_OK && e->sha256[0])	/* no manifest: no hash */
 		rc = stray_sweep_sha256_check_mem(path, b->data, b->len,
 						  e->sha256, err);
-	if (rc == STRAY_OK)
-		rc = stray_sweep_fits_open_buf(path, b, f, err);
-	if (rc != STRAY_OK)
+	if (rc == STRAY_OK)	/* no lab keyword required */
+		rc = stray_sweep_fits_open_flight_buf(path, b, f, err);
+	if (rc != STRAY_OK || !e->sha256[0])
 		return rc;
 	/* manifest.csv keeps 6 decimals */
 	if (fabs(f->h.exptime_s - e->exptime_s) > 5e-7 + 1e-6 * e->exptime_s) {
@@ -238,10 +241,18 @@ int fc_run_dir_sky(const char *dir, const struct stray_aem *aem,
 	size_t i, nf = 0, *which;
 	long bad = -1;
 	int rc, nomem = 0;
+	char mpath[PATH_LEN];
+	struct stat st;
 
 	*frames = NULL;
 	*n = 0;
-	if ((rc = stray_sweep_manifest_load(dir, &m, err)) != STRAY_OK)
+	/* a manifest when there is one (its hashes checked), else the
+	 * folder's FITS files as a camera wrote them */
+	snprintf(mpath, sizeof(mpath), "%s/manifest.csv", dir);
+	rc = lstat(mpath, &st) != 0 && errno == ENOENT
+		? stray_sweep_flight_list(dir, &m, err)
+		: stray_sweep_manifest_load(dir, &m, err);
+	if (rc != STRAY_OK)
 		return rc;
 	which = malloc((m.n + 1) * sizeof(*which));
 	for (i = 0; which && i < m.n; i++)

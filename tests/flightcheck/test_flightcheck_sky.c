@@ -7,9 +7,10 @@
  * keywords) and the times as DATE-BEG/DATE-END in TT; the stray light
  * 1.45 x the model's level, hidden.  `stray flightcheck --catalogue`
  * must recover the scale within 5 % with a 95 % interval that holds it,
- * and DN per photo-electron within 3 % of 1/1.6.  A catalogue of too few
- * stars, and the wrong sky, are refused with their reason (exit 1),
- * never a number.  STRAY_BIN=/work/old/bin/stray fails every test.
+ * and DN per photo-electron within 3 % of 1/1.6.  The same frames as a
+ * camera writes them (no manifest, no lab keyword) give the same answer;
+ * one without BIAS is refused.  A catalogue of too few stars, and the
+ * wrong sky, are refused with their reason (exit 1), never a number.  STRAY_BIN=/work/old/bin/stray fails every test.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -17,6 +18,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 #include <cJSON.h>
+#include <fitsio.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -71,9 +73,9 @@ static int teardown(void **state)
 
 static struct cli_run r;
 
-static int flightcheck(const char *cat, int json)
+static int flightcheck_dir(const char *dir, const char *cat, int json)
 {
-	char *argv[12] = { "stray", "flightcheck", frames, "--aem", aem,
+	char *argv[12] = { "stray", "flightcheck", (char *)dir, "--aem", aem,
 			   "--model", model, NULL };
 	int k = 7;
 
@@ -85,6 +87,11 @@ static int flightcheck(const char *cat, int json)
 	}
 	argv[k] = NULL;
 	return run_stray(&r, argv);
+}
+
+static int flightcheck(const char *cat, int json)
+{
+	return flightcheck_dir(frames, cat, json);
 }
 
 static double num(const cJSON *o, const char *k)
@@ -187,11 +194,73 @@ static void test_wrong_sky_refused(void **state)
 	assert_null(strstr(r.out, "consistent"));
 }
 
+/* Copy the frames to dir without manifest.csv and without the lab
+ * keywords (and without `drop` too, when given). */
+static void camera_frames(const char *dir, const char *drop)
+{
+	static const char *const lab[] = { "FRAMETYP", "ANGLE", "NDTRANS",
+					   "SEQNUM", "SATLEVEL", "TALPHA",
+					   "TSCALE", "STARSRC" };
+	char cmd[1024], path[300];
+	int i, k;
+
+	snprintf(cmd, sizeof(cmd), "rm -rf '%s' && mkdir '%s' && cp '%s'/*.fits '%s'/",
+		 dir, dir, frames, dir);
+	assert_int_equal(system(cmd), 0);
+	for (i = 0; i < 12; i++) {
+		fitsfile *f;
+		int status = 0;
+
+		snprintf(path, sizeof(path), "%s/a+000.000_FULL_%03d.fits", dir, i);
+		assert_int_equal(fits_open_file(&f, path, READWRITE, &status), 0);
+		for (k = 0; k < (int)(sizeof(lab) / sizeof(lab[0])); k++) {
+			fits_delete_key(f, lab[k], &status);
+			status = 0;
+		}
+		if (drop && i == 5)
+			fits_delete_key(f, drop, &status);
+		status = 0;
+		assert_int_equal(fits_close_file(f, &status), 0);
+	}
+}
+
+/* Frames as a camera writes them: a folder of FITS, no manifest, no lab
+ * keyword; the same numbers as the sweep folder. */
+static void test_camera_frames(void **state)
+{
+	char dir[160];
+	cJSON *o;
+	double s_sweep, s_cam;
+
+	(void)state;
+	assert_int_equal(flightcheck(CATALOGUE, 1), 0);
+	assert_non_null(o = cJSON_Parse(r.out));
+	s_sweep = num(o, "scale_over_k_px");
+	cJSON_Delete(o);
+	snprintf(dir, sizeof(dir), "%s/camera", work);
+	camera_frames(dir, NULL);
+	if (flightcheck_dir(dir, CATALOGUE, 1))
+		fprintf(stderr, "%s", r.err);
+	assert_int_equal(r.status, 0);
+	assert_non_null(o = cJSON_Parse(r.out));
+	s_cam = num(o, "scale_over_k_px");
+	assert_int_equal((int)num(o, "frames"), 12);
+	cJSON_Delete(o);
+	assert_true(fabs(s_cam / s_sweep - 1.0) < 1e-9);
+
+	/* the bias is never assumed */
+	camera_frames(dir, "BIAS");
+	assert_int_equal(flightcheck_dir(dir, CATALOGUE, 0), 2);
+	assert_non_null(strstr(r.err, "FULL_005.fits: BIAS"));
+	assert_int_equal(r.err_lines, 1);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_real_sky_scale),
 		cmocka_unit_test(test_csv_catalogue),
+		cmocka_unit_test(test_camera_frames),
 		cmocka_unit_test(test_too_few_stars),
 		cmocka_unit_test(test_wrong_sky_refused),
 	};

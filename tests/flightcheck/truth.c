@@ -233,6 +233,9 @@ int fc_truth_write(const struct fc_truth *t, const char *dir,
 				  NULL, "[DN] bias level" },
 				{ "GAIN", STRAY_SWEEP_KEY_DOUBLE, t->gain_e_per_dn,
 				  0, NULL, "[e-/DN]" },
+				{ "SATURATE", STRAY_SWEEP_KEY_DOUBLE,
+				  STRAY_FRAMES_SAT_DN, 0, NULL,
+				  "[DN] the ADC's full scale" },
 				{ "DATE-OBS", STRAY_SWEEP_KEY_STRING, 0, 0, date,
 				  "mid-exposure (UTC; TT with TIMESYS)" },
 				{ "TIMESYS", STRAY_SWEEP_KEY_STRING, 0, 0, "TT",
@@ -262,9 +265,9 @@ int fc_truth_write(const struct fc_truth *t, const char *dir,
 			fr.instrument = "flight (synthetic)";
 			fr.extra = key;
 			if (!t->cat) {	/* DATE-OBS (UTC) only */
-				key[3] = key[n_key - 3];
-				key[4] = key[n_key - 2];
-				key[5] = key[n_key - 1];
+				key[4] = key[n_key - 3];	/* over TIMESYS, */
+				key[5] = key[n_key - 2];	/* DATE-BEG, */
+				key[6] = key[n_key - 1];	/* DATE-END */
 				n_key -= 3;
 			}
 			fr.n_extra = n_key;
