@@ -20,7 +20,8 @@
 
 static const char usage[] =
 	"usage: stray flightcheck FRAMES_DIR --aem A.aem --model M.csv\n"
-	"                         [--catalogue CAT] [--sensor S] [--normalisation N]\n"
+	"                         [--catalogue CAT] [--oem O.oem] [--moon-min DEG]\n"
+	"                         [--limb-min DEG] [--sensor S] [--normalisation N]\n"
 	"                         [--out C.csv]\n"
 	"                         [--plot P.png] [--json]\n"
 	"\n"
@@ -46,6 +47,11 @@ static const char usage[] =
 	"  --catalogue CAT     Hipparcos hip2.dat or hip_main.dat, Yale BSC5, or a\n"
 	"                      CSV (ra_deg,dec_deg,v_mag,b_v[,hip,pmra_mas_yr,\n"
 	"                      pmdec_mas_yr,epoch_jyear,hp_mag])\n"
+	"  --oem O.oem         the orbit (CCSDS 502.0): the Moon seen from the\n"
+	"                      spacecraft and the Earth limb's angle per frame\n"
+	"  --moon-min DEG      frames with the Moon nearer the boresight are left\n"
+	"                      out of the scale fit (25)\n"
+	"  --limb-min DEG      the same for the Earth limb (30; needs --oem)\n"
 	SENSOR_USAGE
 	NORMALISATION_USAGE
 	"  --out C.csv         the flight curve: theta_deg, alpha (= alpha_px /\n"
@@ -54,7 +60,8 @@ static const char usage[] =
 	"  --json              machine-readable output\n";
 
 struct fc_args {
-	const char *dir, *aem, *model, *out, *plot, *catalogue;
+	const char *dir, *aem, *model, *out, *plot, *catalogue, *oem;
+	double moon_min, limb_min;
 	char cat_name[64];	/* "synthetic" or "<kind> <file>" */
 };
 
@@ -192,6 +199,7 @@ static int emit_json(const struct fc_args *a, const struct fc_frame *f,
 	cJSON_AddNumberToObject(o, "stars_matched", s->n_match);
 	cJSON_AddItemToObject(o, "match_fraction", cli_json_number(s->match_frac));
 	cJSON_AddItemToObject(o, "plate_residual_px", cli_json_number(s->resid_px));
+	cJSON_AddNumberToObject(o, "frames_screened", s->n_screened);
 	cJSON_AddStringToObject(o, "frames_dir", a->dir);
 	for (i = 0; i < n; i++) {
 		cJSON *e = cJSON_CreateObject();
@@ -212,6 +220,9 @@ static int emit_json(const struct fc_args *a, const struct fc_frame *f,
 				      cli_json_number(hypot(f[i].dx_px, f[i].dy_px)));
 		cJSON_AddItemToObject(e, "rotation_deg", cli_json_number(f[i].rot_deg));
 		cJSON_AddItemToObject(e, "residual_px", cli_json_number(f[i].resid_px));
+		cJSON_AddItemToObject(e, "moon_deg", cli_json_number(f[i].moon_deg));
+		cJSON_AddItemToObject(e, "earth_limb_deg", cli_json_number(f[i].limb_deg));
+		cJSON_AddBoolToObject(e, "screened", f[i].screened);
 		cJSON_AddItemToArray(fr, e);
 	}
 	cJSON_AddItemToObject(o, "per_frame", fr);
@@ -228,6 +239,9 @@ static void print_text(const struct fc_args *a, const struct fc_frame *f,
 	printf("  plate: %d of %d predicted stars found; of the bright ones %d of %d (%.2f); residual %.2f px\n",
 	       s->n_match, s->n_pred, s->n_sure_found, s->n_sure,
 	       s->match_frac, s->resid_px);
+	if (s->n_screened)
+		printf("  screened: %d frames with the Moon within %.0f deg or the Earth limb within %.0f deg (not fitted)\n",
+		       s->n_screened, a->moon_min, a->limb_min);
 	printf("  calibration: %.4f +- %.4f DN per photo-e- from %d stars (chi2/dof %.2f)\n",
 	       s->dn_per_e, s->dn_per_e_sigma, s->n_cal, s->cal_chi2_dof);
 	printf("  %7s %11s %10s %11s %9s %6s %8s\n", "theta", "alpha_px",
@@ -256,11 +270,16 @@ int cmd_flightcheck(int argc, char **argv)
 		{ "out", required_argument, NULL, 'o' },
 		{ "plot", required_argument, NULL, 'p' },
 		{ "catalogue", required_argument, NULL, 'c' },
+		{ "oem", required_argument, NULL, 'e' },
+		{ "moon-min", required_argument, NULL, 'M' },
+		{ "limb-min", required_argument, NULL, 'L' },
 		{ "json", no_argument, &cli.json, 1 },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 }
 	};
 	struct fc_args a = { 0 };
+	struct fc_sky sky = { 0 };
+	struct stray_oem oem;
 	struct fdr_setup su;
 	struct stray_error err;
 	struct stray_aem aem;
@@ -278,6 +297,8 @@ int cmd_flightcheck(int argc, char **argv)
 
 	fdr_setup_init(&su);
 	stray_error_clear(&err);
+	a.moon_min = FC_MOON_MIN_DEG;
+	a.limb_min = FC_LIMB_MIN_DEG;
 	while ((opt = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
 		switch (opt) {
 		case 0: continue;
@@ -287,6 +308,18 @@ int cmd_flightcheck(int argc, char **argv)
 		case 'o': a.out = optarg; continue;
 		case 'p': a.plot = optarg; continue;
 		case 'c': a.catalogue = optarg; continue;
+		case 'e': a.oem = optarg; continue;
+		case 'M':
+		case 'L':
+			if ((rc = cli_parse_double("flightcheck", opt == 'M' ?
+					"--moon-min" : "--limb-min", optarg,
+					opt == 'M' ? &a.moon_min : &a.limb_min)))
+				return rc;
+			if (!((opt == 'M' ? a.moon_min : a.limb_min) >= 0.0 &&
+			      (opt == 'M' ? a.moon_min : a.limb_min) <= 180.0))
+				return cli_usage_error("flightcheck",
+					"--moon-min and --limb-min: degrees in [0, 180]");
+			continue;
 		default: break;
 		}
 		rc = fdr_setup_option(&su, "flightcheck", opt, optarg);
@@ -326,11 +359,24 @@ int cmd_flightcheck(int argc, char **argv)
 			 stray_starcat_kind_name(cat.kind),
 			 base ? base + 1 : a.catalogue);
 	}
-	rc = fc_run_dir_sky(a.dir, &aem, &su.sensor, &su.flux,
-			    a.catalogue ? &cat : NULL,
-			    a.catalogue ? &colour : NULL, &cfg, &f, &n, &err);
+	if (a.oem && stray_oem_read(a.oem, &oem, &err) != STRAY_OK) {
+		if (a.catalogue)
+			stray_starcat_free(&cat);
+		stray_aem_free(&aem);
+		stray_curve_free(&model);
+		return cli_fail("flightcheck", &err);
+	}
+	sky.cat = a.catalogue ? &cat : NULL;
+	sky.colour = a.catalogue ? &colour : NULL;
+	sky.oem = a.oem ? &oem : NULL;
+	sky.moon_min_deg = a.moon_min;
+	sky.limb_min_deg = a.limb_min;
+	rc = fc_run_dir_sky(a.dir, &aem, &su.sensor, &su.flux, &sky, &cfg, &f,
+			    &n, &err);
 	if (a.catalogue)
 		stray_starcat_free(&cat);
+	if (a.oem)
+		stray_oem_free(&oem);
 	stray_aem_free(&aem);
 	if (rc != STRAY_OK) {
 		stray_curve_free(&model);

@@ -484,6 +484,7 @@ void fc_summarise(const struct fc_cfg *c, const struct fc_frame *f,
 	size_t i, m = 0;
 
 	memset(s, 0, sizeof(*s));
+	s->n_frames = (int)n;
 	for (i = 0; i < n; i++) {
 		s->n_pred += f[i].n_pred;
 		s->n_match += f[i].n_match;
@@ -521,11 +522,14 @@ void fc_summarise(const struct fc_cfg *c, const struct fc_frame *f,
 		pts[i].alpha_px = st / (s->dn_per_e * at.sun_e);
 		pts[i].sigma = f[i].bg_sigma_dn / (s->dn_per_e * at.sun_e);
 	}
-	/* best scale: weighted least squares of alpha_px = scale x model */
+	/* best scale: weighted least squares of alpha_px = scale x model,
+	 * over the frames with no Moon or Earth near (screened) */
 	for (i = 0; i < n; i++) {
 		double w = 1.0 / (pts[i].sigma * pts[i].sigma);
 
-		if (!(pts[i].model > 0.0) || !(pts[i].sigma > 0.0))
+		s->n_screened += f[i].screened;
+		if (!(pts[i].model > 0.0) || !(pts[i].sigma > 0.0) ||
+		    f[i].screened)
 			continue;
 		a += w * pts[i].alpha_px * pts[i].model;
 		b += w * pts[i].model * pts[i].model;
@@ -537,7 +541,8 @@ void fc_summarise(const struct fc_cfg *c, const struct fc_frame *f,
 	for (i = 0; i < n; i++) {
 		double e;
 
-		if (!(pts[i].model > 0.0) || !(pts[i].sigma > 0.0))
+		if (!(pts[i].model > 0.0) || !(pts[i].sigma > 0.0) ||
+		    f[i].screened)
 			continue;
 		e = (pts[i].alpha_px - s->scale * pts[i].model) / pts[i].sigma;
 		chi2 += e * e;

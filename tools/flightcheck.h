@@ -60,6 +60,10 @@ struct fc_frame {
 	double cal_sw, cal_swr, cal_swr2;	/* sums for DN per photo-e- */
 	double t_exp_s;		/* its EXPTIME; 0: the cfg's (the sensor's) */
 	double gain_e_per_dn, bias_dn;	/* its GAIN, BIAS; 0: the cfg's */
+	double moon_deg;	/* Moon offset angle of the boresight */
+	double limb_deg;	/* Earth limb's (negative: Earth in the
+				 * boresight's way); NAN without an orbit */
+	int screened;		/* 1: Moon or Earth too near, not fitted */
 };
 
 int fc_work_alloc(struct fc_work *w, const struct fc_cfg *c);
@@ -88,6 +92,8 @@ struct fc_summary {
 	double chi2_dof;	/* of the scaled model: the shape test */
 	double k_px_model, scale_over_kpx, scale_over_kpx_sigma;
 	int n_pred, n_match;	/* over all frames */
+	int n_screened;		/* frames left out of the scale fit */
+	int n_frames;
 	int n_sure, n_sure_found;
 	double match_frac;	/* n_sure_found / n_sure */
 	double resid_px;	/* rms plate residual over all matches */

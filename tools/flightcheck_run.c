@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "flightcheck_run.h"
+#include "fdrfw/ephem.h"
 #include "stray/ccsds.h"
 #include "stray/errfmt.h"
 #include "stray/sweep_store.h"
@@ -155,10 +156,62 @@ static int open_frame(const struct stray_sweep_manifest *m,
 	return STRAY_OK;
 }
 
+#define DEG_RAD (3.14159265358979323846 / 180.0)
+#define EARTH_KM 6378.137
+
+static double angle_deg(const double a[3], const double b[3])
+{
+	double d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+	double n = sqrt((a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) *
+			(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]));
+
+	return acos(fmax(-1.0, fmin(1.0, d / n))) / DEG_RAD;
+}
+
+/*
+ * The Moon's and the Earth limb's offset angles of the boresight at t
+ * (issue 24): the Moon from the spacecraft (from the Earth's centre
+ * without an orbit: up to ~1 deg off in LEO), the limb as the angle to
+ * the Earth's centre less its angular radius.  Screened when either is
+ * under its minimum.
+ */
+static int body_angles(const struct fc_sky *sky, const char *path,
+		       const double q[4], double t, struct fc_frame *out,
+		       struct stray_error *err)
+{
+	double m[3][3], z[3], r[3] = { 0, 0, 0 }, v[3], mo[3], down[3];
+	float mk[3];
+	int i;
+
+	stray_q_dcm(q, m);
+	for (i = 0; i < 3; i++)
+		z[i] = m[2][i];
+	if (sky && sky->oem && stray_oem_state(sky->oem, t, r, v) != STRAY_OK)
+		return stray_error_at(err, STRAY_EINVAL, path, 0, 0,
+			"the frame's time: outside the OEM's span or in a gap of it");
+	fdrfw_moon_pos_km((int32_t)lround(t), mk);
+	for (i = 0; i < 3; i++) {
+		mo[i] = mk[i] - r[i];
+		down[i] = -r[i];
+	}
+	out->moon_deg = angle_deg(z, mo);
+	out->limb_deg = NAN;
+	if (sky && sky->oem) {
+		double rn = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+
+		out->limb_deg = angle_deg(z, down) -
+				asin(fmin(1.0, EARTH_KM / rn)) / DEG_RAD;
+	}
+	out->screened = sky && (out->moon_deg < sky->moon_min_deg ||
+				out->limb_deg < sky->limb_min_deg);
+	return STRAY_OK;
+}
+
 /* Frame e (k-th FULL) into px and out; errors name the file. */
 static int one_frame(const struct stray_sweep_manifest *m,
 		     const struct stray_sweep_entry *e,
-		     const struct stray_aem *aem, const struct fc_cfg *cfg,
+		     const struct stray_aem *aem, const struct fc_sky *sky,
+		     const struct fc_cfg *cfg,
 		     struct stray_sweep_buf *b, uint16_t *px,
 		     struct fc_work *w, struct fc_frame *out,
 		     struct stray_error *err)
@@ -195,6 +248,7 @@ static int one_frame(const struct stray_sweep_manifest *m,
 			out->t_exp_s = f.h.exptime_s;
 			out->gain_e_per_dn = cam.gain_e_per_dn;
 			out->bias_dn = cam.bias_dn;
+			rc = body_angles(sky, path, q, t, out, err);
 		}
 	}
 	stray_sweep_fits_close(&f);
@@ -227,13 +281,12 @@ int fc_run_dir(const char *dir, const struct stray_aem *aem,
 	       struct fc_cfg *cfg, struct fc_frame **frames, size_t *n,
 	       struct stray_error *err)
 {
-	return fc_run_dir_sky(dir, aem, s, fl, NULL, NULL, cfg, frames, n, err);
+	return fc_run_dir_sky(dir, aem, s, fl, NULL, cfg, frames, n, err);
 }
 
 int fc_run_dir_sky(const char *dir, const struct stray_aem *aem,
 		   const struct stray_sensor *s, const struct stray_fluxes *fl,
-		   const struct stray_starcat *cat,
-		   const struct stray_colour *colour, struct fc_cfg *cfg,
+		   const struct fc_sky *sky, struct fc_cfg *cfg,
 		   struct fc_frame **frames, size_t *n, struct stray_error *err)
 {
 	struct stray_sweep_manifest m;
@@ -266,8 +319,8 @@ int fc_run_dir_sky(const char *dir, const struct stray_aem *aem,
 	}
 	if ((rc = first_frame(&m, &m.e[which[0]], s, fl, cfg, err)))
 		goto out;
-	cfg->starcat = cat;
-	cfg->colour = colour;
+	cfg->starcat = sky ? sky->cat : NULL;
+	cfg->colour = sky ? sky->colour : NULL;
 	*frames = calloc(nf, sizeof(**frames));
 	if (!*frames) {
 		rc = stray_error_set(err, STRAY_ENOMEM, "flightcheck", "out of memory");
@@ -288,7 +341,7 @@ int fc_run_dir_sky(const char *dir, const struct stray_aem *aem,
 			struct stray_error e;
 
 			stray_error_clear(&e);
-			if (nomem || one_frame(&m, &m.e[which[k]], aem, cfg,
+			if (nomem || one_frame(&m, &m.e[which[k]], aem, sky, cfg,
 					       &b, px, &w, &(*frames)[k],
 					       &e) == STRAY_OK)
 				continue;
@@ -330,6 +383,8 @@ int fc_verdict(const struct fc_summary *s, char *why, size_t n)
 	else if (!(s->match_frac >= FC_MIN_MATCH))
 		snprintf(why, n, "%d of the %d predicted stars that cannot be missed found (%.2f; at least %.2f needed): the attitude, time or catalogue does not fit the frames",
 			 s->n_sure_found, s->n_sure, s->match_frac, FC_MIN_MATCH);
+	else if (s->n_screened >= s->n_frames)
+		snprintf(why, n, "every frame has the Moon or the Earth limb within its minimum angle (--moon-min, --limb-min)");
 	else if (!(s->resid_px <= FC_MAX_RESID_PX))
 		snprintf(why, n, "plate residual %.2f px (at most %.1f allowed)",
 			 s->resid_px, FC_MAX_RESID_PX);

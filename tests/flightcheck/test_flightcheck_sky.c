@@ -9,7 +9,8 @@
  * must recover the scale within 5 % with a 95 % interval that holds it,
  * and DN per photo-electron within 3 % of 1/1.6.  The same frames as a
  * camera writes them (no manifest, no lab keyword) give the same answer;
- * one without BIAS is refused.  A catalogue of too few stars, and the
+ * one without BIAS is refused.  Frames with the Moon near are screened
+ * out of the fit.  A catalogue of too few stars, and the
  * wrong sky, are refused with their reason (exit 1), never a number.  STRAY_BIN=/work/old/bin/stray fails every test.
  */
 #include <setjmp.h>
@@ -255,12 +256,85 @@ static void test_camera_frames(void **state)
 	assert_int_equal(r.err_lines, 1);
 }
 
+/* The Moon's offset angle per frame (104-174 deg in this sweep): frames
+ * with it nearer than --moon-min are left out of the fit, said; all of
+ * them left out is a refusal. */
+static void test_moon_screening(void **state)
+{
+	char *argv[] = { "stray", "flightcheck", frames, "--aem", aem,
+			 "--model", model, "--catalogue", CATALOGUE,
+			 "--moon-min", "150", "--json", NULL };
+	cJSON *o, *pf;
+	int i, screened = 0;
+
+	(void)state;
+	assert_int_equal(run_stray(&r, argv), 0);
+	assert_non_null(o = cJSON_Parse(r.out));
+	assert_int_equal((int)num(o, "frames_screened"), 8);
+	pf = cJSON_GetObjectItemCaseSensitive(o, "per_frame");
+	for (i = 0; i < cJSON_GetArraySize(pf); i++) {
+		cJSON *e = cJSON_GetArrayItem(pf, i);
+		double m = num(e, "moon_deg");
+
+		assert_true(m > 100.0 && m < 180.0);
+		assert_int_equal(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(e,
+				"screened")), m < 150.0);
+		screened += m < 150.0;
+	}
+	assert_int_equal(screened, 8);
+	/* the 4 frames left still give the scale */
+	assert_true(fabs(num(o, "scale_over_k_px") / HIDDEN_SCALE - 1.0) < 0.05);
+	cJSON_Delete(o);
+	argv[10] = "180";
+	argv[11] = NULL;
+	assert_int_equal(run_stray(&r, argv), 1);
+	assert_non_null(strstr(r.err, "cannot be calibrated: every frame has the Moon"));
+	assert_null(strstr(r.out, "scale"));
+}
+
+/* With the orbit (the demo mission's OEM): the Earth limb's angle per
+ * frame, frames under --limb-min screened. */
+static void test_earth_limb(void **state)
+{
+	char oem[160], oaem[160];
+	char *gen[] = { "stray", "availability", "--write-oem", oem,
+			"--write-aem", oaem, "--hours", "12", NULL };
+	char *argv[] = { "stray", "flightcheck", frames, "--aem", aem,
+			 "--model", model, "--catalogue", CATALOGUE, "--oem", oem,
+			 "--limb-min", "50", "--json", NULL };
+	cJSON *o, *pf;
+	int i, under = 0;
+
+	(void)state;
+	snprintf(oem, sizeof(oem), "%s/demo.oem", work);
+	snprintf(oaem, sizeof(oaem), "%s/demo.aem", work);
+	assert_int_equal(run_stray(&r, gen), 0);
+	assert_int_equal(run_stray(&r, argv), 0);
+	assert_non_null(o = cJSON_Parse(r.out));
+	pf = cJSON_GetObjectItemCaseSensitive(o, "per_frame");
+	for (i = 0; i < cJSON_GetArraySize(pf); i++) {
+		cJSON *e = cJSON_GetArrayItem(pf, i);
+		double l = num(e, "earth_limb_deg");
+
+		/* the Earth from 550 km: 67 deg in radius */
+		assert_true(l > 0.0 && l < 90.0);
+		assert_int_equal(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(e,
+				"screened")), l < 50.0);
+		under += l < 50.0;
+	}
+	assert_true(under > 0 && under < 12);
+	assert_int_equal((int)num(o, "frames_screened"), under);
+	cJSON_Delete(o);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_real_sky_scale),
 		cmocka_unit_test(test_csv_catalogue),
 		cmocka_unit_test(test_camera_frames),
+		cmocka_unit_test(test_moon_screening),
+		cmocka_unit_test(test_earth_limb),
 		cmocka_unit_test(test_too_few_stars),
 		cmocka_unit_test(test_wrong_sky_refused),
 	};
