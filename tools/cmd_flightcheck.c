@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli.h"
 #include "commands.h"
@@ -19,13 +20,14 @@
 #include "stray/curve_io.h"
 
 static const char usage[] =
-	"usage: stray flightcheck FRAMES_DIR --aem A.aem --model M.csv\n"
+	"usage: stray flightcheck FRAMES_DIR|FRAME.fits... --aem A.aem --model M.csv\n"
 	"                         [--catalogue CAT] [--oem O.oem] [--moon-min DEG]\n"
 	"                         [--limb-min DEG] [--sensor S] [--normalisation N]\n"
 	"                         [--out C.csv]\n"
 	"                         [--plot P.png] [--json]\n"
 	"\n"
-	"Flight frames (a sweep folder: FITS with EXPTIME, BIAS and GAIN, the\n"
+	"Flight frames (a folder, with or without manifest.csv, or a list of FITS\n"
+	"files: each with EXPTIME, BIAS and GAIN, the\n"
 	"mid-exposure from DATE-AVG, DATE-BEG/DATE-END or DATE-OBS in TIMESYS)\n"
 	"and the head's attitude (CCSDS AEM, boresight +z of the body): per\n"
 	"frame the Sun offset angle, a robust background (tile medians, plane:\n"
@@ -328,9 +330,19 @@ int cmd_flightcheck(int argc, char **argv)
 		if (rc != 1)
 			return rc;
 	}
-	if (optind != argc - 1)
-		return cli_usage_error("flightcheck", "one FRAMES_DIR is required");
+	if (optind > argc - 1)
+		return cli_usage_error("flightcheck",
+				       "FRAMES_DIR or frame files are required");
 	a.dir = argv[optind];
+	{	/* one operand that is not a folder, or several: frame files */
+		struct stat st;
+
+		if (optind < argc - 1 || (stat(a.dir, &st) == 0 &&
+					  !S_ISDIR(st.st_mode))) {
+			sky.files = argv + optind;
+			sky.n_files = (size_t)(argc - optind);
+		}
+	}
 	if (!a.aem)
 		return cli_usage_error("flightcheck", "--aem is required");
 	if (!a.model)

@@ -137,7 +137,10 @@ static int open_frame(const struct stray_sweep_manifest *m,
 {
 	int rc;
 
-	snprintf(path, PATH_LEN, "%s/%s", m->dir, e->file);
+	if (m->dir[0])
+		snprintf(path, PATH_LEN, "%s/%s", m->dir, e->file);
+	else	/* a list of files */
+		snprintf(path, PATH_LEN, "%s", e->file);
 	rc = stray_sweep_file_load(path, b, err);
 	if (rc == STRAY_OK && e->sha256[0])	/* no manifest: no hash */
 		rc = stray_sweep_sha256_check_mem(path, b->data, b->len,
@@ -302,9 +305,12 @@ int fc_run_dir_sky(const char *dir, const struct stray_aem *aem,
 	/* a manifest when there is one (its hashes checked), else the
 	 * folder's FITS files as a camera wrote them */
 	snprintf(mpath, sizeof(mpath), "%s/manifest.csv", dir);
-	rc = lstat(mpath, &st) != 0 && errno == ENOENT
-		? stray_sweep_flight_list(dir, &m, err)
-		: stray_sweep_manifest_load(dir, &m, err);
+	if (sky && sky->files)	/* a list of frame files */
+		rc = stray_sweep_flight_files(sky->files, sky->n_files, &m, err);
+	else if (lstat(mpath, &st) != 0 && errno == ENOENT)
+		rc = stray_sweep_flight_list(dir, &m, err);
+	else
+		rc = stray_sweep_manifest_load(dir, &m, err);
 	if (rc != STRAY_OK)
 		return rc;
 	which = malloc((m.n + 1) * sizeof(*which));

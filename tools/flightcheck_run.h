@@ -35,6 +35,8 @@ struct fc_sky {
 	const struct stray_colour *colour;
 	const struct stray_oem *oem;
 	double moon_min_deg, limb_min_deg;
+	char *const *files;	/* frame files instead of the folder, or NULL */
+	size_t n_files;
 };
 
 #define FC_MOON_MIN_DEG 25.0

@@ -4,6 +4,7 @@
  * manifest with no hash (stray/sweep_store.h).
  */
 #include <dirent.h>
+#include <sys/stat.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -91,4 +92,40 @@ int stray_sweep_flight_list(const char *dir, struct stray_sweep_manifest *m,
 	/* frames in name order (trackers number them) */
 	qsort(m->e, m->n, sizeof(*m->e), by_name);
 	return STRAY_OK;
+}
+
+int stray_sweep_flight_files(char *const *paths, size_t n,
+			     struct stray_sweep_manifest *m,
+			     struct stray_error *err)
+{
+	struct stat st;
+	size_t i;
+
+	memset(m, 0, sizeof(*m));
+	m->lock_fd = -1;	/* m->dir "": each file is its own path */
+	if (n == 0 || n > STRAY_SWEEP_FLIGHT_FILES_MAX)
+		return stray_error_at(err, STRAY_EINVAL, "frames", 0, "files",
+				      "1 to 100000 FITS files");
+	if (!(m->e = calloc(n, sizeof(*m->e))))
+		return stray_error_set(err, STRAY_ENOMEM, "frames",
+				       "out of memory");
+	m->cap = n;
+	for (i = 0; i < n; i++) {
+		struct stray_sweep_entry *e = &m->e[m->n++];
+
+		if (strlen(paths[i]) >= sizeof(e->file)) {
+			stray_sweep_manifest_free(m);
+			return stray_error_at(err, STRAY_EINVAL, paths[i], 0,
+					      "file", "path too long");
+		}
+		if (lstat(paths[i], &st) != 0) {
+			stray_sweep_manifest_free(m);
+			return stray_error_at(err, STRAY_ENOTFOUND, paths[i], 0,
+					      "file", "no such file");
+		}
+		snprintf(e->file, sizeof(e->file), "%s", paths[i]);
+		e->type = STRAY_SWEEP_FULL;
+		e->ndtrans = 1.0;
+	}
+	return STRAY_OK;	/* in the order given */
 }

@@ -8,7 +8,8 @@
  * 1.45 x the model's level, hidden.  `stray flightcheck --catalogue`
  * must recover the scale within 5 % with a 95 % interval that holds it,
  * and DN per photo-electron within 3 % of 1/1.6.  The same frames as a
- * camera writes them (no manifest, no lab keyword) give the same answer;
+ * camera writes them (a folder or a list of files, no manifest, no lab
+ * keyword) give the same answer;
  * one without BIAS is refused.  Frames with the Moon near are screened
  * out of the fit.  A catalogue of too few stars, and the
  * wrong sky, are refused with their reason (exit 1), never a number.  STRAY_BIN=/work/old/bin/stray fails every test.
@@ -248,6 +249,31 @@ static void test_camera_frames(void **state)
 	assert_int_equal((int)num(o, "frames"), 12);
 	cJSON_Delete(o);
 	assert_true(fabs(s_cam / s_sweep - 1.0) < 1e-9);
+	{	/* the same frames as a list of files */
+		static char names[12][200];
+		char *argv[24];
+		int i, k = 0;
+
+		argv[k++] = "stray";
+		argv[k++] = "flightcheck";
+		for (i = 0; i < 12; i++) {
+			snprintf(names[i], sizeof(names[i]),
+				 "%s/a+000.000_FULL_%03d.fits", dir, i);
+			argv[k++] = names[i];
+		}
+		argv[k++] = "--aem";
+		argv[k++] = aem;
+		argv[k++] = "--model";
+		argv[k++] = model;
+		argv[k++] = "--catalogue";
+		argv[k++] = CATALOGUE;
+		argv[k++] = "--json";
+		argv[k] = NULL;
+		assert_int_equal(run_stray(&r, argv), 0);
+		assert_non_null(o = cJSON_Parse(r.out));
+		assert_true(fabs(num(o, "scale_over_k_px") / s_sweep - 1.0) < 1e-9);
+		cJSON_Delete(o);
+	}
 
 	/* the bias is never assumed */
 	camera_frames(dir, "BIAS");

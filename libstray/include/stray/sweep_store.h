@@ -108,6 +108,11 @@ int stray_sweep_manifest_load(const char *dir,
 #define STRAY_SWEEP_FLIGHT_FILES_MAX 100000
 int stray_sweep_flight_list(const char *dir, struct stray_sweep_manifest *m,
 			    struct stray_error *err);
+/* The same for a list of frame files, in the order given (m->dir "":
+ * each row's file is its path). */
+int stray_sweep_flight_files(char *const *paths, size_t n,
+			     struct stray_sweep_manifest *m,
+			     struct stray_error *err);
 
 /* Free the rows (and release a writer's lock). */
 void stray_sweep_manifest_free(struct stray_sweep_manifest *m);
