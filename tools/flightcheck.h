@@ -73,6 +73,12 @@ void fc_work_free(struct fc_work *w);
  * with attitude q_ib (stray/aem.h convention). */
 double fc_sun_angle_deg(const double q_ib[4], double t_tt);
 
+/* The background (tools/flightcheck_bg.c): a grouped median per tile, a
+ * plane fitted to the tiles with two 3-sigma rejections; o's background,
+ * noise and gradient fields. */
+void fc_background(const struct fc_cfg *c, struct fc_work *w,
+		   const uint16_t *dn, double plane[3], struct fc_frame *o);
+
 /* One frame (the per-frame step): background, stars, calibration sums. */
 void fc_frame_analyse(const struct fc_cfg *c, struct fc_work *w,
 		      const uint16_t *dn, const double q_ib[4], double t_tt,
