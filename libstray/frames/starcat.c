@@ -115,12 +115,10 @@ static int hip2_line(struct ctx *x, const char *l, size_t n)
 	if ((r = col(l, n, 16, 28, &ra)) || (r = col(l, n, 30, 42, &de)))
 		return r < 0 ? bad(x, "RArad/DErad", "not a number") :
 			(x->c->n_skipped++, STRAY_OK);
-	if ((r = col(l, n, 52, 59, &s.pmra_mas_yr)) < 0 ||
-	    (r == 1 && (s.pmra_mas_yr = 0, 0)) ||
-	    (r = col(l, n, 61, 68, &s.pmdec_mas_yr)) < 0)
+	/* a blank proper motion stays 0 (s is zeroed) */
+	if (col(l, n, 52, 59, &s.pmra_mas_yr) < 0 ||
+	    col(l, n, 61, 68, &s.pmdec_mas_yr) < 0)
 		return bad(x, "pmRA/pmDE", "not a number");
-	if (r == 1)
-		s.pmdec_mas_yr = 0.0;
 	if ((r = col(l, n, 130, 136, &hp)) || (r = col(l, n, 153, 158, &s.b_v)))
 		return r < 0 ? bad(x, "Hpmag/B-V", "not a number") :
 			(x->c->n_skipped++, STRAY_OK);
