@@ -233,6 +233,16 @@ if [ "$fc_px" -gt 0 ] && [ "$fc_px" -lt 512 ]; then fc_px=512; fi
   echo "hidden truth: scale 1.7 (x T = 3.4e-3, log10 -2.469), reflectance 0.08"
 } | tee -a "$out/flightcheck.txt"
 rm -rf "$out/flight_frames"	# 12 full frames: 120 MB
+# The sky as it is (issue 24): the shipped Hipparcos extract with the stars'
+# colours and proper motion, exposures of 0.05-0.2 s, a 1.6 e-/DN gain and a
+# 180 DN bias (BIAS, GAIN keywords), times in TT; hidden scale 1.7 again.
+"$build/tests/flightcheck/make_flight" "$out/flight_sky" "$out/flight_sky.aem" \
+	"$out/fc_ref4_lens.csv" 1.7 12 0 30 85 libstray/data/hip2_hp6.5.dat
+{ echo; echo "the real sky (Hipparcos I/311 extract; hidden: scale 1.7, DN/e- 1/1.6 = 0.625):"
+  "$stray" flightcheck "$out/flight_sky" --aem "$out/flight_sky.aem" \
+	--model "$out/fc_ref4_lens.csv" --catalogue libstray/data/hip2_hp6.5.dat
+} | tee -a "$out/flightcheck.txt"
+rm -rf "$out/flight_sky"	# 12 full frames: 120 MB
 
 say "report: $out/report.html (and report.md)"
 "$stray" report "$out"

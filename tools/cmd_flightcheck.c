@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli.h"
 #include "commands.h"
@@ -19,23 +20,40 @@
 #include "stray/curve_io.h"
 
 static const char usage[] =
-	"usage: stray flightcheck FRAMES_DIR --aem A.aem --model M.csv\n"
-	"                         [--sensor S] [--normalisation N] [--out C.csv]\n"
+	"usage: stray flightcheck FRAMES_DIR|FRAME.fits... --aem A.aem --model M.csv\n"
+	"                         [--catalogue CAT] [--oem O.oem] [--moon-min DEG]\n"
+	"                         [--limb-min DEG] [--sensor S] [--normalisation N]\n"
+	"                         [--out C.csv]\n"
 	"                         [--plot P.png] [--json]\n"
 	"\n"
-	"Flight frames (a sweep folder: FITS with DATE-OBS in UTC and EXPTIME)\n"
+	"Flight frames (a folder, with or without manifest.csv, or a list of FITS\n"
+	"files: each with EXPTIME, BIAS and GAIN, the\n"
+	"mid-exposure from DATE-AVG, DATE-BEG/DATE-END or DATE-OBS in TIMESYS)\n"
 	"and the head's attitude (CCSDS AEM, boresight +z of the body): per\n"
 	"frame the Sun offset angle, a robust background (tile medians, plane:\n"
-	"gradient), the catalogue stars (synthetic, stray/catalogue.h) placed\n"
+	"gradient), the catalogue stars (--catalogue, else the synthetic sky)\n"
+	"at the frame's epoch (proper motion), their V and B-V taken to the\n"
+	"passband (a blackbody colour term, docs/flightcheck.md), placed\n"
 	"by the attitude and refined on the matches; the stars' magnitudes and\n"
 	"the passband photometry calibrate DN per photo-electron (eq. 2.2,\n"
 	"2.12), hence alpha_px(theta) absolutely (eq. 2.3).  Against the model\n"
 	"curve: the best scale alpha_px / alpha_model with its interval, the\n"
 	"shape test (chi2 of the scaled model) and the scale over the model's\n"
-	"k_px (1 when the model's normalisation is right).\n"
+	"k_px (1 when the model's normalisation is right).  Refused (exit 1)\n"
+	"when the frames cannot be calibrated: fewer than 3 calibrators, under\n"
+	"30 % of the bright predicted stars found, or a plate residual over\n"
+	"1.5 px.\n"
 	"\n"
 	"  --aem A.aem         attitude of the head (CCSDS 504.0 quaternions)\n"
 	"  --model M.csv       predicted system curve alpha(theta) (stray trace)\n"
+	"  --catalogue CAT     Hipparcos hip2.dat or hip_main.dat, Yale BSC5, or a\n"
+	"                      CSV (ra_deg,dec_deg,v_mag,b_v[,hip,pmra_mas_yr,\n"
+	"                      pmdec_mas_yr,epoch_jyear,hp_mag])\n"
+	"  --oem O.oem         the orbit (CCSDS 502.0): the Moon seen from the\n"
+	"                      spacecraft and the Earth limb's angle per frame\n"
+	"  --moon-min DEG      frames with the Moon nearer the boresight are left\n"
+	"                      out of the scale fit (25)\n"
+	"  --limb-min DEG      the same for the Earth limb (30; needs --oem)\n"
 	SENSOR_USAGE
 	NORMALISATION_USAGE
 	"  --out C.csv         the flight curve: theta_deg, alpha (= alpha_px /\n"
@@ -44,7 +62,9 @@ static const char usage[] =
 	"  --json              machine-readable output\n";
 
 struct fc_args {
-	const char *dir, *aem, *model, *out, *plot;
+	const char *dir, *aem, *model, *out, *plot, *catalogue, *oem;
+	double moon_min, limb_min;
+	char cat_name[64];	/* "synthetic" or "<kind> <file>" */
 };
 
 static int cmp_theta(const void *a, const void *b)
@@ -55,7 +75,8 @@ static int cmp_theta(const void *a, const void *b)
 }
 
 static int write_curve(const char *path, const struct fc_point *p, size_t n,
-		       const struct fc_summary *s, struct stray_error *err)
+		       const struct fc_summary *s, const char *cat_name,
+		       struct stray_error *err)
 {
 	struct stray_curve c;
 	double *model = malloc(n * sizeof(*model));
@@ -82,7 +103,7 @@ static int write_curve(const char *path, const struct fc_point *p, size_t n,
 	if (!rc)
 		rc = stray_curve_add_meta(&c, "scale_over_k_px", v, err);
 	if (!rc)
-		rc = stray_curve_add_meta(&c, "stars", "synthetic catalogue", err);
+		rc = stray_curve_add_meta(&c, "stars", cat_name, err);
 	/* sigma is the background's; the star calibration is one factor
 	 * common to every point: add it to any fitted scale */
 	snprintf(v, sizeof(v), "%.4g", s->dn_per_e_sigma / s->dn_per_e);
@@ -156,6 +177,15 @@ static int emit_json(const struct fc_args *a, const struct fc_frame *f,
 	cJSON_AddItemToObject(o, "scale_over_k_px", cli_json_number(s->scale_over_kpx));
 	cJSON_AddItemToObject(o, "scale_over_k_px_sigma",
 			      cli_json_number(s->scale_over_kpx_sigma));
+	{	/* the 95 % interval */
+		cJSON *iv = cJSON_CreateArray();
+
+		cJSON_AddItemToArray(iv, cli_json_number(s->scale_over_kpx -
+					1.96 * s->scale_over_kpx_sigma));
+		cJSON_AddItemToArray(iv, cli_json_number(s->scale_over_kpx +
+					1.96 * s->scale_over_kpx_sigma));
+		cJSON_AddItemToObject(o, "scale_over_k_px_interval", iv);
+	}
 	cJSON_AddItemToObject(o, "shape_chi2_dof", cli_json_number(s->chi2_dof));
 	cJSON_AddItemToObject(o, "scale", cli_json_number(s->scale));
 	cJSON_AddItemToObject(o, "scale_sigma", cli_json_number(s->scale_sigma));
@@ -166,7 +196,12 @@ static int emit_json(const struct fc_args *a, const struct fc_frame *f,
 	cJSON_AddNumberToObject(o, "calibration_stars", s->n_cal);
 	cJSON_AddItemToObject(o, "calibration_chi2_dof", cli_json_number(s->cal_chi2_dof));
 	cJSON_AddNumberToObject(o, "frames", (double)n);
-	cJSON_AddStringToObject(o, "catalogue", "synthetic");
+	cJSON_AddStringToObject(o, "catalogue", a->cat_name);
+	cJSON_AddNumberToObject(o, "stars_predicted", s->n_pred);
+	cJSON_AddNumberToObject(o, "stars_matched", s->n_match);
+	cJSON_AddItemToObject(o, "match_fraction", cli_json_number(s->match_frac));
+	cJSON_AddItemToObject(o, "plate_residual_px", cli_json_number(s->resid_px));
+	cJSON_AddNumberToObject(o, "frames_screened", s->n_screened);
 	cJSON_AddStringToObject(o, "frames_dir", a->dir);
 	for (i = 0; i < n; i++) {
 		cJSON *e = cJSON_CreateObject();
@@ -187,18 +222,28 @@ static int emit_json(const struct fc_args *a, const struct fc_frame *f,
 				      cli_json_number(hypot(f[i].dx_px, f[i].dy_px)));
 		cJSON_AddItemToObject(e, "rotation_deg", cli_json_number(f[i].rot_deg));
 		cJSON_AddItemToObject(e, "residual_px", cli_json_number(f[i].resid_px));
+		cJSON_AddItemToObject(e, "moon_deg", cli_json_number(f[i].moon_deg));
+		cJSON_AddItemToObject(e, "earth_limb_deg", cli_json_number(f[i].limb_deg));
+		cJSON_AddBoolToObject(e, "screened", f[i].screened);
 		cJSON_AddItemToArray(fr, e);
 	}
 	cJSON_AddItemToObject(o, "per_frame", fr);
 	return cli_json_emit(o);
 }
 
-static void print_text(const struct fc_frame *f, const struct fc_point *p,
-		       size_t n, const struct fc_summary *s)
+static void print_text(const struct fc_args *a, const struct fc_frame *f,
+		       const struct fc_point *p, size_t n,
+		       const struct fc_summary *s)
 {
 	size_t i;
 
-	printf("Flight check: %zu frames, synthetic catalogue\n", n);
+	printf("Flight check: %zu frames, catalogue %s\n", n, a->cat_name);
+	printf("  plate: %d of %d predicted stars found; of the bright ones %d of %d (%.2f); residual %.2f px\n",
+	       s->n_match, s->n_pred, s->n_sure_found, s->n_sure,
+	       s->match_frac, s->resid_px);
+	if (s->n_screened)
+		printf("  screened: %d frames with the Moon within %.0f deg or the Earth limb within %.0f deg (not fitted)\n",
+		       s->n_screened, a->moon_min, a->limb_min);
 	printf("  calibration: %.4f +- %.4f DN per photo-e- from %d stars (chi2/dof %.2f)\n",
 	       s->dn_per_e, s->dn_per_e_sigma, s->n_cal, s->cal_chi2_dof);
 	printf("  %7s %11s %10s %11s %9s %6s %8s\n", "theta", "alpha_px",
@@ -226,11 +271,17 @@ int cmd_flightcheck(int argc, char **argv)
 		{ "model", required_argument, NULL, 'm' },
 		{ "out", required_argument, NULL, 'o' },
 		{ "plot", required_argument, NULL, 'p' },
+		{ "catalogue", required_argument, NULL, 'c' },
+		{ "oem", required_argument, NULL, 'e' },
+		{ "moon-min", required_argument, NULL, 'M' },
+		{ "limb-min", required_argument, NULL, 'L' },
 		{ "json", no_argument, &cli.json, 1 },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 }
 	};
 	struct fc_args a = { 0 };
+	struct fc_sky sky = { 0 };
+	struct stray_oem oem;
 	struct fdr_setup su;
 	struct stray_error err;
 	struct stray_aem aem;
@@ -240,11 +291,16 @@ int cmd_flightcheck(int argc, char **argv)
 	struct fc_frame *f = NULL;
 	struct fc_point *p = NULL;
 	struct fc_summary s;
+	struct stray_starcat cat;
+	struct stray_colour colour;
+	char why[256];
 	size_t n = 0, i;
 	int opt, rc;
 
 	fdr_setup_init(&su);
 	stray_error_clear(&err);
+	a.moon_min = FC_MOON_MIN_DEG;
+	a.limb_min = FC_LIMB_MIN_DEG;
 	while ((opt = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
 		switch (opt) {
 		case 0: continue;
@@ -253,6 +309,19 @@ int cmd_flightcheck(int argc, char **argv)
 		case 'm': a.model = optarg; continue;
 		case 'o': a.out = optarg; continue;
 		case 'p': a.plot = optarg; continue;
+		case 'c': a.catalogue = optarg; continue;
+		case 'e': a.oem = optarg; continue;
+		case 'M':
+		case 'L':
+			if ((rc = cli_parse_double("flightcheck", opt == 'M' ?
+					"--moon-min" : "--limb-min", optarg,
+					opt == 'M' ? &a.moon_min : &a.limb_min)))
+				return rc;
+			if (!((opt == 'M' ? a.moon_min : a.limb_min) >= 0.0 &&
+			      (opt == 'M' ? a.moon_min : a.limb_min) <= 180.0))
+				return cli_usage_error("flightcheck",
+					"--moon-min and --limb-min: degrees in [0, 180]");
+			continue;
 		default: break;
 		}
 		rc = fdr_setup_option(&su, "flightcheck", opt, optarg);
@@ -261,9 +330,19 @@ int cmd_flightcheck(int argc, char **argv)
 		if (rc != 1)
 			return rc;
 	}
-	if (optind != argc - 1)
-		return cli_usage_error("flightcheck", "one FRAMES_DIR is required");
+	if (optind > argc - 1)
+		return cli_usage_error("flightcheck",
+				       "FRAMES_DIR or frame files are required");
 	a.dir = argv[optind];
+	{	/* one operand that is not a folder, or several: frame files */
+		struct stat st;
+
+		if (optind < argc - 1 || (stat(a.dir, &st) == 0 &&
+					  !S_ISDIR(st.st_mode))) {
+			sky.files = argv + optind;
+			sky.n_files = (size_t)(argc - optind);
+		}
+	}
 	if (!a.aem)
 		return cli_usage_error("flightcheck", "--aem is required");
 	if (!a.model)
@@ -276,7 +355,40 @@ int cmd_flightcheck(int argc, char **argv)
 		stray_curve_free(&model);
 		return cli_fail("flightcheck", &err);
 	}
-	rc = fc_run_dir(a.dir, &aem, &su.sensor, &su.flux, &cfg, &f, &n, &err);
+	snprintf(a.cat_name, sizeof(a.cat_name), "synthetic");
+	if (a.catalogue) {
+		const char *base = strrchr(a.catalogue, '/');
+
+		if ((rc = stray_starcat_load(a.catalogue, &cat, &err)) == STRAY_OK &&
+		    (rc = stray_colour_for_qe(&colour, su.sensor.qe, &err)) != STRAY_OK)
+			stray_starcat_free(&cat);
+		if (rc != STRAY_OK) {
+			stray_aem_free(&aem);
+			stray_curve_free(&model);
+			return cli_fail("flightcheck", &err);
+		}
+		snprintf(a.cat_name, sizeof(a.cat_name), "%s %.50s",
+			 stray_starcat_kind_name(cat.kind),
+			 base ? base + 1 : a.catalogue);
+	}
+	if (a.oem && stray_oem_read(a.oem, &oem, &err) != STRAY_OK) {
+		if (a.catalogue)
+			stray_starcat_free(&cat);
+		stray_aem_free(&aem);
+		stray_curve_free(&model);
+		return cli_fail("flightcheck", &err);
+	}
+	sky.cat = a.catalogue ? &cat : NULL;
+	sky.colour = a.catalogue ? &colour : NULL;
+	sky.oem = a.oem ? &oem : NULL;
+	sky.moon_min_deg = a.moon_min;
+	sky.limb_min_deg = a.limb_min;
+	rc = fc_run_dir_sky(a.dir, &aem, &su.sensor, &su.flux, &sky, &cfg, &f,
+			    &n, &err);
+	if (a.catalogue)
+		stray_starcat_free(&cat);
+	if (a.oem)
+		stray_oem_free(&oem);
 	stray_aem_free(&aem);
 	if (rc != STRAY_OK) {
 		stray_curve_free(&model);
@@ -293,12 +405,13 @@ int cmd_flightcheck(int argc, char **argv)
 		return cli_fail("flightcheck", &err);
 	}
 	fc_summarise(&cfg, f, n, fdr_setup_k_px(&su), p, &s);
-	if (s.n_cal == 0) {
+	if (fc_verdict(&s, why, sizeof(why))) {
+		/* no number is printed for frames that cannot be calibrated */
 		free(f);
 		free(p);
-		stray_error_at(&err, STRAY_EINVAL, a.dir, 0, "stars",
-			       "no catalogue star calibrates the frames");
-		return cli_fail("flightcheck", &err);
+		fprintf(stderr, "stray flightcheck: %s: cannot be calibrated: %s\n",
+			a.dir, why);
+		return 1;
 	}
 	rc = STRAY_OK;
 	if (a.out) {
@@ -308,7 +421,7 @@ int cmd_flightcheck(int argc, char **argv)
 		if (q) {
 			memcpy(q, p, n * sizeof(*q));
 			qsort(q, n, sizeof(*q), cmp_theta);
-			rc = write_curve(a.out, q, n, &s, &err);
+			rc = write_curve(a.out, q, n, &s, a.cat_name, &err);
 			if (!rc && a.plot)
 				rc = plot(a.plot, q, n, &s, &err);
 			free(q);
@@ -320,7 +433,7 @@ int cmd_flightcheck(int argc, char **argv)
 		rc = plot(a.plot, p, n, &s, &err);
 	}
 	if (rc == STRAY_OK)
-		rc = cli.json ? emit_json(&a, f, p, n, &s) : (print_text(f, p, n, &s), CLI_OK);
+		rc = cli.json ? emit_json(&a, f, p, n, &s) : (print_text(&a, f, p, n, &s), CLI_OK);
 	else
 		rc = cli_fail("flightcheck", &err);
 	free(f);

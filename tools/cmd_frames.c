@@ -20,6 +20,7 @@
 #include "image_cv.h"
 #include "stray/aem.h"
 #include "stray/catalogue.h"
+#include "frames_sky.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"
@@ -52,6 +53,11 @@ static const char usage[] =
 	"  --out-dir D         the first --save (3) frames as a sweep folder\n"
 	"                      (manifest.csv + FITS); D must not exist or be empty\n"
 	"  --mag-max M         faintest star rendered (10)\n"
+	"  --catalogue CAT     with --attitude: the stars of a real catalogue\n"
+	"                      (hip2.dat, hip_main.dat, BSC5, CSV) at --epoch\n"
+	"                      (Julian year, 2000), colours through the QE\n"
+	"  --truth-stars T.csv with --attitude: every star rendered (frame,\n"
+	"                      x_px, y_px, v_mag, electrons)\n"
 	"  --attitude Q        q_c,e1,e2,e3: the head's attitude (CCSDS 504.0 q_ib,\n"
 	"                      boresight +z): stars from the synthetic catalogue\n"
 	"                      (stray/catalogue.h) at their sky places, the same in\n"
@@ -69,6 +75,8 @@ struct frames_args {
 	int has_theta, has_alpha, detector;
 	double att[4];		/* --attitude q_ib; has_att = 0: random field */
 	int has_att;
+	const char *catalogue, *truth;	/* --catalogue, --truth-stars */
+	double epoch;		/* --epoch, Julian year */
 };
 
 /* Solid angle of the rendered frame, through the ideal lens the focal
@@ -138,6 +146,9 @@ static int parse_opt(struct fdr_setup *s, struct frames_args *a, int opt)
 	case 'd': return parse_choice("detector", optarg, "thesis", "threshold",
 				      &a->detector);
 	case 'q': return parse_attitude(optarg, a);
+	case 'C': a->catalogue = optarg; return CLI_OK;
+	case 'T': a->truth = optarg; return CLI_OK;
+	case 'E': return cli_parse_double("frames", "epoch", optarg, &a->epoch);
 	default: {
 		int rc = fdr_setup_option(s, "frames", opt, optarg);
 		return rc == 1 ? CLI_OK : rc ? rc : CLI_USAGE;
@@ -152,6 +163,11 @@ static int check_args(const struct frames_args *a)
 			"--plot-validation and --plot go together");
 	if (a->has_alpha == (a->curve != NULL))
 		return cli_usage_error("frames", "give --curve with --theta, or --alpha");
+	if ((a->catalogue || a->truth) && !a->has_att)
+		return cli_usage_error("frames", "--catalogue and --truth-stars need --attitude");
+	if (!(a->epoch > 1000.0 && a->epoch < 3000.0))
+		return cli_usage_error("frames", "option '--epoch': %g is not a Julian year in 1000..3000",
+				       a->epoch);
 	if (a->curve && !a->has_theta)
 		return cli_usage_error("frames", "--curve needs --theta");
 	if (a->has_theta && !(a->theta_deg >= 0.0 && a->theta_deg <= 180.0))
@@ -180,6 +196,9 @@ static int parse_args(int argc, char **argv, struct fdr_setup *s,
 		{ "save", required_argument, NULL, 'v' },
 		{ "mag-max", required_argument, NULL, 'g' },
 		{ "attitude", required_argument, NULL, 'q' },
+		{ "catalogue", required_argument, NULL, 'C' },
+		{ "truth-stars", required_argument, NULL, 'T' },
+		{ "epoch", required_argument, NULL, 'E' },
 		{ "detector", required_argument, NULL, 'd' },
 		NORMALISATION_LONG_OPTION,
 		{ "map", required_argument, NULL, 'm' },
@@ -420,6 +439,7 @@ static int save_frame(struct frames_state *st, int i, size_t n_stars,
 		{ "STRAYE", STRAY_SWEEP_KEY_DOUBLE, st->fm.stray_e, 0, NULL,
 		  "[e-] mean stray per pixel" },
 		{ "STARSRC", STRAY_SWEEP_KEY_STRING, 0.0, 0,
+		  st->a.catalogue ? "real catalogue (--catalogue)" :
 		  st->a.has_att ? "synthetic catalogue" : "synthetic",
 		  st->a.has_att ? "stray/catalogue.h, --attitude"
 				: "star field: no catalogue" },
@@ -481,6 +501,13 @@ static int catalogue_stars(struct frames_state *st, double f0_e, size_t *n,
 
 	if (!cat)
 		return stray_error_set(err, STRAY_ENOMEM, "frames", "out of memory");
+	if (st->a.catalogue) {	/* the real sky (frames_sky.c) */
+		free(cat);
+		return frames_sky_stars(st->a.catalogue, sn, st->a.att,
+					st->a.epoch, st->col0, st->row0,
+					st->cols, st->rows, st->a.mag_max, f0_e,
+					st->stars, MAX_STARS, n, err);
+	}
 	stray_q_dcm(st->a.att, cam.m_ih);
 	cam.f_px = stray_sensor_focal_length_mm(sn) / (sn->pixel_pitch_um * 1e-3);
 	cam.cx = 0.5 * sn->pixels_x - st->col0;
@@ -514,6 +541,9 @@ static int run_frames(struct frames_state *st, struct stray_error *err)
 	if ((rc = open_store(st, err)) != STRAY_OK)
 		return rc;
 	if (st->a.has_att && (rc = catalogue_stars(st, f.f0_e, &n_stars, err)))
+		return rc;
+	if (st->a.truth && (rc = frames_sky_truth_write(st->a.truth, st->stars,
+			n_stars, (int)st->a.frames, err)) != STRAY_OK)
 		return rc;
 	for (i = 0; i < (int)st->a.frames; i++) {
 		uint64_t seed = stray_frame_seed((uint64_t)st->a.seed, (uint64_t)i);
@@ -620,7 +650,8 @@ static int print_json(const struct frames_state *st,
 	cJSON_AddItemToObject(s, "model", cli_json_number(st->req.model));
 	cJSON_AddItemToObject(s, "extended", cli_json_number(st->req.extended));
 	s = cJSON_AddObjectToObject(o, "stars");
-	cJSON_AddStringToObject(s, "source", st->a.has_att ?
+	cJSON_AddStringToObject(s, "source", st->a.catalogue ?
+		"real catalogue (--catalogue) through --attitude" : st->a.has_att ?
 		"synthetic catalogue (stray/catalogue.h) through --attitude" :
 		"synthetic: all-sky average counts (no catalogue installed)");
 	cJSON_AddItemToObject(s, "per_image", cli_json_number(st->stars_sum / st->a.frames));
@@ -643,6 +674,7 @@ static void print_text(const struct frames_state *st,
 	       stray_normalisation_name(st->s.normalisation), st->k_px,
 	       st->fm.stray_e, st->a.map ? st->a.map : "uniform");
 	printf("  stars: %s, %.0f per frame to m = %g\n",
+	       st->a.catalogue ? "real catalogue through --attitude" :
 	       st->a.has_att ? "synthetic catalogue through --attitude"
 			     : "synthetic field (no catalogue)",
 	       st->stars_sum / st->a.frames, st->a.mag_max);
@@ -672,6 +704,7 @@ int cmd_frames(int argc, char **argv)
 	st->a.seed = 1;
 	st->a.save = 3;
 	st->a.mag_max = 10.0;
+	st->a.epoch = 2000.0;
 	st->a.detector = 1;
 	rc = parse_args(argc, argv, &st->s, &st->a);
 	if (rc == CLI_OK && st->a.plot_csv) {

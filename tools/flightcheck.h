@@ -15,6 +15,8 @@
 #include <stdint.h>
 
 #include "stray/catalogue.h"
+#include "stray/colour.h"
+#include "stray/starcat.h"
 
 #define FC_TILE_PX 64		/* background tiles */
 #define FC_MAG_CAL 8.5		/* calibration stars: brighter than this */
@@ -27,7 +29,9 @@ struct fc_cfg {
 	double t_exp_s, gain_e_per_dn, bias_dn, dark_e, sat_dn;
 	double f0_e;		/* photo-e- of an m = 0 star: F_0 t A_cs (eq. 2.2, 2.12) */
 	double sun_e;		/* F_sun t_exp A_px: photo-e- per pixel per unit alpha_px (eq. 2.3) */
-	uint64_t cat_seed;	/* the catalogue (stray/catalogue.h) */
+	uint64_t cat_seed;	/* the synthetic catalogue (stray/catalogue.h) */
+	const struct stray_starcat *starcat;	/* a real one, or NULL */
+	const struct stray_colour *colour;	/* its B-V to the passband */
 	double search_px;	/* first-pass search half-width around a prediction */
 };
 
@@ -50,9 +54,16 @@ struct fc_frame {
 	double noise_dn;	/* pixel noise (tile MAD) */
 	double grad_dn_per_px, grad_dir_deg;	/* plane slope, direction (0 = +x) */
 	int n_tiles_used, n_pred, n_match, n_cal;
+	int n_sure, n_sure_found;	/* predicted bright enough that they
+					 * must be found (FC_SURE_SNR), found */
 	double dx_px, dy_px, rot_deg, resid_px;	/* refinement on the matches */
 	double cal_sw, cal_swr, cal_swr2;	/* sums for DN per photo-e- */
 	double t_exp_s;		/* its EXPTIME; 0: the cfg's (the sensor's) */
+	double gain_e_per_dn, bias_dn;	/* its GAIN, BIAS; 0: the cfg's */
+	double moon_deg;	/* Moon offset angle of the boresight */
+	double limb_deg;	/* Earth limb's (negative: Earth in the
+				 * boresight's way); NAN without an orbit */
+	int screened;		/* 1: Moon or Earth too near, not fitted */
 };
 
 int fc_work_alloc(struct fc_work *w, const struct fc_cfg *c);
@@ -61,6 +72,12 @@ void fc_work_free(struct fc_work *w);
 /* The Sun offset angle [deg] of the boresight (+z of the head) at t_tt
  * with attitude q_ib (stray/aem.h convention). */
 double fc_sun_angle_deg(const double q_ib[4], double t_tt);
+
+/* The background (tools/flightcheck_bg.c): a grouped median per tile, a
+ * plane fitted to the tiles with two 3-sigma rejections; o's background,
+ * noise and gradient fields. */
+void fc_background(const struct fc_cfg *c, struct fc_work *w,
+		   const uint16_t *dn, double plane[3], struct fc_frame *o);
 
 /* One frame (the per-frame step): background, stars, calibration sums. */
 void fc_frame_analyse(const struct fc_cfg *c, struct fc_work *w,
@@ -80,7 +97,23 @@ struct fc_summary {
 	double scale, scale_sigma_stat, scale_sigma;	/* alpha_px / alpha_model */
 	double chi2_dof;	/* of the scaled model: the shape test */
 	double k_px_model, scale_over_kpx, scale_over_kpx_sigma;
+	int n_pred, n_match;	/* over all frames */
+	int n_screened;		/* frames left out of the scale fit */
+	int n_frames;
+	int n_sure, n_sure_found;
+	double match_frac;	/* n_sure_found / n_sure */
+	double resid_px;	/* rms plate residual over all matches */
 };
+
+/* The honest verdict (issue 24): a frame set is calibrated only with at
+ * least FC_MIN_CAL calibrators, FC_MIN_MATCH of its predicted stars
+ * found and a plate residual under FC_MAX_RESID_PX (docs/limits.md). */
+#define FC_MIN_CAL 3
+#define FC_SURE_SNR 40.0	/* a star's predicted DN over the pixel noise */
+#define FC_MIN_MATCH 0.3
+#define FC_MAX_RESID_PX 1.5
+/* 0 when s passes; else 1 and why (one line) says which rule failed. */
+int fc_verdict(const struct fc_summary *s, char *why, size_t n);
 
 /* Calibration over all frames, alpha_px per frame (pts[i].model set by
  * the caller), and the best scale; points with no light are kept. */

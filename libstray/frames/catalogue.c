@@ -71,6 +71,8 @@ static size_t cell_stars(uint64_t seed, int b, int j, int nj,
 			s->u[0] = v[0];
 			s->u[1] = v[1];
 			s->u[2] = v[2];
+			s->b_v = 0.0;
+			s->colour = 1.0;
 		}
 	}
 	return found;
@@ -153,7 +155,8 @@ size_t stray_camera_stars(const struct stray_camera *c,
 		out[n].x = x;
 		out[n].y = y;
 		out[n].mag = cat[i].mag;
-		out[n].photons_e = f0_e * pow(10.0, -0.4 * cat[i].mag);
+		out[n].photons_e = f0_e * pow(10.0, -0.4 * cat[i].mag) *
+				   cat[i].colour;
 		n++;
 	}
 	return n;

@@ -216,18 +216,56 @@ static int read_geometry(struct stray_sweep_fits *f, struct stray_error *err)
 	return check_size(f, err);
 }
 
+/* A lab keyword a flight frame may leave out: def when absent there. */
+static int lab_double(struct stray_sweep_fits *f, const char *key, double *v,
+		      double def, struct stray_error *err)
+{
+	char text[FLEN_VALUE];
+	int status = 0;
+
+	if (f->flight && fits_read_keyword(f->fptr, key, text, NULL, &status)) {
+		fits_clear_errmsg();
+		*v = def;
+		if (status == KEY_NO_EXIST)
+			return STRAY_OK;
+	}
+	return key_double(f, key, v, err);
+}
+
+static int lab_long(struct stray_sweep_fits *f, const char *key, long *v,
+		    long def, struct stray_error *err)
+{
+	*v = def;
+	return key_long(f, key, v, !f->flight, err);
+}
+
+static int lab_type(struct stray_sweep_fits *f, struct stray_error *err)
+{
+	char text[FLEN_VALUE];
+	int status = 0;
+
+	if (f->flight && fits_read_keyword(f->fptr, STRAY_SWEEP_KEY_FRAMETYP,
+					   text, NULL, &status) &&
+	    status == KEY_NO_EXIST) {
+		fits_clear_errmsg();
+		f->h.type = STRAY_SWEEP_FULL;
+		return STRAY_OK;
+	}
+	return read_type(f, err);
+}
+
 static int read_header(struct stray_sweep_fits *f, struct stray_error *err)
 {
 	struct stray_sweep_header *h = &f->h;
 	int rc, status = 0;
 
 	h->col0 = h->row0 = 0;
-	if ((rc = read_geometry(f, err)) || (rc = read_type(f, err)) ||
-	    (rc = key_double(f, STRAY_SWEEP_KEY_ANGLE, &h->angle_deg, err)) ||
+	if ((rc = read_geometry(f, err)) || (rc = lab_type(f, err)) ||
+	    (rc = lab_double(f, STRAY_SWEEP_KEY_ANGLE, &h->angle_deg, 0.0, err)) ||
 	    (rc = key_double(f, STRAY_SWEEP_KEY_EXPTIME, &h->exptime_s, err)) ||
-	    (rc = key_double(f, STRAY_SWEEP_KEY_NDTRANS, &h->ndtrans, err)) ||
-	    (rc = key_long(f, STRAY_SWEEP_KEY_SEQNUM, &h->seqnum, 1, err)) ||
-	    (rc = key_long(f, STRAY_SWEEP_KEY_SATLEVEL, &h->satlevel, 1,
+	    (rc = lab_double(f, STRAY_SWEEP_KEY_NDTRANS, &h->ndtrans, 1.0, err)) ||
+	    (rc = lab_long(f, STRAY_SWEEP_KEY_SEQNUM, &h->seqnum, 0, err)) ||
+	    (rc = lab_long(f, STRAY_SWEEP_KEY_SATLEVEL, &h->satlevel, 65535,
 			   err)) ||
 	    (rc = key_long(f, STRAY_SWEEP_KEY_COL0, &h->col0, 0, err)) ||
 	    (rc = key_long(f, STRAY_SWEEP_KEY_ROW0, &h->row0, 0, err)) ||
@@ -314,6 +352,7 @@ int stray_sweep_fits_open(const char *path, struct stray_sweep_fits *f,
 	f->fptr = NULL;
 	f->mem = NULL;
 	f->mem_borrowed = 0;
+	f->flight = 0;
 	/* Read by the toolkit (no symlink, FIFO or device) and decoded from
 	 * memory: cfitsio never sees the name, whose "(", "[" and "!" it
 	 * would take as instructions (write a copy, filter the pixels). */
@@ -339,6 +378,7 @@ int stray_sweep_fits_open_mem(const char *name, const void *data, size_t len,
 	f->mem = calloc(1, padded ? padded : 2880);
 	f->mem_size = padded ? padded : 2880;
 	f->mem_borrowed = 0;
+	f->flight = 0;
 	f->data_len = len;
 	if (!f->mem)
 		return stray_error_at(err, STRAY_ENOMEM, name, 0, "file",
@@ -347,9 +387,9 @@ int stray_sweep_fits_open_mem(const char *name, const void *data, size_t len,
 	return open_memory(f, name, err);
 }
 
-int stray_sweep_fits_open_buf(const char *name, struct stray_sweep_buf *b,
-			      struct stray_sweep_fits *f,
-			      struct stray_error *err)
+static int open_buf(const char *name, struct stray_sweep_buf *b,
+		    struct stray_sweep_fits *f, int flight,
+		    struct stray_error *err)
 {
 	f->path = name;
 	f->fptr = NULL;
@@ -357,7 +397,23 @@ int stray_sweep_fits_open_buf(const char *name, struct stray_sweep_buf *b,
 	f->mem_size = (b->len + 2879) / 2880 * 2880;
 	f->mem_borrowed = 1;
 	f->data_len = b->len;
+	f->flight = flight;
 	return open_memory(f, name, err);
+}
+
+int stray_sweep_fits_open_buf(const char *name, struct stray_sweep_buf *b,
+			      struct stray_sweep_fits *f,
+			      struct stray_error *err)
+{
+	return open_buf(name, b, f, 0, err);
+}
+
+int stray_sweep_fits_open_flight_buf(const char *name,
+				     struct stray_sweep_buf *b,
+				     struct stray_sweep_fits *f,
+				     struct stray_error *err)
+{
+	return open_buf(name, b, f, 1, err);
 }
 
 /* Whether the image is unsigned 16-bit as the lab writes it (BITPIX 16,

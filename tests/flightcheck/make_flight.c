@@ -1,7 +1,10 @@
 /*
  * make_flight.c - the truth generator as a program, for the demo:
- * make_flight DIR A.aem TRUTH.csv [scale] [frames] [window] [lo hi]
- * (window 0: full frames; lo, hi: the Sun offset angles swept, deg).  Prints nothing on success; the hidden truth
+ * make_flight DIR A.aem TRUTH.csv [scale] [frames] [window] [lo hi] [CAT]
+ * (window 0: full frames; lo, hi: the Sun offset angles swept, deg; CAT:
+ * the real sky of that catalogue with colours and proper motion, mixed
+ * exposure times, a 1.6 e-/DN gain and a 180 DN bias, a 40" attitude
+ * error).  Prints nothing on success; the hidden truth
  * is in the frames' TALPHA/TSCALE keywords for people to check.
  */
 #include <stdio.h>
@@ -18,8 +21,10 @@ int main(int argc, char **argv)
 	struct stray_error err = { 0 };
 	char msg[512];
 
-	if (argc < 4 || argc > 9 || argc == 8) {
-		fputs("usage: make_flight DIR A.aem TRUTH.csv [scale] [frames] [window] [lo hi]\n",
+	struct stray_starcat cat = { 0 };
+
+	if (argc < 4 || argc > 10 || argc == 8) {
+		fputs("usage: make_flight DIR A.aem TRUTH.csv [scale] [frames] [window] [lo hi] [CAT]\n",
 		      stderr);
 		return 2;
 	}
@@ -34,6 +39,18 @@ int main(int argc, char **argv)
 		t.theta_lo_deg = atof(argv[7]);
 		t.theta_hi_deg = atof(argv[8]);
 	}
+	if (argc > 9) {
+		if (stray_starcat_load(argv[9], &cat, &err) != STRAY_OK) {
+			fprintf(stderr, "make_flight: %s\n",
+				stray_error_format(&err, msg, sizeof(msg)));
+			return 2;
+		}
+		t.cat = &cat;
+		t.mixed_exposure = 1;
+		t.gain_e_per_dn = 1.6;
+		t.bias_dn = 180.0;
+		t.point_err_arcsec = 40.0;
+	}
 	if (!(t.scale > 0.0) || t.n_frames < 2 || t.n_frames > 600 || t.window < 0 ||
 	    !(t.theta_lo_deg >= 0.0 && t.theta_hi_deg <= 180.0)) {
 		fputs("make_flight: scale > 0, 2 <= frames <= 600, window >= 0\n", stderr);
@@ -47,5 +64,6 @@ int main(int argc, char **argv)
 		return 2;
 	}
 	stray_curve_free(&c);
+	stray_starcat_free(&cat);
 	return 0;
 }

@@ -1,6 +1,7 @@
 # tests/flightcheck: `stray flightcheck` (issue 18) on flight frames made
 # by the truth generator (truth.c, test side only) with a hidden scale.
-FLIGHTCHECK_OBJ := $(B)/obj/tools/flightcheck.o $(B)/obj/tools/flightcheck_run.o
+FLIGHTCHECK_OBJ := $(B)/obj/tools/flightcheck.o $(B)/obj/tools/flightcheck_bg.o \
+	$(B)/obj/tools/flightcheck_run.o
 FLIGHTCHECK_TRUTH_OBJ := $(B)/obj/tests/flightcheck/truth.o
 $(B)/obj/tools/flightcheck_run.o: EXTRA_CFLAGS += -fopenmp
 $(B)/obj/tests/flightcheck/%.o: EXTRA_CFLAGS += -Itools -Itests \
@@ -26,11 +27,17 @@ all: $(FLIGHT_GEN)
 BENCHES += $(B)/bench/bench_flightcheck
 $(B)/obj/bench/bench_flightcheck.o: EXTRA_CFLAGS += -Itools -fopenmp
 $(B)/bench/bench_flightcheck: $(B)/obj/bench/bench_flightcheck.o \
-		$(B)/obj/tools/flightcheck.o $(STRAY_LIB) $(FDRFW_LIB)
+		$(B)/obj/tools/flightcheck.o $(B)/obj/tools/flightcheck_bg.o \
+		$(STRAY_LIB) $(FDRFW_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_BASE) -fopenmp -o $@ $< $(B)/obj/tools/flightcheck.o \
-		$(STRAY_LIB) $(FDRFW_LIB) $(STRAY_LDLIBS)
+		$(B)/obj/tools/flightcheck_bg.o $(STRAY_LIB) $(FDRFW_LIB) \
+		$(STRAY_LDLIBS)
 # The diagnosis test runs build/bin/stray (trace, flightcheck, diagnose).
 $(B)/obj/tests/flightcheck/test_flightcheck_diag.o: EXTRA_CFLAGS += \
 	-I/usr/include/cjson
 $(B)/tests/flightcheck/test_flightcheck_diag: $(STRAY_BIN)
+# The real-sky test runs make_flight and build/bin/stray.
+$(B)/obj/tests/flightcheck/test_flightcheck_sky.o: EXTRA_CFLAGS += \
+	-I/usr/include/cjson
+$(B)/tests/flightcheck/test_flightcheck_sky: $(STRAY_BIN) $(FLIGHT_GEN)

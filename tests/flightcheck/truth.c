@@ -13,6 +13,7 @@
 #include "stray/aem.h"
 #include "stray/catalogue.h"
 #include "stray/ccsds.h"
+#include "stray/colour.h"
 #include "stray/errfmt.h"
 #include "stray/frames.h"
 #include "stray/photometry_io.h"
@@ -38,6 +39,8 @@ void fc_truth_defaults(struct fc_truth *t)
 	t->gradient = 0.05;
 	t->hot_frac = 2e-4;
 	t->seed = 18;
+	t->gain_e_per_dn = STRAY_FRAMES_GAIN_E_PER_DN;
+	t->bias_dn = STRAY_FRAMES_BIAS_DN;
 }
 
 static void cross(const double a[3], const double b[3], double c[3])
@@ -96,6 +99,7 @@ int fc_truth_write(const struct fc_truth *t, const char *dir,
 	struct stray_fluxes fl;
 	struct stray_sweep_manifest mf;
 	struct stray_frame_cfg c;
+	struct stray_colour col;
 	struct stray_cat_star *cat = malloc(CAT_MAX * sizeof(*cat));
 	struct stray_star *stars = malloc(STARS_MAX * sizeof(*stars));
 	int cols = t->window > 0 ? t->window : (int)sn->pixels_x;
@@ -121,7 +125,8 @@ int fc_truth_write(const struct fc_truth *t, const char *dir,
 		rc = stray_error_set(err, STRAY_ENOMEM, "truth", "out of memory");
 		goto out;
 	}
-	if ((rc = stray_reference_fluxes(sn, &fl, err)) != STRAY_OK)
+	if ((rc = stray_reference_fluxes(sn, &fl, err)) != STRAY_OK ||
+	    (rc = stray_colour_for_qe(&col, sn->qe, err)) != STRAY_OK)
 		goto out;
 	for (i = 0; i < rows; i++)
 		det_rows[i] = (uint16_t)(row0 + i);
@@ -163,8 +168,9 @@ int fc_truth_write(const struct fc_truth *t, const char *dir,
 	stray_frame_cfg_defaults(&c, cols, rows);
 	c.col0 = col0;
 	c.row0 = row0;
-	c.dark_e = sn->dark_current_e_s * sn->t_exp_s;
 	c.read_noise_e = sn->read_noise_e;
+	c.gain_e_per_dn = t->gain_e_per_dn;
+	c.bias_dn = t->bias_dn;
 	c.gradient = t->gradient;
 	c.hot_frac = t->hot_frac;
 	c.hot_e = 800.0;
@@ -174,9 +180,12 @@ int fc_truth_write(const struct fc_truth *t, const char *dir,
 		struct stray_sweep_image im;
 		uint64_t seed = stray_frame_seed(t->seed, (uint64_t)i);
 		double e[3], alpha, theta, dot, sun_e;
-		char date[40];
+		char date[40], beg[40], end[40];
 		size_t n_cat, n_st;
 		int k;
+		static const double cyc[3] = { 1.0, 0.5, 2.0 };
+		double t_exp = sn->t_exp_s * (t->mixed_exposure ? cyc[i % 3] : 1.0);
+		double radius;
 
 		stray_q_dcm(q[i], cam.m_ih);
 		/* pointing knowledge error: a deterministic small rotation */
@@ -187,43 +196,81 @@ int fc_truth_write(const struct fc_truth *t, const char *dir,
 		cam.f_px = f_px;
 		cam.cx = 0.5 * sn->pixels_x - col0;
 		cam.cy = 0.5 * sn->pixels_y - row0;
-		stray_catalogue_cone(STRAY_CATALOGUE_SEED, cam.m_ih[2],
-				     atan(0.75 * hypot(cols, rows) / f_px) / DEG + 0.2,
-				     t->mag_max, cat, CAT_MAX, &n_cat);
+		radius = atan(0.75 * hypot(cols, rows) / f_px) / DEG + 0.2;
+		if (t->cat) {	/* the real sky at the frame's epoch */
+			stray_starcat_cone(t->cat, stray_jyear_of_tt(tt[i]),
+					   cam.m_ih[2], radius, t->mag_max, cat,
+					   CAT_MAX, &n_cat);
+			stray_colour_apply(&col, cat, n_cat);
+		} else {
+			stray_catalogue_cone(STRAY_CATALOGUE_SEED, cam.m_ih[2],
+					     radius, t->mag_max, cat, CAT_MAX,
+					     &n_cat);
+		}
 		n_st = stray_camera_stars(&cam, cat, n_cat, cols, rows, 8.0,
-					  fl.zero_mag * sn->t_exp_s * a_cs,
+					  fl.zero_mag * t_exp * a_cs,
 					  stars, STARS_MAX);
+		c.dark_e = sn->dark_current_e_s * t_exp;
 		dot = cam.m_ih[2][0] * s[0] + cam.m_ih[2][1] * s[1] +
 		      cam.m_ih[2][2] * s[2];
 		theta = acos(fmax(-1.0, fmin(1.0, dot))) / DEG;
 		alpha = stray_curve_alpha_at(&t->curve, theta);
-		sun_e = fl.sun * sn->t_exp_s * a_px;
+		sun_e = fl.sun * t_exp * a_px;
 		c.stray_e = t->scale * k_px * alpha * sun_e;	/* eq. 2.3 */
 		stray_frame_expect(&c, stars, n_st, expect);
 		stray_frame_sample(&c, expect, seed + 1, dn);
-		stray_ccsds_format_epoch(tt[i], utc, date, sizeof(date));
+		stray_ccsds_format_epoch(tt[i], t->cat ? stray_ccsds_time_system("TT") : utc,
+					 date, sizeof(date));
+		/* the real sky's frames as a camera writes them: the
+		 * exposure's start and end in TT */
+		stray_ccsds_format_epoch(tt[i] - 0.5 * t_exp,
+					 stray_ccsds_time_system("TT"), beg, sizeof(beg));
+		stray_ccsds_format_epoch(tt[i] + 0.5 * t_exp,
+					 stray_ccsds_time_system("TT"), end, sizeof(end));
 		{
 			struct stray_sweep_key key[] = {
+				{ "BIAS", STRAY_SWEEP_KEY_DOUBLE, t->bias_dn, 0,
+				  NULL, "[DN] bias level" },
+				{ "GAIN", STRAY_SWEEP_KEY_DOUBLE, t->gain_e_per_dn,
+				  0, NULL, "[e-/DN]" },
+				{ "SATURATE", STRAY_SWEEP_KEY_DOUBLE,
+				  STRAY_FRAMES_SAT_DN, 0, NULL,
+				  "[DN] the ADC's full scale" },
 				{ "DATE-OBS", STRAY_SWEEP_KEY_STRING, 0, 0, date,
-				  "UTC, mid-exposure" },
+				  "mid-exposure (UTC; TT with TIMESYS)" },
+				{ "TIMESYS", STRAY_SWEEP_KEY_STRING, 0, 0, "TT",
+				  "of DATE-BEG, DATE-END" },
+				{ "DATE-BEG", STRAY_SWEEP_KEY_STRING, 0, 0, beg,
+				  "TT, exposure start" },
+				{ "DATE-END", STRAY_SWEEP_KEY_STRING, 0, 0, end,
+				  "TT, exposure end" },
 				{ "TALPHA", STRAY_SWEEP_KEY_DOUBLE, alpha, 0, NULL,
 				  "truth: alpha_sys (not for analysis)" },
 				{ "TSCALE", STRAY_SWEEP_KEY_DOUBLE, t->scale, 0, NULL,
 				  "truth: hidden scale (not for analysis)" },
 				{ "STARSRC", STRAY_SWEEP_KEY_STRING, 0, 0,
-				  "synthetic catalogue", "stray/catalogue.h" },
+				  t->cat ? "real catalogue" : "synthetic catalogue",
+				  "stray/catalogue.h, stray/starcat.h" },
 			};
+			/* the synthetic sky's frames keep DATE-OBS in UTC only */
+			size_t n_key = sizeof(key) / sizeof(key[0]);
 
 			memset(&fr, 0, sizeof(fr));
 			fr.type = STRAY_SWEEP_FULL;
-			fr.exptime_s = sn->t_exp_s;
+			fr.exptime_s = t_exp;
 			fr.ndtrans = 1.0;
 			fr.seqnum = i;
 			fr.sat_dn = STRAY_FRAMES_SAT_DN;
 			fr.full_frame = rows == (int)sn->pixels_y;
 			fr.instrument = "flight (synthetic)";
 			fr.extra = key;
-			fr.n_extra = sizeof(key) / sizeof(key[0]);
+			if (!t->cat) {	/* DATE-OBS (UTC) only */
+				key[4] = key[n_key - 3];	/* over TIMESYS, */
+				key[5] = key[n_key - 2];	/* DATE-BEG, */
+				key[6] = key[n_key - 1];	/* DATE-END */
+				n_key -= 3;
+			}
+			fr.n_extra = n_key;
 			im.n_rows = (size_t)rows;
 			im.n_cols = (size_t)cols;
 			im.col0 = col0;

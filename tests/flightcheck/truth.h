@@ -15,6 +15,7 @@
 
 #include "stray/curve.h"
 #include "stray/error.h"
+#include "stray/starcat.h"
 
 struct fc_truth {
 	struct stray_curve_view curve;	/* alpha_sys(theta), truth */
@@ -25,6 +26,12 @@ struct fc_truth {
 	double point_err_arcsec;	/* AEM knowledge error, rms per axis */
 	double gradient, hot_frac;	/* truth-only effects of frames.h */
 	uint64_t seed;
+	/* the real sky (issue 24): a catalogue (NULL: the synthetic sky),
+	 * rendered at each frame's epoch with the stars' colours; the
+	 * frames' times then written as TIMESYS = TT, DATE-BEG, DATE-END */
+	const struct stray_starcat *cat;
+	int mixed_exposure;	/* EXPTIME cycles 1, 0.5, 2 x the sensor's */
+	double gain_e_per_dn, bias_dn;	/* written as GAIN, BIAS */
 };
 
 void fc_truth_defaults(struct fc_truth *t);

@@ -26,6 +26,10 @@
 struct stray_cat_star {
 	double ra_deg, dec_deg, mag;
 	double u[3];		/* unit vector, inertial (EME2000) */
+	double b_v;		/* B-V (0 in the synthetic sky) */
+	double colour;		/* photo-e- over those of a B-V = 0 star of
+				 * the same mag in the sensor's band (1 in
+				 * the synthetic sky; stray/colour.h) */
 };
 
 /*
@@ -53,7 +57,7 @@ int stray_camera_project(const struct stray_camera *c, const double u[3],
 /*
  * Project the catalogue stars onto a cols x rows frame (margin px beyond
  * the edges kept), as rendered stars with photons f0_e 10^(-0.4 m)
- * (eq. 2.2, 2.12).  Returns the number written (at most max).
+ * times the star's colour factor (eq. 2.2, 2.12).  Returns the number written (at most max).
  */
 size_t stray_camera_stars(const struct stray_camera *c,
 			  const struct stray_cat_star *cat, size_t n_cat,

@@ -102,6 +102,18 @@ int stray_sweep_manifest_load(const char *dir,
 			      struct stray_sweep_manifest *m,
 			      struct stray_error *err);
 
+/* A folder of flight frames without manifest.csv (issue 24): every
+ * `*.fits`, `*.fit`, `*.fts` (not hidden) as a FULL row with no hash
+ * (sha256 ""), in name order; at most STRAY_SWEEP_FLIGHT_FILES_MAX. */
+#define STRAY_SWEEP_FLIGHT_FILES_MAX 100000
+int stray_sweep_flight_list(const char *dir, struct stray_sweep_manifest *m,
+			    struct stray_error *err);
+/* The same for a list of frame files, in the order given (m->dir "":
+ * each row's file is its path). */
+int stray_sweep_flight_files(char *const *paths, size_t n,
+			     struct stray_sweep_manifest *m,
+			     struct stray_error *err);
+
 /* Free the rows (and release a writer's lock). */
 void stray_sweep_manifest_free(struct stray_sweep_manifest *m);
 
@@ -238,6 +250,7 @@ struct stray_sweep_fits {
 	int mem_borrowed;	/* mem is the caller's: not freed */
 	size_t data_len;	/* bytes of the file in mem */
 	int bitpix, equiv_bitpix;
+	int flight;		/* opened as a flight frame: no lab keyword */
 };
 
 /* Open and read the header; errors name the file and the keyword.  The
@@ -257,6 +270,15 @@ int stray_sweep_fits_open_mem(const char *name, const void *data,
 int stray_sweep_fits_open_buf(const char *name, struct stray_sweep_buf *b,
 			      struct stray_sweep_fits *f,
 			      struct stray_error *err);
+
+/* As stray_sweep_fits_open_buf for a frame as a camera in orbit writes
+ * it (issue 24): FRAMETYP (FULL when absent), ANGLE (0), NDTRANS (1),
+ * SEQNUM (0) and SATLEVEL (65535) are optional; EXPTIME and the image
+ * rules are those of the lab frame. */
+int stray_sweep_fits_open_flight_buf(const char *name,
+				     struct stray_sweep_buf *b,
+				     struct stray_sweep_fits *f,
+				     struct stray_error *err);
 
 /* Read all n_rows * n_cols pixels into pix (row-major). */
 int stray_sweep_fits_read(struct stray_sweep_fits *f, uint16_t *pix,
