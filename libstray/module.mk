@@ -50,6 +50,10 @@ install-libstray: $(STRAY_LIB) $(STRAY_CORE_LIB) libstray/stray.pc.in
 	install -m 644 libstray/include/stray/*.h $(DESTDIR)$(PREFIX)/include/stray/
 	sed -e 's|@PREFIX@|$(PREFIX)|' libstray/stray.pc.in \
 		> $(DESTDIR)$(PREFIX)/lib/pkgconfig/stray.pc
+	# the real star catalogue (--catalogue) and its provenance
+	install -d $(DESTDIR)$(PREFIX)/share/straylight
+	install -m 644 libstray/data/hip2_hp6.5.dat libstray/data/PROVENANCE.md \
+		$(DESTDIR)$(PREFIX)/share/straylight/
 install: install-libstray
 
 # Benchmarks of the physics core (make bench).
