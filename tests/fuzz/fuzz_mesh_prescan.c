@@ -6,40 +6,15 @@
  * second byte puts the limit near the counts a small input reaches.
  */
 #define _GNU_SOURCE
-#include <stddef.h>
-#include <stdint.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-#include <unistd.h>
-
+#include "fuzz_mesh.h"
 #include "stray/errfmt.h"
 #include "tracer/mesh_import.h"
 
-static char dir[64];
-
-static void cleanup(void)
-{
-	char path[128];
-
-	snprintf(path, sizeof(path), "%s/m.obj", dir);
-	unlink(path);
-	snprintf(path, sizeof(path), "%s/m.stl", dir);
-	unlink(path);
-	rmdir(dir);
-}
-
 int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
-	const char *tmp = getenv("TMPDIR");
-
 	(void)argc;
 	(void)argv;
-	snprintf(dir, sizeof(dir), "%s/fuzz_prescan.XXXXXX",
-		 tmp && strlen(tmp) < 40 ? tmp : "/tmp");
-	if (!mkdtemp(dir))
-		abort();
-	atexit(cleanup);
+	fuzz_mesh_init("fuzz_prescan");
 	return 0;
 }
 
@@ -47,17 +22,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
 	struct stray_error err;
 	char path[128], line[1024];
-	FILE *f;
 
 	if (size < 2)
 		return 0;
-	snprintf(path, sizeof(path), "%s/m.%s", dir, data[0] & 1 ? "stl"
-								 : "obj");
-	if (!(f = fopen(path, "wb")))
-		abort();
-	if (size > 2 && fwrite(data + 2, 1, size - 2, f) != size - 2)
-		abort();
-	fclose(f);
+	fuzz_mesh_write(data + 2, size - 2, data[0], path, sizeof(path));
 	stray_error_clear(&err);
 	if (tracer_mesh_prescan(path, TRACER_MESH_TRI_MAX - data[1], &err))
 		stray_error_format(&err, line, sizeof(line));
