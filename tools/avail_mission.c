@@ -65,8 +65,9 @@ int mission_load(const struct mission_args *a, struct mission *m,
 		rc = stray_aem_read(a->aem, &m->aem, err);
 	if (rc != STRAY_OK || (rc = load_heads(a->heads, m, err)) != STRAY_OK)
 		return rc;
-	m->t0 = fmax(m->oem.t[0], m->aem.t[0]);
-	t1 = fmin(m->oem.t[m->oem.n - 1], m->aem.t[m->aem.n - 1]);
+	/* the span the segments cover (a hole inside is reported, not flown) */
+	m->t0 = fmax(m->oem.cover.t0, m->aem.cover.t0);
+	t1 = fmin(m->oem.cover.t1, m->aem.cover.t1);
 	t1 = fmin(t1, m->t0 + a->hours * 3600.0);
 	if (!(t1 > m->t0))
 		return stray_error_at(err, STRAY_EINVAL, a->aem, 0, "START_TIME",
