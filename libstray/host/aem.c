@@ -258,11 +258,12 @@ static int data_line(struct aem_parse *p, const struct stray_kvn_line *l)
 	int k, e, nf = aem_type_fields(p->type);
 
 	if (l->n_field != nf + 1) {
-		char want[64];
+		char got[64];
 
-		snprintf(want, sizeof(want), "not an epoch and %d numbers (%s)",
-			 nf, seg(p)->kind);
-		return fail(p, "data", want, l->field[0]);
+		/* the reason must outlive this call: the counts go in the text */
+		snprintf(got, sizeof(got), "%d numbers; %s takes %d",
+			 l->n_field - 1, seg(p)->kind, nf);
+		return fail(p, "data", "not an epoch and the attitude type's numbers", got);
 	}
 	if ((e = stray_ccsds_epoch(l->field[0], a->time_system, &t)) != 0)
 		return fail(p, "epoch", e == -2 ?

@@ -97,11 +97,13 @@ int oem_cov_line(struct oem_cov *cv, const struct stray_kvn_line *l,
 		return bad(err, file, line, "covariance",
 			   "a 7th row: the matrix is 6x6", l->field[0]);
 	if (l->n_field != cv->row + 1) {
-		char want[80];
+		char got[48];
 
-		snprintf(want, sizeof(want), "row %d holds %d numbers, not %d",
-			 cv->row + 1, cv->row + 1, l->n_field);
-		return bad(err, file, line, "covariance", want, l->field[0]);
+		/* the reason must outlive this call: the count goes in the text */
+		snprintf(got, sizeof(got), "row %d of %d numbers", cv->row + 1,
+			 l->n_field);
+		return bad(err, file, line, "covariance",
+			   "row k of the lower triangle holds k numbers", got);
 	}
 	for (k = 0; k < l->n_field; k++) {
 		double x;
