@@ -53,6 +53,10 @@ int mission_load(const struct mission_args *a, struct mission *m,
 	size_t h;
 	int rc;
 
+	/* Earth orientation first: the readers convert Earth-fixed frames
+	 * as they read */
+	if (a->iers && (rc = stray_ccsds_eop_load(a->iers, err)) != STRAY_OK)
+		return rc;
 	if (m->oem_text)	/* just written: fly that, not the disk */
 		rc = stray_oem_parse(m->oem_text, m->oem_len, a->oem, &m->oem, err);
 	else
@@ -114,6 +118,7 @@ void mission_free(struct mission *m)
 
 	stray_oem_free(&m->oem);
 	stray_aem_free(&m->aem);
+	stray_ccsds_eop_clear();
 	free(m->oem_text);
 	free(m->aem_text);
 	for (h = 0; h < MISSION_HEADS_MAX; h++) {
