@@ -214,12 +214,67 @@ static char *euler_aem(void)
 	return path;
 }
 
+/* An IERS finals table (fixed columns) with a constant UT1 - UTC. */
+static char *finals(double dut1)
+{
+	char *path = in_dir("finals.txt"), line[80], num[16];
+	FILE *f = fopen(path, "w");
+	int mjd;
+
+	for (mjd = 61200; mjd < 61220; mjd++) {
+		memset(line, ' ', 78);
+		line[78] = '\0';
+		snprintf(num, sizeof(num), "%8.2f", (double)mjd);
+		memcpy(line + 7, num, 8);
+		snprintf(num, sizeof(num), "%9.6f", 0.0);
+		memcpy(line + 18, num, 9);
+		memcpy(line + 37, num, 9);
+		snprintf(num, sizeof(num), "%10.7f", dut1);
+		memcpy(line + 58, num, 10);
+		fprintf(f, "%s\n", line);
+	}
+	fclose(f);
+	return path;
+}
+
 static void test_missions_files_fly(void **state)
 {
+	char *itrf;
+	cJSON *j, *k0;
+
 	(void)state;
 	base = fly(d_oem, d_aem);
 	/* an orbit in ITRF from a GNSS receiver: was refused on REF_FRAME */
-	same_as_base(fly(itrf_oem(), d_aem));
+	itrf = itrf_oem();
+	same_as_base(fly(itrf, d_aem));
+	/* with an IERS table of UT1 - UTC = 0.5 s the Earth has turned
+	 * 0.5 s further: the first state moves ~0.5 x 7.29e-5 x 6928 km */
+	STRAY("--json", "ccsds", "check", itrf, "--iers", finals(0.5));
+	if (r.status != 0)
+		fail_msg("status %d: %s", r.status, r.err);
+	j = cJSON_Parse(r.out);
+	assert_non_null(j);
+	STRAY("--json", "ccsds", "check", itrf);
+	k0 = cJSON_Parse(r.out);
+	assert_non_null(k0);
+	{
+		const cJSON *a = cJSON_GetObjectItem(cJSON_GetObjectItem(j, "first"), "r_km");
+		const cJSON *b = cJSON_GetObjectItem(cJSON_GetObjectItem(k0, "first"), "r_km");
+		double d = 0.0;
+		int k;
+
+		for (k = 0; k < 3; k++)
+			d += pow(cJSON_GetArrayItem(a, k)->valuedouble -
+				 cJSON_GetArrayItem(b, k)->valuedouble, 2);
+		d = sqrt(d);
+		if (!(d > 0.2 && d < 0.26))
+			fail_msg("the table moved the first state by %g km", d);
+	}
+	cJSON_Delete(j);
+	cJSON_Delete(k0);
+	STRAY("availability", "--oem", itrf, "--aem", d_aem, "--heads", heads,
+	      "--iers", in_dir("nope.txt"));
+	expect_bad("nope.txt");
 	/* attitude as AEM 2.0 Euler angles: was refused on ATTITUDE_TYPE */
 	same_as_base(fly(d_oem, euler_aem()));
 }
