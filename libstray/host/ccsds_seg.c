@@ -122,7 +122,8 @@ int stray_ccsds_cover_build(struct stray_ccsds_cover *c, const double *t,
 			*bad = i;
 			return -1;
 		}
-		s->gap_s = stray_ccsds_gap_s(t + s->lo, s->n, nodes);
+		s->gap_s = stray_ccsds_gap_s(t + s->lo, s->n,
+					     s->nodes ? s->nodes : nodes);
 		if (s->gap_s < 0.0)
 			return -2;
 	}

@@ -115,12 +115,14 @@ static int meta_key(struct oem_parse *p, const char *k, const char *v)
 		o->cover.seg[o->cover.n_seg - 1].time_system = ts;
 		p->have_ts = 1;
 	} else if (strcmp(k, "INTERPOLATION") == 0) {
+		int *in = &o->cover.seg[o->cover.n_seg - 1].interp;
+
 		if (stray_kvn_eq(v, "LAGRANGE"))
-			o->interp = STRAY_INTERP_LAGRANGE;
+			*in = STRAY_INTERP_LAGRANGE;
 		else if (stray_kvn_eq(v, "HERMITE"))
-			o->interp = STRAY_INTERP_HERMITE;
+			*in = STRAY_INTERP_HERMITE;
 		else if (stray_kvn_eq(v, "LINEAR"))
-			o->interp = STRAY_INTERP_LINEAR;
+			*in = STRAY_INTERP_LINEAR;
 		else
 			return fail(p, k, "not LAGRANGE, HERMITE or LINEAR", v);
 		p->have_interp = 1;
@@ -130,7 +132,7 @@ static int meta_key(struct oem_parse *p, const char *k, const char *v)
 		if (!stray_kvn_number(v, &d) || d != floor(d) || d < 1 ||
 		    d > STRAY_OEM_DEGREE_MAX)
 			return fail(p, k, "not a whole degree in 1..15", v);
-		o->degree = (int)d;
+		o->cover.seg[o->cover.n_seg - 1].degree = (int)d;
 	} else if (strcmp(k, "OBJECT_ID") != 0 &&
 		   strcmp(k, "REF_FRAME_EPOCH") != 0) {
 		return fail(p, k, "not an OEM metadata keyword", k);
@@ -277,6 +279,9 @@ static int one_line(void *ctx, const struct stray_kvn_line *l)
 				return stray_error_set(p->err, STRAY_ENOMEM, "segments", NULL);
 			s->lo = p->oem->n;
 			s->line = p->line;
+			/* without INTERPOLATION: Hermite of degree 5 */
+			s->interp = STRAY_INTERP_HERMITE;
+			s->degree = 5;
 			p->state = ST_META;
 			p->segments++;
 			p->have_frame = p->have_ts = p->have_center = 0;
@@ -319,24 +324,29 @@ void stray_oem_free(struct stray_oem *oem)
 	memset(oem, 0, sizeof(*oem));
 }
 
-/* Records the interpolation takes around an epoch. */
-static size_t nodes(const struct stray_oem *o)
+/* Records a segment's interpolation takes around an epoch (each segment
+ * is interpolated as its own metadata say). */
+static size_t nodes(const struct stray_ccsds_seg *s)
 {
 	size_t m;
 
-	if (o->interp == STRAY_INTERP_HERMITE) {
-		m = ((size_t)o->degree + 2) / 2;
+	if (s->interp == STRAY_INTERP_HERMITE) {
+		m = ((size_t)s->degree + 2) / 2;
 		return m < 2 ? 2 : m > HERMITE_NODES_MAX ? HERMITE_NODES_MAX : m;
 	}
-	return o->interp == STRAY_INTERP_LINEAR ? 2 : (size_t)o->degree + 1;
+	return s->interp == STRAY_INTERP_LINEAR ? 2 : (size_t)s->degree + 1;
 }
 
 /* The segments' spans and gap rules once every record is in. */
 static int oem_cover(struct oem_parse *p)
 {
 	struct stray_oem *o = p->oem;
-	size_t bad = 0;
-	int rc = stray_ccsds_cover_build(&o->cover, o->t, nodes(o), &bad);
+	size_t bad = 0, i;
+	int rc;
+
+	for (i = 0; i < o->cover.n_seg; i++)
+		o->cover.seg[i].nodes = nodes(&o->cover.seg[i]);
+	rc = stray_ccsds_cover_build(&o->cover, o->t, 2, &bad);
 
 	if (rc == -2)
 		return stray_error_set(p->err, STRAY_ENOMEM, "records", NULL);
@@ -352,6 +362,8 @@ static int oem_cover(struct oem_parse *p)
 			    "a segment without records", at);
 	}
 	o->gap_s = o->cover.seg[0].gap_s;
+	o->interp = o->cover.seg[0].interp;
+	o->degree = o->cover.seg[0].degree;
 	return STRAY_OK;
 }
 
@@ -473,16 +485,16 @@ int stray_oem_state(const struct stray_oem *o, double t, double r[3],
 		    double v[3])
 {
 	double x[STRAY_OEM_DEGREE_MAX + 1];
-	size_t m = nodes(o), k, j, lo, hi;
-	int c;
-
 	long sg = stray_ccsds_cover_find(&o->cover, t);
 	const struct stray_ccsds_seg *s;
+	size_t m, k, j, lo, hi;
+	int c;
 
 	if (o->n < 2 || sg < 0)
 		return STRAY_ERANGE;
-	/* the owning segment's records only */
+	/* the owning segment's records only, as its metadata say */
 	s = &o->cover.seg[sg];
+	m = s->nodes;
 	if (stray_ccsds_piece(o->t + s->lo, s->n, s->gap_s, t, m, &lo, &hi) != 0)
 		return STRAY_ERANGE;
 	lo += s->lo;
@@ -497,7 +509,7 @@ int stray_oem_state(const struct stray_oem *o, double t, double r[3],
 	k = lo + window(o->t + lo, hi - lo + 1, t, m);
 	for (j = 0; j < m; j++)
 		x[j] = o->t[k + j] - o->t[k];
-	if (o->interp != STRAY_INTERP_HERMITE) {
+	if (s->interp != STRAY_INTERP_HERMITE) {
 		lagrange(x, m, t - o->t[k], &o->r[k][0], 3, 3, r);
 		lagrange(x, m, t - o->t[k], &o->v[k][0], 3, 3, v);
 		return STRAY_OK;

@@ -533,6 +533,27 @@ static void test_segments(void **state)
 		"2026-01-01T00:03:00 7000 0 0 0 7.5 0\n", &o, msg), STRAY_OK);
 	assert_int_equal(stray_oem_state(&o, t0 + 90.0, r, v), STRAY_ERANGE);
 	stray_oem_free(&o);
+	/* each segment interpolated as its own metadata say: LINEAR on a
+	 * parabola, then LAGRANGE 3, exact on a cubic */
+	assert_int_equal(parse_oem("CCSDS_OEM_VERS = 2.0\n"
+		"META_START\nCENTER_NAME = EARTH\nREF_FRAME = EME2000\n"
+		"TIME_SYSTEM = UTC\nINTERPOLATION = LINEAR\nMETA_STOP\n"
+		"2026-01-01T00:00:00 7000 0 0 0 7.5 0\n"
+		"2026-01-01T00:01:00 7010 0 0 0 7.5 0\n"
+		"2026-01-01T00:02:00 7040 0 0 0 7.5 0\n"
+		"META_START\nCENTER_NAME = EARTH\nREF_FRAME = EME2000\n"
+		"TIME_SYSTEM = UTC\nINTERPOLATION = LAGRANGE\n"
+		"INTERPOLATION_DEGREE = 3\nMETA_STOP\n"
+		"2026-01-01T00:03:00 7027 0 0 0 7.5 0\n"
+		"2026-01-01T00:04:00 7064 0 0 0 7.5 0\n"
+		"2026-01-01T00:05:00 7125 0 0 0 7.5 0\n"
+		"2026-01-01T00:06:00 7216 0 0 0 7.5 0\n"
+		"2026-01-01T00:07:00 7343 0 0 0 7.5 0\n", &o, msg), STRAY_OK);
+	assert_int_equal(stray_oem_state(&o, t0 + 30.0, r, v), STRAY_OK);
+	assert_near(r[0], 7005.0, 1e-9);	/* linear, not the parabola's 7002.5 */
+	assert_int_equal(stray_oem_state(&o, t0 + 210.0, r, v), STRAY_OK);
+	assert_near(r[0], 7000.0 + 3.5 * 3.5 * 3.5, 1e-9);
+	stray_oem_free(&o);
 	/* a useable span outside the segment's records is refused */
 	assert_int_equal(parse_oem("CCSDS_OEM_VERS = 2.0\n"
 		SEG_OEM("USEABLE_STOP_TIME = 2026-01-01T00:09:00\n")

@@ -159,6 +159,8 @@ struct stray_ccsds_seg {
 	double u0, u1;		/* useable span, TT s (set, or its records') */
 	int have_u0, have_u1;
 	double gap_s;		/* its gap rule (stray_ccsds_gap_s) */
+	size_t nodes;		/* its interpolation window, 0: the build's */
+	int interp, degree;	/* the OEM's INTERPOLATION of this segment */
 	int frame;		/* enum stray_ccsds_frame, as the file says */
 	int time_system;
 	long line;		/* its META_START */
@@ -184,7 +186,7 @@ struct stray_ccsds_seg *stray_ccsds_cover_add(struct stray_ccsds_cover *c);
 
 /*
  * Once every record is read: each segment's gap rule for an
- * interpolation window of `nodes` records, its useable span checked
+ * interpolation window of its `nodes` records (`nodes` where unset), its useable span checked
  * against its records (-1 with *bad the segment that has a useable span
  * outside its records or empty), the owned pieces.  0, -1 as said, -2
  * out of memory.
