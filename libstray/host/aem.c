@@ -32,6 +32,7 @@ struct aem_parse {
 	int have_ts, ts;
 	int first;		/* no line read yet */
 	int data_done;		/* this segment's DATA_STOP was read */
+	struct stray_ccsds_frame_cache fc;	/* precession-nutation grid */
 	char when[2][48];	/* USEABLE_START_TIME, USEABLE_STOP_TIME */
 	long when_line[2];
 };
@@ -243,7 +244,7 @@ static void to_q_ib(struct aem_parse *p, const double *x, double t,
 		transpose(m);
 	if (p->frame_a == FRAME_BODY)	/* external is B: body -> external */
 		transpose(m);
-	stray_ccsds_frame_dcm(ext, t, r, w);
+	stray_ccsds_frame_dcm_cached(&p->fc, ext, t, r, w);
 	for (i = 0; i < 3; i++)
 		for (j = 0; j < 3; j++)
 			for (o[i][j] = 0.0, k = 0; k < 3; k++)

@@ -36,6 +36,7 @@ struct oem_parse {
 	int ts;			/* this segment's time system */
 	long cov_line;		/* the open COVARIANCE_START's line */
 	struct oem_cov cov;
+	struct stray_ccsds_frame_cache fc;	/* precession-nutation grid */
 	/* epochs of the metadata, read at META_STOP (TIME_SYSTEM may come
 	 * after them) */
 	char when[4][48];
@@ -197,7 +198,7 @@ static int data_line(struct oem_parse *p, const struct stray_kvn_line *l)
 		return STRAY_ENOMEM;
 	o->t[o->n] = t;
 	/* an Earth-fixed or of-date state to inertial, once */
-	stray_ccsds_to_inertial(p->frame, t, x, x + 3);
+	stray_ccsds_to_inertial_cached(&p->fc, p->frame, t, x, x + 3);
 	for (k = 0; k < 3; k++) {
 		o->r[o->n][k] = x[k];
 		o->v[o->n][k] = x[k + 3];
