@@ -161,7 +161,9 @@ void stray_ccsds_frame_dcm_cached(struct stray_ccsds_frame_cache *c,
 		return;
 	/* UT1 for the Earth's rotation: UTC from TAI, then the table's
 	 * UT1 - UTC (zero without one) */
-	if (eraTaiutc(J2000_JD, tai2, &u1, &u2) != 0) {
+	/* ERFA's status 1 is a "dubious year", past its release's leap
+	 * table by 5 years (2028 for ERFA 2.0): its values still hold */
+	if (eraTaiutc(J2000_JD, tai2, &u1, &u2) < 0) {
 		u1 = J2000_JD;
 		u2 = tai2;
 	}
