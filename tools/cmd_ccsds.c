@@ -128,10 +128,11 @@ static int check_oem(const char *path, const char *buf, size_t len,
 		return rc;
 	*out = common(path, "OEM", o.version, o.object_name, o.time_system,
 		      &o.cover, o.n, o.t);
-	stray_oem_state(&o, o.cover.t0, r, v);
-	add_state(*out, "first", o.cover.t0, o.time_system, r, 3, v);
-	stray_oem_state(&o, o.cover.t1, r, v);
-	add_state(*out, "last", o.cover.t1, o.time_system, r, 3, v);
+	/* a useable span may open inside a gap: then there is no state */
+	if (stray_oem_state(&o, o.cover.t0, r, v) == STRAY_OK)
+		add_state(*out, "first", o.cover.t0, o.time_system, r, 3, v);
+	if (stray_oem_state(&o, o.cover.t1, r, v) == STRAY_OK)
+		add_state(*out, "last", o.cover.t1, o.time_system, r, 3, v);
 	stray_oem_free(&o);
 	return STRAY_OK;
 }
@@ -147,10 +148,10 @@ static int check_aem(const char *path, const char *buf, size_t len,
 		return rc;
 	*out = common(path, "AEM", a.version, a.object_name, a.time_system,
 		      &a.cover, a.n, a.t);
-	stray_aem_attitude(&a, a.cover.t0, q);
-	add_state(*out, "first", a.cover.t0, a.time_system, q, 4, NULL);
-	stray_aem_attitude(&a, a.cover.t1, q);
-	add_state(*out, "last", a.cover.t1, a.time_system, q, 4, NULL);
+	if (stray_aem_attitude(&a, a.cover.t0, q) == STRAY_OK)
+		add_state(*out, "first", a.cover.t0, a.time_system, q, 4, NULL);
+	if (stray_aem_attitude(&a, a.cover.t1, q) == STRAY_OK)
+		add_state(*out, "last", a.cover.t1, a.time_system, q, 4, NULL);
 	stray_aem_free(&a);
 	return STRAY_OK;
 }
@@ -170,6 +171,10 @@ static void print_state(const cJSON *o, const char *name)
 	const cJSON *s = cJSON_GetObjectItem(o, name), *x;
 	const cJSON *r = cJSON_GetObjectItem(s, "r_km");
 
+	if (!s) {
+		printf("  %-5s none: the span's end lies in a gap\n", name);
+		return;
+	}
 	printf("  %-5s %s  ", name, str(s, "epoch"));
 	if (r) {
 		const cJSON *v = cJSON_GetObjectItem(s, "v_km_s");

@@ -353,6 +353,30 @@ static void test_check_prints_what_was_read(void **state)
 	assert_true(cJSON_IsTrue(cJSON_GetObjectItem(cJSON_GetArrayItem(
 		cJSON_GetObjectItem(j, "segments"), 0), "converted_to_inertial")));
 	cJSON_Delete(j);
+	/* a useable span opening inside a gap has no first state: said so,
+	 * not printed from memory never written */
+	{
+		char *g = in_dir("gapstart.oem");
+		FILE *f = fopen(g, "w");
+
+		fputs("CCSDS_OEM_VERS = 2.0\nMETA_START\nCENTER_NAME = EARTH\n"
+		      "REF_FRAME = EME2000\nTIME_SYSTEM = UTC\nINTERPOLATION = LINEAR\n"
+		      "USEABLE_START_TIME = 2026-01-01T00:00:30\nMETA_STOP\n"
+		      "2026-01-01T00:00:00 7000 0 0 0 7.5 0\n"
+		      "2026-01-01T01:00:00 7000 0 0 0 7.5 0\n"
+		      "2026-01-01T01:01:00 7000 0 0 0 7.5 0\n"
+		      "2026-01-01T01:02:00 7000 0 0 0 7.5 0\n", f);
+		fclose(f);
+		STRAY("ccsds", "check", g);
+		assert_int_equal(r.status, 0);
+		assert_non_null(strstr(r.out, "first none"));
+		STRAY("--json", "ccsds", "check", g);
+		j = cJSON_Parse(r.out);
+		assert_non_null(j);
+		assert_null(cJSON_GetObjectItem(j, "first"));
+		assert_non_null(cJSON_GetObjectItem(j, "last"));
+		cJSON_Delete(j);
+	}
 	/* refusals: one line naming the file and line, exit 2 */
 	STRAY("ccsds", "check", VEC "AEM-inconsistent-direction.txt");
 	expect_bad("AEM-inconsistent-direction.txt:14: ATTITUDE_DIR");
