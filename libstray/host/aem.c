@@ -33,12 +33,14 @@ struct aem_parse {
 	int first;		/* no line read yet */
 	int data_done;		/* this segment's DATA_STOP was read */
 	struct stray_ccsds_frame_cache fc;	/* precession-nutation grid */
-	char when[2][48];	/* USEABLE_START_TIME, USEABLE_STOP_TIME */
-	long when_line[2];
+	/* USEABLE_START_TIME, USEABLE_STOP_TIME, START_TIME, STOP_TIME, read
+	 * at META_STOP (TIME_SYSTEM may come after them) */
+	char when[4][48];
+	long when_line[4];
 };
 
-static const char *const when_key[2] = { "USEABLE_START_TIME",
-					 "USEABLE_STOP_TIME" };
+static const char *const when_key[4] = { "USEABLE_START_TIME",
+	"USEABLE_STOP_TIME", "START_TIME", "STOP_TIME" };
 
 static int fail(struct aem_parse *p, const char *key, const char *why,
 		const char *text)
@@ -113,7 +115,7 @@ static int meta_key(struct aem_parse *p, const char *k, const char *v)
 
 	if (version_key(p, k) != STRAY_OK)
 		return STRAY_EPARSE;
-	for (i = 0; i < 2; i++)
+	for (i = 0; i < 4; i++)
 		if (strcmp(k, when_key[i]) == 0) {
 			snprintf(p->when[i], sizeof(p->when[i]), "%s", v);
 			p->when_line[i] = p->line;
@@ -159,8 +161,6 @@ static int meta_key(struct aem_parse *p, const char *k, const char *v)
 		p->have_seq = 1;
 	} else if (strcmp(k, "OBJECT_ID") != 0 &&
 		   strcmp(k, "CENTER_NAME") != 0 &&
-		   strcmp(k, "START_TIME") != 0 &&
-		   strcmp(k, "STOP_TIME") != 0 &&
 		   strcmp(k, "INTERPOLATION_METHOD") != 0 &&
 		   strcmp(k, "INTERPOLATION_DEGREE") != 0 &&
 		   strcmp(k, "RATE_FRAME") != 0 &&
@@ -196,7 +196,7 @@ static int meta_stop(struct aem_parse *p)
 		return fail(p, "QUATERNION_TYPE", "missing from the metadata", "");
 	if (!p->have_seq && aem_type_is_euler(p->type))
 		return fail(p, "EULER_ROT_SEQ", "missing from the metadata", "");
-	for (i = 0; i < 2; i++) {
+	for (i = 0; i < 4; i++) {
 		if (!p->when[i][0])
 			continue;
 		if ((e = stray_ccsds_epoch(p->when[i], p->ts, &t)) != 0)
@@ -208,7 +208,7 @@ static int meta_stop(struct aem_parse *p)
 		if (i == 0) {
 			s->u0 = t;
 			s->have_u0 = 1;
-		} else {
+		} else if (i == 1) {
 			s->u1 = t;
 			s->have_u1 = 1;
 		}

@@ -14,6 +14,7 @@
 
 #include <cmocka.h>
 
+#include "stray/aem.h"
 #include "stray/ccsds.h"
 #include "stray/errfmt.h"
 #include "stray/oem.h"
@@ -112,6 +113,21 @@ static void test_segments(void **state)
 		"2026-01-01T00:00:00 7000 0 0 0 7.5 0\n"
 		"2026-01-01T00:01:00 7000 0 0 0 7.5 0\n", &o, msg), STRAY_EPARSE);
 	assert_non_null(strstr(msg, "useable span outside"));
+	/* START_TIME is an epoch too, in the AEM as in the OEM */
+	{
+		struct stray_aem a;
+		struct stray_error err;
+		const char *t = "CCSDS_AEM_VERS = 2.0\nMETA_START\n"
+			"START_TIME = 2026-02-30T00:00:00\nREF_FRAME_A = EME2000\n"
+			"REF_FRAME_B = SC_BODY_1\nTIME_SYSTEM = UTC\n"
+			"ATTITUDE_TYPE = QUATERNION\nMETA_STOP\n";
+
+		stray_error_clear(&err);
+		assert_int_equal(stray_aem_parse(t, strlen(t), "t.aem", &a, &err),
+				 STRAY_EPARSE);
+		assert_int_equal(err.line, 3);
+		assert_string_equal(err.column, "START_TIME");
+	}
 }
 
 /* Orekit's covariance refusals (OEM-too-few/too-many-covariance-
