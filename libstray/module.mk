@@ -12,7 +12,7 @@ STRAY_SWEEP_SRC := $(wildcard libstray/sweep/*.c)
 STRAY_SWEEP_OBJ := $(STRAY_SWEEP_SRC:%.c=$(B)/obj/%.o)
 STRAY_LIB := $(B)/lib/libstray.a
 STRAY_CORE_LIB := $(B)/lib/libstray_core.a
-STRAY_LDLIBS := -lcfitsio -lcrypto -lcsv -lcjson -lm
+STRAY_LDLIBS := -lcfitsio -lcrypto -lcsv -lcjson -lerfa -lm
 STRAY_DATA := $(wildcard libstray/data/*.csv)
 
 # The core must build freestanding: no hosted headers, no builtins assumed.

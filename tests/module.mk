@@ -45,7 +45,7 @@ FUZZ_CFLAGS = -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined \
 
 build/fuzz/%: tests/fuzz/%.c $(FUZZ_LIB_SRC)
 	@mkdir -p $(dir $@)
-	$(CLANG) $(FUZZ_CFLAGS) -o $@ $^ -lcsv -lcjson -lm
+	$(CLANG) $(FUZZ_CFLAGS) -o $@ $^ -lcsv -lcjson -lerfa -lm
 
 # The sweep manifest alone (fuzz_reduce_input shares its time with FITS).
 build/fuzz/fuzz_sweep_manifest: tests/fuzz/fuzz_sweep_manifest.c \

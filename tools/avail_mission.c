@@ -53,6 +53,10 @@ int mission_load(const struct mission_args *a, struct mission *m,
 	size_t h;
 	int rc;
 
+	/* Earth orientation first: the readers convert Earth-fixed frames
+	 * as they read */
+	if (a->iers && (rc = stray_ccsds_eop_load(a->iers, err)) != STRAY_OK)
+		return rc;
 	if (m->oem_text)	/* just written: fly that, not the disk */
 		rc = stray_oem_parse(m->oem_text, m->oem_len, a->oem, &m->oem, err);
 	else
@@ -65,8 +69,9 @@ int mission_load(const struct mission_args *a, struct mission *m,
 		rc = stray_aem_read(a->aem, &m->aem, err);
 	if (rc != STRAY_OK || (rc = load_heads(a->heads, m, err)) != STRAY_OK)
 		return rc;
-	m->t0 = fmax(m->oem.t[0], m->aem.t[0]);
-	t1 = fmin(m->oem.t[m->oem.n - 1], m->aem.t[m->aem.n - 1]);
+	/* the span the segments cover (a hole inside is reported, not flown) */
+	m->t0 = fmax(m->oem.cover.t0, m->aem.cover.t0);
+	t1 = fmin(m->oem.cover.t1, m->aem.cover.t1);
 	t1 = fmin(t1, m->t0 + a->hours * 3600.0);
 	if (!(t1 > m->t0))
 		return stray_error_at(err, STRAY_EINVAL, a->aem, 0, "START_TIME",
@@ -113,6 +118,7 @@ void mission_free(struct mission *m)
 
 	stray_oem_free(&m->oem);
 	stray_aem_free(&m->aem);
+	stray_ccsds_eop_clear();
 	free(m->oem_text);
 	free(m->aem_text);
 	for (h = 0; h < MISSION_HEADS_MAX; h++) {

@@ -23,6 +23,7 @@
 struct mission_args {
 	const char *oem, *aem, *heads, *csv, *plot;
 	const char *write_oem, *write_aem;
+	const char *iers;	/* IERS finals table for Earth-fixed frames */
 	double step_s, hours, gen_step_s;
 	int hours_given;
 	int year, month, day;

@@ -54,10 +54,11 @@ int mission_summary(const struct mission_args *a, const struct mission *m)
 	/* time in a gap of the OEM or AEM: not flown, in no fraction */
 	cJSON_AddNumberToObject(o, "covered_epochs", (double)m->any.epochs);
 	cJSON_AddNumberToObject(o, "not_covered_s", gap_s);
-	cJSON_AddNumberToObject(o, "oem_gaps", (double)stray_ccsds_gaps(
-		m->oem.t, m->oem.n, m->oem.gap_s));
-	cJSON_AddNumberToObject(o, "aem_gaps", (double)stray_ccsds_gaps(
-		m->aem.t, m->aem.n, m->aem.gap_s));
+	/* gaps inside a segment and time between segments alike */
+	cJSON_AddNumberToObject(o, "oem_gaps", (double)stray_ccsds_cover_holes(
+		&m->oem.cover, m->oem.t));
+	cJSON_AddNumberToObject(o, "aem_gaps", (double)stray_ccsds_cover_holes(
+		&m->aem.cover, m->aem.t));
 	for (h = 0; h < m->n_heads; h++) {
 		const struct mission_head *hd = &m->head[h];
 		cJSON *j = stats_json(hd->name, &hd->st);

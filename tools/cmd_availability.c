@@ -21,7 +21,7 @@
 static const char usage[] =
 	"usage: stray availability --oem O.oem --aem A.aem --heads H.json\n"
 	"                          [--step-s S] [--hours H] [--out F.csv]\n"
-	"                          [--plot PREFIX] [--json]\n"
+	"                          [--plot PREFIX] [--iers F] [--json]\n"
 	"       stray availability --write-oem O.oem --write-aem A.aem\n"
 	"                          [--epoch YYYY-MM-DD] [--hours H] [--gen-step-s S]\n"
 	"                          [--heads H.json ...]\n"
@@ -43,6 +43,9 @@ static const char usage[] =
 	"  --out F.csv          time series, one row per frame\n"
 	"  --plot PREFIX        PREFIX_timeline.png, PREFIX_fdr.png and\n"
 	"                       PREFIX_sky_<head>.png\n"
+	"  --iers F             UT1 - UTC and the pole from an IERS finals table\n"
+	"                       (finals2000A.all) for an OEM or AEM in an\n"
+	"                       Earth-fixed frame; zero without one\n"
 	"  --json               machine-readable summary\n"
 	"  --write-oem F, --write-aem F\n"
 	"                       write the demo mission: a 550 km sun-synchronous\n"
@@ -107,6 +110,7 @@ static int parse_args(int argc, char **argv, struct mission_args *a)
 		{ "write-aem", required_argument, NULL, 'A' },
 		{ "epoch", required_argument, NULL, 'e' },
 		{ "gen-step-s", required_argument, NULL, 'g' },
+		{ "iers", required_argument, NULL, 'I' },
 		{ "json", no_argument, &cli.json, 1 },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 }
@@ -123,6 +127,7 @@ static int parse_args(int argc, char **argv, struct mission_args *a)
 		case 'a': a->aem = optarg; break;
 		case 'H': a->heads = optarg; break;
 		case 'c': a->csv = optarg; break;
+		case 'I': a->iers = optarg; break;
 		case 'p': a->plot = optarg; break;
 		case 'O': a->write_oem = optarg; break;
 		case 'A': a->write_aem = optarg; break;

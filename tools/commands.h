@@ -22,6 +22,7 @@ int cmd_report(int argc, char **argv);
 int cmd_photometer(int argc, char **argv);
 int cmd_orbit(int argc, char **argv);
 int cmd_availability(int argc, char **argv);
+int cmd_ccsds(int argc, char **argv);
 int cmd_firmware_table(int argc, char **argv);
 int cmd_reduce(int argc, char **argv);
 int cmd_rig(int argc, char **argv);

@@ -89,3 +89,9 @@ $(B)/tests/tools/test_hardening2_ccsds: $(B)/obj/tests/tools/test_hardening2_ccs
 		tests/tools/run_cli.h $(STRAY_BIN) $(FLIGHT_GEN)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_BASE) -o $@ $< -lcmocka -lcjson -lerfa -lm
+# Issue 30's CCSDS conformance from the command line: the ITRF orbit it
+# flies is made with ERFA.
+$(B)/tests/tools/test_ccsds_cli: $(B)/obj/tests/tools/test_ccsds_cli.o \
+		tests/tools/run_cli.h $(STRAY_BIN)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_BASE) -o $@ $< -lcmocka -lcjson -lerfa -lm

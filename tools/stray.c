@@ -45,6 +45,7 @@ static const struct cmd commands[] = {
 	{ "firmware-table", cmd_firmware_table, "flight table of firmware_fdr (C source and CRC-sealed blob)" },
 	{ "orbit", cmd_orbit, "the flight module along a day of a sun-synchronous orbit" },
 	{ "availability", cmd_availability, "tracker availability over a mission (CCSDS OEM/AEM, several heads)" },
+	{ "ccsds", cmd_ccsds, "an OEM or AEM as the toolkit reads it (segments, frames, span, states)" },
 	{ "trace", trace_local, "attenuation curve of a baffle by Monte Carlo ray tracing" },
 	{ "diagnose", diagnose_local, "name the physical causes of a model-measurement discrepancy" },
 	{ "lens", cmd_lens, "a lens curve without lab data: the ideal lens, or a PST import" },

@@ -72,15 +72,23 @@ int stray_ccsds_time_system(const char *text)
 	int i;
 
 	for (i = 0; i < 4; i++)
-		if (strcmp(text, names[i]) == 0)
+		if (stray_kvn_eq(text, names[i]))
 			return i;
 	return -1;
 }
 
+int stray_kvn_eq(const char *a, const char *b)
+{
+	for (; *a && *b; a++, b++)
+		if (toupper((unsigned char)*a) != toupper((unsigned char)*b))
+			return 0;
+	return *a == *b;
+}
+
 int stray_ccsds_inertial_frame(const char *text)
 {
-	return strcmp(text, "EME2000") == 0 || strcmp(text, "ICRF") == 0 ||
-	       strcmp(text, "GCRF") == 0 || strcmp(text, "J2000") == 0;
+	return stray_kvn_eq(text, "EME2000") || stray_kvn_eq(text, "ICRF") ||
+	       stray_kvn_eq(text, "GCRF") || stray_kvn_eq(text, "J2000");
 }
 
 static int leap_year(long y)
@@ -298,7 +306,8 @@ int stray_kvn_header_key(const char *key)
 {
 	return strcmp(key, "CREATION_DATE") == 0 ||
 	       strcmp(key, "ORIGINATOR") == 0 ||
-	       strcmp(key, "MESSAGE_ID") == 0;
+	       strcmp(key, "MESSAGE_ID") == 0 ||
+	       strcmp(key, "CLASSIFICATION") == 0;
 }
 
 int stray_kvn_fail(struct stray_error *err, const char *file, long line,

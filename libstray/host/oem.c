@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "oem_cov.h"
 #include "stray/ccsds.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"
@@ -31,8 +32,19 @@ struct oem_parse {
 	int state, segments, seg_records;
 	int have_frame, have_ts, have_center, have_interp;
 	int first;		/* no line read yet */
+	int frame;		/* this segment's (enum stray_ccsds_frame) */
+	int ts;			/* this segment's time system */
 	long cov_line;		/* the open COVARIANCE_START's line */
+	struct oem_cov cov;
+	struct stray_ccsds_frame_cache fc;	/* precession-nutation grid */
+	/* epochs of the metadata, read at META_STOP (TIME_SYSTEM may come
+	 * after them) */
+	char when[4][48];
+	long when_line[4];
 };
+
+static const char *const when_key[4] = { "START_TIME", "STOP_TIME",
+	"USEABLE_START_TIME", "USEABLE_STOP_TIME" };
 
 static int fail(struct oem_parse *p, const char *key, const char *why,
 		const char *text)
@@ -69,19 +81,29 @@ static void copy_name(char *dst, size_t size, const char *src)
 static int meta_key(struct oem_parse *p, const char *k, const char *v)
 {
 	struct stray_oem *o = p->oem;
-	int seg0 = p->segments == 1;
+	int seg0 = p->segments == 1, i;
 
+	for (i = 0; i < 4; i++)
+		if (strcmp(k, when_key[i]) == 0) {
+			copy_name(p->when[i], sizeof(p->when[i]), v);
+			p->when_line[i] = p->line;
+			return STRAY_OK;
+		}
 	if (strcmp(k, "OBJECT_NAME") == 0) {
 		if (seg0)
 			copy_name(o->object_name, sizeof(o->object_name), v);
 	} else if (strcmp(k, "CENTER_NAME") == 0) {
-		if (strcmp(v, "EARTH") != 0)
+		if (!stray_kvn_eq(v, "EARTH"))
 			return fail(p, k, "only EARTH is supported", v);
 		p->have_center = 1;
 	} else if (strcmp(k, "REF_FRAME") == 0) {
-		if (!stray_ccsds_inertial_frame(v))
-			return fail(p, k, "not an inertial frame (EME2000, ICRF, GCRF)", v);
-		copy_name(o->ref_frame, sizeof(o->ref_frame), v);
+		if ((p->frame = stray_ccsds_frame(v)) < 0)
+			return fail(p, k, "not a supported frame (EME2000, ICRF, GCRF, ITRF..., GTOD, TOD, MOD, TEME)", v);
+		if (seg0)
+			copy_name(o->ref_frame, sizeof(o->ref_frame), v);
+		copy_name(o->cover.seg[o->cover.n_seg - 1].frame_name,
+			  sizeof(o->cover.seg[0].frame_name), v);
+		o->cover.seg[o->cover.n_seg - 1].frame = p->frame;
 		p->have_frame = 1;
 	} else if (strcmp(k, "TIME_SYSTEM") == 0) {
 		int ts = stray_ccsds_time_system(v);
@@ -90,15 +112,18 @@ static int meta_key(struct oem_parse *p, const char *k, const char *v)
 			return fail(p, k, "not a supported time system (UTC, TAI, TT, GPS)", v);
 		if (!seg0 && ts != o->time_system)
 			return fail(p, k, "differs from the first segment's", v);
-		o->time_system = ts;
+		o->time_system = p->ts = ts;
+		o->cover.seg[o->cover.n_seg - 1].time_system = ts;
 		p->have_ts = 1;
 	} else if (strcmp(k, "INTERPOLATION") == 0) {
-		if (strcmp(v, "LAGRANGE") == 0)
-			o->interp = STRAY_INTERP_LAGRANGE;
-		else if (strcmp(v, "HERMITE") == 0)
-			o->interp = STRAY_INTERP_HERMITE;
-		else if (strcmp(v, "LINEAR") == 0)
-			o->interp = STRAY_INTERP_LINEAR;
+		int *in = &o->cover.seg[o->cover.n_seg - 1].interp;
+
+		if (stray_kvn_eq(v, "LAGRANGE"))
+			*in = STRAY_INTERP_LAGRANGE;
+		else if (stray_kvn_eq(v, "HERMITE"))
+			*in = STRAY_INTERP_HERMITE;
+		else if (stray_kvn_eq(v, "LINEAR"))
+			*in = STRAY_INTERP_LINEAR;
 		else
 			return fail(p, k, "not LAGRANGE, HERMITE or LINEAR", v);
 		p->have_interp = 1;
@@ -108,13 +133,9 @@ static int meta_key(struct oem_parse *p, const char *k, const char *v)
 		if (!stray_kvn_number(v, &d) || d != floor(d) || d < 1 ||
 		    d > STRAY_OEM_DEGREE_MAX)
 			return fail(p, k, "not a whole degree in 1..15", v);
-		o->degree = (int)d;
+		o->cover.seg[o->cover.n_seg - 1].degree = (int)d;
 	} else if (strcmp(k, "OBJECT_ID") != 0 &&
-		   strcmp(k, "REF_FRAME_EPOCH") != 0 &&
-		   strcmp(k, "START_TIME") != 0 &&
-		   strcmp(k, "STOP_TIME") != 0 &&
-		   strcmp(k, "USEABLE_START_TIME") != 0 &&
-		   strcmp(k, "USEABLE_STOP_TIME") != 0) {
+		   strcmp(k, "REF_FRAME_EPOCH") != 0) {
 		return fail(p, k, "not an OEM metadata keyword", k);
 	}
 	return STRAY_OK;
@@ -122,12 +143,30 @@ static int meta_key(struct oem_parse *p, const char *k, const char *v)
 
 static int meta_stop(struct oem_parse *p)
 {
+	struct stray_ccsds_seg *s = &p->oem->cover.seg[p->oem->cover.n_seg - 1];
+	double t[4];
+	int i, e;
+
 	if (!p->have_center)
 		return fail(p, "CENTER_NAME", "missing from the metadata", "");
 	if (!p->have_frame)
 		return fail(p, "REF_FRAME", "missing from the metadata", "");
 	if (!p->have_ts)
 		return fail(p, "TIME_SYSTEM", "missing from the metadata", "");
+	for (i = 0; i < 4; i++) {
+		if (!p->when[i][0])
+			continue;
+		if ((e = stray_ccsds_epoch(p->when[i], p->ts, &t[i])) != 0)
+			return stray_kvn_fail(p->err, p->file, p->when_line[i],
+					      when_key[i], e == -2 ?
+					      "second 60 where no leap second is" :
+					      "not a CCSDS epoch YYYY-MM-DDThh:mm:ss",
+					      p->when[i]);
+	}
+	if ((s->have_u0 = p->when[2][0] != 0))
+		s->u0 = t[2];
+	if ((s->have_u1 = p->when[3][0] != 0))
+		s->u1 = t[3];
 	p->seg_records = 0;
 	return STRAY_OK;
 }
@@ -151,16 +190,15 @@ static int data_line(struct oem_parse *p, const struct stray_kvn_line *l)
 		if (!stray_kvn_number(l->field[k], k <= 6 ? &x[k - 1] : &a))
 			return fail(p, "data", "not a number", l->field[k]);
 	}
-	if (o->n > 0 && !(t > o->t[o->n - 1])) {
-		if (p->seg_records == 0 && t == o->t[o->n - 1]) {
-			p->seg_records++;	/* a repeated boundary epoch */
-			return STRAY_OK;
-		}
+	/* in a segment epochs increase; segments may overlap (the later
+	 * wins, stray/ccsds.h) */
+	if (p->seg_records > 0 && !(t > o->t[o->n - 1]))
 		return fail(p, "epoch", "not after the previous record's", l->field[0]);
-	}
 	if (o->n == p->cap && grow(p) != STRAY_OK)
 		return STRAY_ENOMEM;
 	o->t[o->n] = t;
+	/* an Earth-fixed or of-date state to inertial, once */
+	stray_ccsds_to_inertial_cached(&p->fc, p->frame, t, x, x + 3);
 	for (k = 0; k < 3; k++) {
 		o->r[o->n][k] = x[k];
 		o->v[o->n][k] = x[k + 3];
@@ -177,6 +215,7 @@ static int data_line(struct oem_parse *p, const struct stray_kvn_line *l)
 			    l->field[4]);
 	o->n++;
 	p->seg_records++;
+	o->cover.seg[o->cover.n_seg - 1].n++;
 	return STRAY_OK;
 }
 
@@ -189,6 +228,7 @@ static int first_line(struct oem_parse *p, const struct stray_kvn_line *l)
 			    l->key ? l->key : l->field[0]);
 	if (!stray_kvn_number(l->value, &ver) || ver < 1.0 || ver >= 4.0)
 		return fail(p, "CCSDS_OEM_VERS", "not a version 1, 2 or 3", l->value);
+	p->oem->version = ver;
 	p->state = ST_HEADER;
 	return STRAY_OK;
 }
@@ -216,24 +256,37 @@ static int one_line(void *ctx, const struct stray_kvn_line *l)
 		if (l->kind == STRAY_KVN_WORD &&
 		    strcmp(l->field[0], "COVARIANCE_STOP") == 0) {
 			p->state = ST_DATA;
-			return STRAY_OK;
+			p->oem->cover.seg[p->oem->cover.n_seg - 1].n_cov += p->cov.n;
+			return oem_cov_stop(&p->cov, p->file, p->line, p->err);
 		}
 		/* a segment or an ephemeris line: the block was never closed,
-		 * and skipping on would drop the rest of the file */
+		 * and reading on would take the rest of the file for it */
 		if ((l->kind == STRAY_KVN_WORD &&
 		     !stray_kvn_number(l->field[0], &t)) ||
 		    (l->kind == STRAY_KVN_DATA &&
 		     stray_ccsds_epoch(l->field[0], STRAY_TS_TT, &t) != -1))
 			return cov_unclosed(p);
-		return STRAY_OK;
+		return oem_cov_line(&p->cov, l, p->ts, p->file, p->line, p->err);
 	}
 	if (l->kind == STRAY_KVN_WORD) {
 		const char *w = l->field[0];
 
 		if (strcmp(w, "META_START") == 0 && p->state != ST_META) {
+			struct stray_ccsds_seg *s;
+
+			if (p->oem->cover.n_seg == STRAY_CCSDS_SEG_MAX)
+				return fail(p, w, "more segments than 10000", w);
+			if (!(s = stray_ccsds_cover_add(&p->oem->cover)))
+				return stray_error_set(p->err, STRAY_ENOMEM, "segments", NULL);
+			s->lo = p->oem->n;
+			s->line = p->line;
+			/* without INTERPOLATION: Hermite of degree 5 */
+			s->interp = STRAY_INTERP_HERMITE;
+			s->degree = 5;
 			p->state = ST_META;
 			p->segments++;
 			p->have_frame = p->have_ts = p->have_center = 0;
+			memset(p->when, 0, sizeof(p->when));
 			return STRAY_OK;
 		}
 		if (strcmp(w, "META_STOP") == 0 && p->state == ST_META) {
@@ -243,6 +296,7 @@ static int one_line(void *ctx, const struct stray_kvn_line *l)
 		if (strcmp(w, "COVARIANCE_START") == 0 && p->state == ST_DATA) {
 			p->state = ST_COV;
 			p->cov_line = p->line;
+			memset(&p->cov, 0, sizeof(p->cov));
 			return STRAY_OK;
 		}
 		return fail(p, w, "out of place", w);
@@ -267,19 +321,51 @@ void stray_oem_free(struct stray_oem *oem)
 	free(oem->t);
 	free(oem->r);
 	free(oem->v);
+	stray_ccsds_cover_free(&oem->cover);
 	memset(oem, 0, sizeof(*oem));
 }
 
-/* Records the interpolation takes around an epoch. */
-static size_t nodes(const struct stray_oem *o)
+/* Records a segment's interpolation takes around an epoch (each segment
+ * is interpolated as its own metadata say). */
+static size_t nodes(const struct stray_ccsds_seg *s)
 {
 	size_t m;
 
-	if (o->interp == STRAY_INTERP_HERMITE) {
-		m = ((size_t)o->degree + 2) / 2;
+	if (s->interp == STRAY_INTERP_HERMITE) {
+		m = ((size_t)s->degree + 2) / 2;
 		return m < 2 ? 2 : m > HERMITE_NODES_MAX ? HERMITE_NODES_MAX : m;
 	}
-	return o->interp == STRAY_INTERP_LINEAR ? 2 : (size_t)o->degree + 1;
+	return s->interp == STRAY_INTERP_LINEAR ? 2 : (size_t)s->degree + 1;
+}
+
+/* The segments' spans and gap rules once every record is in. */
+static int oem_cover(struct oem_parse *p)
+{
+	struct stray_oem *o = p->oem;
+	size_t bad = 0, i;
+	int rc;
+
+	for (i = 0; i < o->cover.n_seg; i++)
+		o->cover.seg[i].nodes = nodes(&o->cover.seg[i]);
+	rc = stray_ccsds_cover_build(&o->cover, o->t, 2, &bad);
+
+	if (rc == -2)
+		return stray_error_set(p->err, STRAY_ENOMEM, "records", NULL);
+	if (rc != 0) {
+		char at[48];
+
+		snprintf(at, sizeof(at), "segment of META_START at line %ld",
+			 o->cover.seg[bad].line);
+		p->line = o->cover.seg[bad].line;
+		return fail(p, o->cover.seg[bad].n ? "USEABLE_START_TIME" : "data",
+			    o->cover.seg[bad].n ?
+			    "useable span outside the segment's records, or empty" :
+			    "a segment without records", at);
+	}
+	o->gap_s = o->cover.seg[0].gap_s;
+	o->interp = o->cover.seg[0].interp;
+	o->degree = o->cover.seg[0].degree;
+	return STRAY_OK;
 }
 
 int stray_oem_parse(const char *buf, size_t len, const char *file,
@@ -305,9 +391,8 @@ int stray_oem_parse(const char *buf, size_t len, const char *file,
 		rc = cov_unclosed(&p);
 	if (rc == STRAY_OK && oem->n < 2)
 		rc = fail(&p, "data", "fewer than 2 ephemeris records", "");
-	if (rc == STRAY_OK &&
-	    (oem->gap_s = stray_ccsds_gap_s(oem->t, oem->n, nodes(oem))) < 0.0)
-		rc = stray_error_set(err, STRAY_ENOMEM, "records", NULL);
+	if (rc == STRAY_OK)
+		rc = oem_cover(&p);
 	if (rc != STRAY_OK)
 		stray_oem_free(oem);
 	return rc;
@@ -401,12 +486,20 @@ int stray_oem_state(const struct stray_oem *o, double t, double r[3],
 		    double v[3])
 {
 	double x[STRAY_OEM_DEGREE_MAX + 1];
-	size_t m = nodes(o), k, j, lo, hi;
+	long sg = stray_ccsds_cover_find(&o->cover, t);
+	const struct stray_ccsds_seg *s;
+	size_t m, k, j, lo, hi;
 	int c;
 
-	if (o->n < 2 ||
-	    stray_ccsds_piece(o->t, o->n, o->gap_s, t, m, &lo, &hi) != 0)
+	if (o->n < 2 || sg < 0)
 		return STRAY_ERANGE;
+	/* the owning segment's records only, as its metadata say */
+	s = &o->cover.seg[sg];
+	m = s->nodes;
+	if (stray_ccsds_piece(o->t + s->lo, s->n, s->gap_s, t, m, &lo, &hi) != 0)
+		return STRAY_ERANGE;
+	lo += s->lo;
+	hi += s->lo;
 	if (lo == hi) {		/* a record alone between gaps, at its epoch */
 		memcpy(r, o->r[lo], sizeof(o->r[lo]));
 		memcpy(v, o->v[lo], sizeof(o->v[lo]));
@@ -417,7 +510,7 @@ int stray_oem_state(const struct stray_oem *o, double t, double r[3],
 	k = lo + window(o->t + lo, hi - lo + 1, t, m);
 	for (j = 0; j < m; j++)
 		x[j] = o->t[k + j] - o->t[k];
-	if (o->interp != STRAY_INTERP_HERMITE) {
+	if (s->interp != STRAY_INTERP_HERMITE) {
 		lagrange(x, m, t - o->t[k], &o->r[k][0], 3, 3, r);
 		lagrange(x, m, t - o->t[k], &o->v[k][0], 3, 3, v);
 		return STRAY_OK;

@@ -24,7 +24,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 	for (k = 0; k <= 8; k++) {
 		double q[4], m[3][3];
 
-		stray_aem_attitude(&a, a.t[0] + (a.t[a.n - 1] - a.t[0]) * k / 8.0, q);
+		stray_aem_attitude(&a, a.cover.t0 + (a.cover.t1 - a.cover.t0) * k / 8.0, q);
 		stray_q_dcm(q, m);
 	}
 	stray_aem_free(&a);

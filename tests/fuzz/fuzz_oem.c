@@ -24,7 +24,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 	for (k = 0; k <= 8; k++) {
 		double r[3], v[3];
 
-		stray_oem_state(&o, o.t[0] + (o.t[o.n - 1] - o.t[0]) * k / 8.0,
+		stray_oem_state(&o, o.cover.t0 + (o.cover.t1 - o.cover.t0) * k / 8.0,
 				r, v);
 	}
 	stray_oem_free(&o);

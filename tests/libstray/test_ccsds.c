@@ -42,7 +42,7 @@ static const struct bad_case bad_oem[] = {
 	{ "CCSDS_AEM_VERS = 1.0\n", "CCSDS_OEM_VERS", 1 },
 	{ "CCSDS_OEM_VERS = 9.0\n", "CCSDS_OEM_VERS", 1 },
 	{ OEM_HEAD "CENTER_NAME = MARS\n", "CENTER_NAME", 7 },
-	{ OEM_HEAD "REF_FRAME = ITRF\n", "REF_FRAME", 7 },
+	{ OEM_HEAD "REF_FRAME = MCI\n", "REF_FRAME", 7 },
 	{ OEM_HEAD "TIME_SYSTEM = MRT\n", "TIME_SYSTEM", 7 },
 	{ OEM_HEAD "INTERPOLATION = SPLINE\n", "INTERPOLATION", 7 },
 	{ OEM_HEAD "INTERPOLATION_DEGREE = 0\n", "INTERPOLATION_DEGREE", 7 },
@@ -70,7 +70,7 @@ static const struct bad_case bad_aem[] = {
 	{ "CCSDS_OEM_VERS = 2.0\n", "CCSDS_AEM_VERS", 1 },
 	{ AEM_HEAD "ATTITUDE_DIR = UP\n", "ATTITUDE_DIR", 6 },
 	{ AEM_HEAD "QUATERNION_TYPE = MIDDLE\n", "QUATERNION_TYPE", 6 },
-	{ AEM_HEAD "ATTITUDE_TYPE = EULER_ANGLE\n", "ATTITUDE_TYPE", 6 },
+	{ AEM_HEAD "ATTITUDE_TYPE = SPIN/WOBBLE\n", "ATTITUDE_TYPE", 6 },
 	{ AEM_HEAD "TIME_SYSTEM = TDB\n", "TIME_SYSTEM", 6 },
 	{ AEM_HEAD "REF_FRAME_A = SC_BODY_1\nREF_FRAME_B = INSTRUMENT_A\n"
 	  AEM_REST, "REF_FRAME_A", 12 },
@@ -268,7 +268,7 @@ static void aem_one(const char *meta, const char *q_text, double q[4])
 	char buf[2048];
 	struct stray_aem a;
 	struct stray_error err;
-	int n = snprintf(buf, sizeof(buf), "CCSDS_AEM_VERS = 2.0\nMETA_START\n%s"
+	int n = snprintf(buf, sizeof(buf), "CCSDS_AEM_VERS = 1.0\nMETA_START\n%s"
 			 "TIME_SYSTEM = TAI\nATTITUDE_TYPE = QUATERNION\nMETA_STOP\n"
 			 "DATA_START\n2026-01-01T00:00:00 %s\n"
 			 "2026-01-01T00:00:10 %s\nDATA_STOP\n", meta, q_text, q_text);

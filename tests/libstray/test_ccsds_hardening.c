@@ -100,14 +100,23 @@ static void test_oem_refusals(void **state)
 	assert_int_equal(oem_rc(OEM_HEAD
 		"2026-01-01T00:00:00 7000 0 0 0 7.5 0\n"
 		"2026-01-01T00:01:00 6990 450 0 -0.5 7.4 0\n"
-		"COVARIANCE_START\n1.0\n", msg, sizeof(msg)), STRAY_EPARSE);
+		"COVARIANCE_START\nEPOCH = 2026-01-01T00:00:00\n1.0\n", msg,
+		sizeof(msg)), STRAY_EPARSE);
 	assert_non_null(strstr(msg, "COVARIANCE_STOP"));
-	/* closed: skipped */
+	/* closed but short of its 6 rows: refused since issue 30 (it was
+	 * skipped unchecked); a whole matrix is read */
 	assert_int_equal(oem_rc(OEM_HEAD
 		"2026-01-01T00:00:00 7000 0 0 0 7.5 0\n"
 		"2026-01-01T00:01:00 6990 450 0 -0.5 7.4 0\n"
-		"COVARIANCE_START\n1.0\nCOVARIANCE_STOP\n", msg, sizeof(msg)),
-		STRAY_OK);
+		"COVARIANCE_START\nEPOCH = 2026-01-01T00:00:00\n1.0\n"
+		"COVARIANCE_STOP\n", msg, sizeof(msg)), STRAY_EPARSE);
+	assert_non_null(strstr(msg, "1 of 6 rows"));
+	assert_int_equal(oem_rc(OEM_HEAD
+		"2026-01-01T00:00:00 7000 0 0 0 7.5 0\n"
+		"2026-01-01T00:01:00 6990 450 0 -0.5 7.4 0\n"
+		"COVARIANCE_START\nEPOCH = 2026-01-01T00:00:00\n1\n0 1\n0 0 1\n"
+		"0 0 0 1\n0 0 0 0 1\n0 0 0 0 0 1\nCOVARIANCE_STOP\n", msg,
+		sizeof(msg)), STRAY_OK);
 	assert_int_equal(oem_rc(OEM_HEAD
 		"2026-01-01T00:00:00 0 0 0 0 7.5 0\n"
 		"2026-01-01T00:01:00 6990 450 0 -0.5 7.4 0\n", msg, sizeof(msg)),
