@@ -42,13 +42,18 @@ static int number(const struct review_project *p, const cJSON *o,
 	return STRAY_OK;
 }
 
+int review_dup_key(const cJSON *obj, const char **key);	/* project.c */
+
 static int keys_in(const cJSON *o, const char *const *allowed,
 		   const char *where, const struct review_project *p,
 		   struct stray_error *err)
 {
 	const cJSON *it;
+	const char *dup;
 	int i;
 
+	if (review_dup_key(o, &dup))
+		return bad(err, p, where, dup, "key given twice");
 	cJSON_ArrayForEach(it, o) {
 		for (i = 0; allowed[i] && strcmp(allowed[i], it->string); i++)
 			;

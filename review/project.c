@@ -34,14 +34,33 @@ static int bad(struct stray_error *err, const struct review_project *p,
 	return STRAY_EINVAL;
 }
 
-/* Keys of obj outside allowed[] are an error. */
+/* A key given twice in obj (JSON allows it; a reader takes one of the
+ * two, so the other would be silently dropped). */
+int review_dup_key(const cJSON *obj, const char **key)
+{
+	const cJSON *it, *jt;
+
+	cJSON_ArrayForEach(it, obj)
+		for (jt = obj->child; jt != it; jt = jt->next)
+			if (it->string && jt->string &&
+			    strcmp(it->string, jt->string) == 0) {
+				*key = it->string;
+				return 1;
+			}
+	return 0;
+}
+
+/* Keys of obj outside allowed[] are an error, as is a key given twice. */
 static int only_keys(const cJSON *obj, const char *const *allowed,
 		     const char *where, const struct review_project *p,
 		     struct stray_error *err)
 {
 	const cJSON *it;
+	const char *dup;
 	int i;
 
+	if (review_dup_key(obj, &dup))
+		return bad(err, p, where, dup, "key given twice");
 	cJSON_ArrayForEach(it, obj) {
 		for (i = 0; allowed[i]; i++)
 			if (strcmp(it->string, allowed[i]) == 0)
@@ -104,10 +123,13 @@ static int take_set(struct review_project *p, const cJSON *set,
 		    struct stray_error *err)
 {
 	const cJSON *it;
+	const char *dup;
 	int n;
 
 	if (!cJSON_IsObject(set))
 		return bad(err, p, "set", NULL, "must be an object of scene keys");
+	if (review_dup_key(set, &dup))
+		return bad(err, p, "set", dup, "key given twice");
 	cJSON_ArrayForEach(it, set) {
 		if (p->n_set >= REVIEW_SET_MAX)
 			return bad(err, p, "set", it->string, "more than 24 overrides");
@@ -167,11 +189,15 @@ static int take_requirements(struct review_project *p, const cJSON *r,
 {
 	static const double hi[REVIEW_REQ_MAX] = { 1e6, 180, 180, 180, 1 };
 	const cJSON *it;
+	const char *dup;
 	int i, rc;
 
 	if (!cJSON_IsObject(r) || !r->child)
 		return bad(err, p, "requirements", NULL,
 			   "must be an object with at least one requirement");
+	/* each known at most once: at most REVIEW_REQ_MAX of them */
+	if (review_dup_key(r, &dup))
+		return bad(err, p, "requirements", dup, "given twice");
 	cJSON_ArrayForEach(it, r) {
 		for (i = 0; i < REVIEW_REQ_MAX; i++)
 			if (strcmp(it->string, req_keys[i]) == 0)
@@ -262,26 +288,18 @@ static int take_all(struct review_project *p, const cJSON *root,
 	return rc;
 }
 
-int review_project_load(const char *path, struct review_project *p,
-			struct stray_error *err)
+int review_project_parse(const char *path, const char *dir, const char *text,
+			 size_t len, struct review_project *p,
+			 struct stray_error *err)
 {
-	char *text = NULL, *slash;
-	size_t len;
 	cJSON *root;
 	int rc;
 
 	memset(p, 0, sizeof(*p));
 	p->incl_deg = -1.0;
-	if (!realpath(path, p->path))
-		return stray_error_at(err, STRAY_ENOTFOUND, path, 0, NULL,
-				      "no such project file");
-	snprintf(p->dir, sizeof(p->dir), "%s", p->path);
-	slash = strrchr(p->dir, '/');
-	*(slash == p->dir ? slash + 1 : slash) = '\0';
-	if ((rc = stray_file_read(p->path, &text, &len, err)) != STRAY_OK)
-		return rc;
+	snprintf(p->path, sizeof(p->path), "%s", path);
+	snprintf(p->dir, sizeof(p->dir), "%s", dir);
 	root = cJSON_ParseWithLength(text, len);
-	free(text);
 	if (!root || !cJSON_IsObject(root)) {
 		cJSON_Delete(root);
 		return stray_error_at(err, STRAY_EPARSE, p->path, 0, "json",
@@ -291,10 +309,31 @@ int review_project_load(const char *path, struct review_project *p,
 	cJSON_Delete(root);
 	if (rc == STRAY_OK && !p->name[0]) {
 		/* no name: the file's own name, never a built-in example's */
-		const char *base = strrchr(p->path, '/') + 1;
+		const char *base = strrchr(p->path, '/');
 
-		snprintf(p->name, sizeof(p->name), "%s", base);
+		snprintf(p->name, sizeof(p->name), "%.127s", base ? base + 1 : p->path);
 	}
+	return rc;
+}
+
+int review_project_load(const char *path, struct review_project *p,
+			struct stray_error *err)
+{
+	char full[REVIEW_PATH_MAX], dir[REVIEW_PATH_MAX], *text = NULL, *slash;
+	size_t len;
+	int rc;
+
+	memset(p, 0, sizeof(*p));
+	if (!realpath(path, full))
+		return stray_error_at(err, STRAY_ENOTFOUND, path, 0, NULL,
+				      "no such project file");
+	snprintf(dir, sizeof(dir), "%s", full);
+	slash = strrchr(dir, '/');
+	*(slash == dir ? slash + 1 : slash) = '\0';
+	if ((rc = stray_file_read(full, &text, &len, err)) != STRAY_OK)
+		return rc;
+	rc = review_project_parse(full, dir, text, len, p, err);
+	free(text);
 	return rc;
 }
 

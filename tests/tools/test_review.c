@@ -337,6 +337,14 @@ static void test_bad_projects(void **state)
 	    "\"requirements\": {\"availability_min\": 0.9}, \"mission\": "
 	    "{\"orbit\": {\"altitude_km\": 500, \"ltan\": \"25:00\"}}}");
 	refused("p6.json", "25:00");
+	/* JSON allows a key twice; a reader would keep one and drop the
+	 * other requirement (found by fuzz_review_project: a sixth
+	 * requirement overran the table) */
+	put("p7.json", "{\"sensor\": \"st16-like\", \"scene\": \"ref4\", "
+	    "\"requirements\": {\"sun_exclusion_deg_max\": 30, \"moon_exclusion_deg_max\": 9, "
+	    "\"earth_exclusion_deg_max\": 9, \"availability_min\": 0.9, "
+	    "\"false_stars_per_image\": 5, \"sun_exclusion_deg_max\": 20}}");
+	refused("p7.json", "given twice");
 }
 
 static int setup(void **state)

@@ -67,6 +67,12 @@ struct review_project {
 int review_project_load(const char *path, struct review_project *p,
 			struct stray_error *err);
 
+/* The same from text: path names the file in errors, dir resolves the
+ * paths it gives (a fuzz target's entry). */
+int review_project_parse(const char *path, const char *dir, const char *text,
+			 size_t len, struct review_project *p,
+			 struct stray_error *err);
+
 /* One step: a stray command line run in the output folder. */
 struct review_step {
 	const char *name;		/* static */
