@@ -334,8 +334,17 @@ int review_run(const char *self, const char *dir,
 	const char *miss;
 	int i, rc = STRAY_OK, failed = 0, st;
 
-	if (mkdir(dir, 0777) != 0 && errno != EEXIST)
-		return stray_error_at(err, STRAY_EIO, dir, 0, "--out", strerror(errno));
+	struct stat st_dir;
+
+	if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
+		rc = stray_error_at(err, STRAY_EIO, dir, 0, "--out", strerror(errno));
+		goto out;
+	}
+	if (stat(dir, &st_dir) != 0 || !S_ISDIR(st_dir.st_mode)) {
+		rc = stray_error_at(err, STRAY_EINVAL, dir, 0, "--out",
+				    "exists and is not a folder");
+		goto out;
+	}
 	for (i = 0; i < plan->n; i++)
 		w_left += plan->step[i].why ? 0.0 : plan->step[i].weight;
 	if (p->n_heads && p->mission != REVIEW_MISSION_NONE &&

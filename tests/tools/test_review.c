@@ -134,12 +134,13 @@ static void test_cube(void **state)
 	static const char *const other[] = { "navcam", "51.6", "700 km",
 		"inertial", "three-vane", "NAV", "st16-like", "550 km", "ref4",
 		"three heads", NULL };
-	char *out = at("cube");
+	char out[512];
 	cJSON *rv, *hand;
 	const cJSON *s;
 	char heads[600];
 
 	(void)state;
+	snprintf(out, sizeof(out), "%s", at("cube"));	/* at() recycles */
 	STRAY("review", "examples/review-cube/project.json", "--out", out,
 	      "--rays", RAYS);
 	ok();
@@ -195,12 +196,13 @@ static void test_navcam(void **state)
 	static const char *const other[] = { "cube-st-1", "PORT", "STBD",
 		"10:30", "500 km", "st16-like", "550 km", "ref4", "three heads",
 		NULL };
-	char *out = at("nav");
+	char out[512];
 	cJSON *rv, *hand, *d;
 	const cJSON *c;
 	int named = 0;
 
 	(void)state;
+	snprintf(out, sizeof(out), "%s", at("nav"));
 	STRAY("review", "examples/review-navcam/project.json", "--out", out,
 	      "--rays", RAYS);
 	ok();
@@ -254,13 +256,14 @@ static cJSON *untimed(const char *path)
 static void test_killed_and_resumed(void **state)
 {
 	const char *bin = getenv("STRAY_BIN") ? getenv("STRAY_BIN") : "build/bin/stray";
-	char *out = at("killed");
+	char out[512];
 	struct timespec nap = { 0, 20000000 };
 	cJSON *a, *b;
 	pid_t pid;
 	int st, k;
 
 	(void)state;
+	snprintf(out, sizeof(out), "%s", at("killed"));	/* at() recycles */
 	/* the cube's review (test_cube ran it whole) killed after its first
 	 * step, then resumed */
 	pid = fork();
@@ -345,6 +348,11 @@ static void test_bad_projects(void **state)
 	    "\"earth_exclusion_deg_max\": 9, \"availability_min\": 0.9, "
 	    "\"false_stars_per_image\": 5, \"sun_exclusion_deg_max\": 20}}");
 	refused("p7.json", "given twice");
+	/* --out an existing file: refused before any step */
+	put("a_file", "x");
+	STRAY("review", "examples/review-cube/project.json", "--out", at("a_file"));
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "not a folder"));
 }
 
 static int setup(void **state)
