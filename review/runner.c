@@ -132,21 +132,62 @@ static int write_heads(const char *dir, const struct review_project *p,
 	return stray_file_commit(&fo, err);
 }
 
+/* The child's stderr passed on as it comes (progress stays live), its
+ * last line kept for the step's "why" when it fails. */
+static void relay(int fd, char *last, size_t size)
+{
+	char buf[4096], line[512];
+	size_t n_line = 0;
+	ssize_t n, k;
+
+	last[0] = '\0';
+	while ((n = read(fd, buf, sizeof(buf))) != 0) {
+		if (n < 0) {
+			if (errno == EINTR)
+				continue;
+			break;
+		}
+		if (write(2, buf, (size_t)n) < 0) {
+			/* nowhere to show it: still keep the last line */
+		}
+		for (k = 0; k < n; k++) {
+			if (buf[k] == '\n' || buf[k] == '\r') {
+				if (n_line) {
+					line[n_line] = '\0';
+					snprintf(last, size, "%s", line);
+				}
+				n_line = 0;
+			} else if (n_line + 1 < sizeof(line)) {
+				line[n_line++] = buf[k];
+			}
+		}
+	}
+	if (n_line) {
+		line[n_line] = '\0';
+		snprintf(last, size, "%s", line);
+	}
+}
+
 /* One step by exec of self in dir; stdout to its file (renamed into
  * place on success only).  Returns the exit status, -1 if killed. */
 static int exec_step(const char *self, const char *dir,
-		     const struct review_step *s)
+		     const struct review_step *s, char *last, size_t size)
 {
 	char part[REVIEW_PATH_MAX * 2 + 8], final[REVIEW_PATH_MAX * 2];
+	int st, pfd[2];
 	pid_t pid;
-	int st;
 
 	snprintf(final, sizeof(final), "%s/%s", dir, s->stdout_file);
 	snprintf(part, sizeof(part), "%s.part", final);
 	fflush(NULL);
-	pid = fork();
-	if (pid < 0)
+	if (pipe(pfd) != 0)
 		return -1;
+	pid = fork();
+	if (pid < 0) {
+		close(pfd[0]);
+		close(pfd[1]);
+		return -1;
+	}
 	if (pid == 0) {
 		int fd;
 
@@ -155,13 +196,18 @@ static int exec_step(const char *self, const char *dir,
 		prctl(PR_SET_PDEATHSIG, SIGKILL);
 		if (getppid() == 1)
 			_exit(126);
+		close(pfd[0]);
 		fd = s->stdout_file[0] ? open(part, O_WRONLY | O_CREAT | O_TRUNC, 0644)
 				       : open("/dev/null", O_WRONLY);
-		if (fd < 0 || dup2(fd, 1) < 0 || chdir(dir) != 0)
+		if (fd < 0 || dup2(fd, 1) < 0 || dup2(pfd[1], 2) < 0 ||
+		    chdir(dir) != 0)
 			_exit(126);
 		execv(self, s->argv);
 		_exit(127);
 	}
+	close(pfd[1]);
+	relay(pfd[0], last, size);
+	close(pfd[0]);
 	while (waitpid(pid, &st, 0) < 0)
 		if (errno != EINTR)
 			return -1;
@@ -332,6 +378,7 @@ int review_run(const char *self, const char *dir,
 	cJSON *old = resume ? old_manifest(dir) : NULL;
 	double t0 = now_s(), w_run = 0.0, w_left = 0.0, ts;
 	const char *miss;
+	char last[512];
 	int i, rc = STRAY_OK, failed = 0, st;
 
 	struct stat st_dir;
@@ -380,15 +427,18 @@ int review_run(const char *self, const char *dir,
 		}
 		progress(i, plan, s->name, t0, w_run, s->weight + w_left);
 		ts = now_s();
-		st = exec_step(self, dir, s);
+		st = exec_step(self, dir, s, last, sizeof(last));
 		s->seconds = now_s() - ts;
 		w_run += s->weight;
 		s->status = st == 0 ? "done" : "failed";
 		if (st != 0) {
 			failed++;
-			snprintf(s->fail, sizeof(s->fail), st < 0 ?
-				 "stray %s was killed" : "stray %s exited with status %d (its message is above)",
-				 s->argv[1], st);
+			if (st < 0)
+				snprintf(s->fail, sizeof(s->fail), "stray %.40s was killed",
+					 s->argv[1]);
+			else
+				snprintf(s->fail, sizeof(s->fail), "exit status %d: %.150s",
+					 st, last[0] ? last : "(no message)");
 			s->why = s->fail;
 		}
 		fprintf(stderr, "review: [%d/%d] %s: %s in %.1f s\n", i + 1,

@@ -348,6 +348,34 @@ static void test_bad_projects(void **state)
 	    "\"earth_exclusion_deg_max\": 9, \"availability_min\": 0.9, "
 	    "\"false_stars_per_image\": 5, \"sun_exclusion_deg_max\": 20}}");
 	refused("p7.json", "given twice");
+	/* a step that fails: listed as failed with its own message, the
+	 * steps after it not run with why, the review still written, exit 1 */
+	put("garbage.csv", "hello\n");
+	put("p8.json", "{\"sensor\": \"st16-like\", \"scene\": \"ref4\", \"lens\": \"garbage.csv\", "
+	    "\"requirements\": {\"sun_exclusion_deg_max\": 30}}");
+	STRAY("review", at("p8.json"), "--out", at("p8_out"), "--rays", "1000");
+	assert_int_equal(r.status, 1);
+	{
+		cJSON *rv = json_file(at("p8_out/review.json"));
+		const cJSON *st;
+
+		cJSON_ArrayForEach(st, cJSON_GetObjectItem(rv, "steps")) {
+			const char *n = cJSON_GetObjectItem(st, "name")->valuestring;
+			const char *status = cJSON_GetObjectItem(st, "status")->valuestring;
+			const cJSON *why = cJSON_GetObjectItem(st, "why");
+
+			if (strcmp(n, "trace") == 0) {
+				assert_string_equal(status, "failed");
+				assert_non_null(strstr(why->valuestring, "garbage.csv"));
+			}
+			if (strcmp(n, "exclusion") == 0) {
+				assert_string_equal(status, "not run");
+				assert_non_null(strstr(why->valuestring, "system.csv"));
+			}
+		}
+		assert_true(cJSON_IsNull(cJSON_GetObjectItem(verdict(rv, "sun_exclusion_deg_max"), "found")));
+		cJSON_Delete(rv);
+	}
 	/* --out an existing file: refused before any step */
 	put("a_file", "x");
 	STRAY("review", "examples/review-cube/project.json", "--out", at("a_file"));
