@@ -20,7 +20,7 @@ rays=${DEMO_RAYS:-1500000}
 step_deg=${DEMO_STEP_DEG:-1}
 rm -rf "$out"
 mkdir -p "$out"
-step=0; steps=16
+step=0; steps=17
 say() { step=$((step + 1)); printf '\n[%d/%d] %s\n' "$step" "$steps" "$*"; }
 start=$(date +%s)
 
@@ -233,6 +233,26 @@ if [ "$fc_px" -gt 0 ] && [ "$fc_px" -lt 512 ]; then fc_px=512; fi
   echo "hidden truth: scale 1.7 (x T = 3.4e-3, log10 -2.469), reflectance 0.08"
 } | tee -a "$out/flightcheck.txt"
 rm -rf "$out/flight_frames"	# 12 full frames: 120 MB
+
+say "review: two user projects unlike the demo, each from its project file (stray review, docs/review.md)"
+# Five thin vanes behind an ideal lens on a 500 km sun-synchronous orbit,
+# and three upper-bevel vanes with a lens curve, a lab curve to diagnose
+# and an inclined inertial mission: each report names only its project.
+for p in cube navcam; do
+	"$stray" review "examples/review-$p/project.json" --out "$out/review-$p" \
+		--rays $((rays / 5)) 2>&1 | grep -v "s so far"
+	python3 - "$out/review-$p/review.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+for v in d["verdicts"]:
+    f = "none" if v["found"] is None else "%.4g" % v["found"]
+    print("  %-26s required %-6g found %-10s %s  %s" % (v["requirement"], v["required"],
+          f, v["unit"], "PASS" if v["pass"] else "FAIL"))
+PY
+	if command -v chromium >/dev/null; then
+		scripts/check-report.sh "$out/review-$p" --complete
+	fi
+done
 
 say "report: $out/report.html (and report.md)"
 "$stray" report "$out"
