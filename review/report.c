@@ -56,7 +56,7 @@ static void verdict_section(struct review_doc *d, const struct review_project *p
 		"found", "interval (1 sigma)", "verdict", "figure" };
 	char req[96], found[160], iv[160];
 	const char *cells[6];
-	int i, k, pass = 0;
+	int i, k, pass = 0, n_v = n;
 
 	doc_h2(d, "Verdicts", "verdicts");
 	for (i = 0; i < n; i++)
@@ -82,8 +82,17 @@ static void verdict_section(struct review_doc *d, const struct review_project *p
 			if (v[k].figure && v[i].figure &&
 			    strcmp(v[k].figure, v[i].figure) == 0)
 				break;
-		if (v[i].figure && k == i)
-			doc_fig(d, v[i].figure, v[i].key);
+		if (v[i].figure && k == i) {
+			char cap[256];
+			size_t n = 0;
+
+			/* the caption names every verdict the figure shows */
+			for (k = i; k < n_v && n < sizeof(cap); k++)
+				if (v[k].figure && strcmp(v[k].figure, v[i].figure) == 0)
+					n += (size_t)snprintf(cap + n, sizeof(cap) - n, "%s%s",
+							      n ? ", " : "", v[k].key);
+			doc_fig(d, v[i].figure, cap);
+		}
 	}
 	doc_end_section(d);
 }

@@ -139,6 +139,8 @@ int review_draw_section(const char *obj, const char *png,
 	plsfnam(out.tmp);
 	plsetopt("geometry", "900x700");
 	plscolbg(255, 255, 255);
+	plscol0(1, 0, 0, 0);	/* black frame and labels */
+	plscol0(9, 30, 60, 200);
 	plinit();
 	plcol0(1);
 	plenv(m.lo[0] - pad, m.hi[0] + pad, m.lo[1] - pad, m.hi[1] + pad, 1, 0);
