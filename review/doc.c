@@ -146,7 +146,16 @@ const char *review_unit(const char *key)
 	    strcmp(key, "wall") == 0 || strcmp(key, "vane_thickness") == 0 ||
 	    strcmp(key, "beam_margin") == 0 || strcmp(key, "scale_mm") == 0)
 		return "mm";	/* the scene files' lengths (docs/scene.md) */
-	if (ENDS("epochs") || ENDS("outages") || ENDS("_gaps") ||
+	if (strcmp(key, "sigma") == 0 || strcmp(key, "noise_floor") == 0 ||
+	    ENDS("rel_sigma") || ENDS("rel_power") || strcmp(key, "direct") == 0 ||
+	    strncmp(key, "order", 5) == 0)
+		return "1 (ratio)";
+	if (strcmp(key, "column") == 0 || strcmp(key, "row") == 0)
+		return "px";
+	if (ENDS("frames") || ENDS("_count") || ENDS("_samples") ||
+	    ENDS("_pixels") || strcmp(key, "rows") == 0 ||
+	    strcmp(key, "columns") == 0 || strcmp(key, "visits") == 0 ||
+	    ENDS("epochs") || ENDS("outages") || ENDS("_gaps") ||
 	    strcmp(key, "n") == 0 || strcmp(key, "paths") == 0 ||
 	    strcmp(key, "casts") == 0 || strcmp(key, "connections") == 0 ||
 	    strcmp(key, "angles") == 0 || strcmp(key, "threads") == 0 ||

@@ -200,6 +200,22 @@ static void step_body(struct review_doc *d, const char *dir,
 		diagnose_causes(d, j);
 	if (strcmp(s->name, "mission") == 0)
 		mission_lines(d, p);
+	if (strcmp(s->name, "fdr_at_requirement") == 0 && j) {
+		const cJSON *a = cJSON_GetObjectItemCaseSensitive(j, "alpha");
+		const cJSON *f = cJSON_GetObjectItemCaseSensitive(j, "fdr");
+		double th = 0.0;
+		int i;
+
+		for (i = 0; i < p->n_req; i++)
+			if (strcmp(p->req[i].key, "sun_exclusion_deg_max") == 0)
+				th = p->req[i].value;
+		if (cJSON_IsNumber(a) && cJSON_IsNumber(f) && a->valuedouble <= 1e-29)
+			doc_p(d, "At and beyond the required Sun angle, %g deg, the system curve is 0 (the trace found no path): 0 false stars per image.",
+			      th);
+		else if (cJSON_IsNumber(a) && cJSON_IsNumber(f))
+			doc_p(d, "At and beyond the required Sun angle, %g deg, the system's largest attenuation is %.3g: %.3g false stars per image with the Sun there.",
+			      th, a->valuedouble, f->valuedouble);
+	}
 	if (j)
 		review_json_tables(d, j, "", strcmp(s->name, "diagnose") == 0 ?
 				   skip_diag : NULL);
