@@ -242,7 +242,7 @@ say "review: the demo's system and two user projects, each from its project file
 # mission are the steps above number for number (checked below); its
 # system curve is traced on 1-deg rows (the flight table's limit) and its
 # flight table is the nominal system's, not the variant's.
-cat > "$out/project.json" <<'EOF'
+cat > "$out/project.json" <<EOF
 {
   "name": "st16-like behind ref4, the built-in reference system",
   "sensor": "st16-like",
@@ -253,7 +253,7 @@ cat > "$out/project.json" <<'EOF'
                    "availability_min": 0.9},
   "measured": {"curve": "baffle_measured.csv", "kind": "baffle"},
   "mission": {"orbit": {"altitude_km": 550, "ltan": "22:30", "epoch": "2026-06-21",
-                        "hours": 24}, "attitude": "nadir"},
+                        "hours": ${DEMO_MISSION_HOURS:-24}}, "attitude": "nadir"},
   "heads": [
     {"name": "A", "boresight_body": [0, 0.6428, -0.7660], "up_body": [1, 0, 0]},
     {"name": "B", "boresight_body": [0, -0.6428, -0.7660], "up_body": [1, 0, 0]},
