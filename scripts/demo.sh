@@ -7,7 +7,9 @@
 #   system, FDR and exclusion angles -> a design variant -> what the thesis
 #   model gets wrong about pixels (k_px, mapped stray light, rendered
 #   frames) -> flight table -> the flight module along a day in orbit ->
-#   availability -> the tracker seen from its own flight frames -> report
+#   availability -> the tracker seen from its own flight frames -> the
+#   same system and two user projects reviewed from project files
+#   (stray review) -> report
 # Usage: scripts/demo.sh BUILD_DIR [OUT_DIR]
 # DEMO_RAYS (paths per curve) and DEMO_STEP_DEG (photometer step) scale it;
 # DEMO_FRAMES=PX renders PX x PX windows instead of full frames.
@@ -20,7 +22,7 @@ rays=${DEMO_RAYS:-1500000}
 step_deg=${DEMO_STEP_DEG:-1}
 rm -rf "$out"
 mkdir -p "$out"
-step=0; steps=16
+step=0; steps=17
 say() { step=$((step + 1)); printf '\n[%d/%d] %s\n' "$step" "$steps" "$*"; }
 start=$(date +%s)
 
@@ -243,6 +245,79 @@ rm -rf "$out/flight_frames"	# 12 full frames: 120 MB
 	--model "$out/fc_ref4_lens.csv" --catalogue libstray/data/hip2_hp6.5.dat
 } | tee -a "$out/flightcheck.txt"
 rm -rf "$out/flight_sky"	# 12 full frames: 120 MB
+
+say "review: the demo's system and two user projects, each from its project file (stray review, docs/review.md)"
+# First the demo's own system as a project file (the same lab sweep, lab
+# curve, mission and heads): its photometry, FDR, lens, diagnosis and
+# mission are the steps above number for number (checked below); its
+# system curve is traced on 1-deg rows (the flight table's limit) and its
+# flight table is the nominal system's, not the variant's.
+cat > "$out/project.json" <<EOF
+{
+  "name": "st16-like behind ref4, the built-in reference system",
+  "sensor": "st16-like",
+  "scene": "ref4",
+  "lens": {"sweep": "sweep"},
+  "requirements": {"false_stars_per_image": 5, "sun_exclusion_deg_max": 40,
+                   "moon_exclusion_deg_max": 20, "earth_exclusion_deg_max": 30,
+                   "availability_min": 0.9},
+  "measured": {"curve": "baffle_measured.csv", "kind": "baffle"},
+  "mission": {"orbit": {"altitude_km": 550, "ltan": "22:30", "epoch": "2026-06-21",
+                        "hours": ${DEMO_MISSION_HOURS:-24}}, "attitude": "nadir"},
+  "heads": [
+    {"name": "A", "boresight_body": [0, 0.6428, -0.7660], "up_body": [1, 0, 0]},
+    {"name": "B", "boresight_body": [0, -0.6428, -0.7660], "up_body": [1, 0, 0]},
+    {"name": "C", "boresight_body": [-0.6428, 0, -0.7660], "up_body": [0, 1, 0]}]
+}
+EOF
+"$stray" review "$out/project.json" --out "$out/review" --rays "$rays" 2>&1 |
+	grep -v "s so far"
+"$stray" exclusion --curve "$out/system.csv" --earth-albedo 0.3 \
+	--json > "$out/exclusion_nominal.json" 2>/dev/null
+python3 - "$out" <<'PY' | tee "$out/review_vs_demo.txt"
+import filecmp, json, os, sys
+o = sys.argv[1]
+j = lambda *p: json.load(open(os.path.join(o, *p)))
+def same(a, b):		# timing and provenance aside
+    for d in (a, b):
+        for k in [k for k in d if k == "provenance" or k.endswith("seconds")]:
+            d.pop(k)
+    return "same" if a == b else "DIFFERENT"
+rows = lambda *p: [l for l in open(os.path.join(o, *p)) if not l.startswith("#")]
+both = lambda n: filecmp.cmp(os.path.join(o, n), os.path.join(o, "review", n), False)
+print("review of the demo's system against the demo's own steps:")
+print("  photometry: %s; fdr: %s" % (same(j("photometry.json"), j("review", "photometry.json")),
+      same(j("fdr_sun.json"), j("review", "fdr.json"))))
+print("  lens curve (rows): %s" % ("same" if rows("lens.csv") == rows("review", "lens.csv") else "DIFFERENT"))
+print("  diagnosis: %s" % same(j("diagnose.json"), j("review", "diagnose.json")))
+print("  mission OEM/AEM: %s" % ("same" if both("mission.oem") and both("mission.aem") else "DIFFERENT"))
+f = lambda x: "not excluded" if x is None else "%.2f deg" % x
+a, b = j("exclusion_nominal.json"), j("review", "exclusion.json")
+for k in ("sun_deg", "moon_deg", "earth_limb_deg"):
+    print("  nominal system %-15s demo (auto angles) %-14s review (1-deg rows) %s" % (k, f(a[k]), f(b[k])))
+PY
+if command -v chromium >/dev/null; then
+	scripts/check-report.sh "$out/review" --complete
+fi
+# Then two user projects unlike it:
+# five thin vanes behind an ideal lens on a 500 km sun-synchronous orbit,
+# and three upper-bevel vanes with a lens curve, a lab curve to diagnose
+# and an inclined inertial mission: each report names only its project.
+for p in cube navcam; do
+	"$stray" review "examples/review-$p/project.json" --out "$out/review-$p" \
+		--rays $((rays / 5)) 2>&1 | grep -v "s so far"
+	python3 - "$out/review-$p/review.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+for v in d["verdicts"]:
+    f = "none" if v["found"] is None else "%.4g" % v["found"]
+    print("  %-26s required %-6g found %-10s %s  %s" % (v["requirement"], v["required"],
+          f, v["unit"], "PASS" if v["pass"] else "FAIL"))
+PY
+	if command -v chromium >/dev/null; then
+		scripts/check-report.sh "$out/review-$p" --complete
+	fi
+done
 
 say "report: $out/report.html (and report.md)"
 "$stray" report "$out"

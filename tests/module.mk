@@ -69,6 +69,13 @@ build/fuzz/fuzz_heads: tests/fuzz/fuzz_heads.c tools/avail_heads.c $(FUZZ_LIB_SR
 	@mkdir -p $(dir $@)
 	$(CLANG) $(FUZZ_CFLAGS) -Itools -o $@ $^ -lcsv -lcjson -lm
 
+# The project file of `stray review` (issue 25) and the plan made from it.
+build/fuzz/fuzz_review_project: tests/fuzz/fuzz_review_project.c \
+		review/project.c review/mission.c review/plan.c $(FUZZ_LIB_SRC)
+	@mkdir -p $(dir $@)
+	$(CLANG) $(FUZZ_CFLAGS) -D_DEFAULT_SOURCE -Ireview/include -o $@ $^ \
+		-lcsv -lcjson -lm
+
 # Scene files: the JSON, then the OBJ/STL meshes it names through assimp.
 build/fuzz/fuzz_scene_json: tests/fuzz/fuzz_scene_json.c $(wildcard tracer/*.c) \
 		$(FUZZ_LIB_SRC)

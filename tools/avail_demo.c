@@ -1,7 +1,10 @@
 /*
- * avail_demo.c - the demo mission of `stray availability --write-oem
- * --write-aem`: a sun-synchronous orbit, nadir pointing with yaw
- * steering, written as OEM and AEM and kept in memory for the same run.
+ * avail_demo.c - the mission of `stray availability --write-oem
+ * --write-aem`: a circular orbit (any altitude; sun-synchronous with an
+ * LTAN, or any inclination) and an attitude (nadir pointing with yaw
+ * steering, inertial, or Sun-pointing), written as OEM and AEM and kept
+ * in memory for the same run.  The defaults are the demo's mission:
+ * 550 km, sun-synchronous, LTAN 22:30, nadir with yaw steering.
  */
 #include <errno.h>
 #include <math.h>
@@ -39,10 +42,10 @@ static void cross(const double a[3], const double b[3], double c[3])
  * track (the orbital velocity less the Earth's rotation under it), the
  * yaw angle psi = atan2(w_E sin i cos u, n - w_E cos i).
  */
-static void nadir_yaw_q(const struct orbit *o, double ts, const double r[3],
-			const double v[3], double q[4])
+static void nadir_yaw_m(const struct orbit *o, double ts, const double r[3],
+			const double v[3], double m[3][3])
 {
-	double m[3][3], x0[3], y0[3], h[3], u = o->n_rad_s * ts, psi;
+	double x0[3], y0[3], h[3], u = o->n_rad_s * ts, psi;
 	int k;
 
 	psi = atan2(OMEGA_EARTH * sin(o->incl_rad) * cos(u),
@@ -59,7 +62,23 @@ static void nadir_yaw_q(const struct orbit *o, double ts, const double r[3],
 		m[0][k] = cos(psi) * x0[k] + sin(psi) * y0[k];
 		m[1][k] = -sin(psi) * x0[k] + cos(psi) * y0[k];
 	}
-	stray_dcm_q(m, q);
+}
+
+/* Sun-pointing: body +z to the Sun, +x in the equatorial plane (north x
+ * Sun; the vernal equinox when the Sun is at a pole of the sky). */
+static void sun_pointing_m(const float sun[3], double m[3][3])
+{
+	static const double north[3] = { 0, 0, 1 };
+	int k;
+
+	for (k = 0; k < 3; k++)
+		m[2][k] = sun[k];
+	unit(m[2]);
+	cross(north, m[2], m[0]);
+	if (m[0][0] * m[0][0] + m[0][1] * m[0][1] + m[0][2] * m[0][2] < 1e-12)
+		m[0][0] = 1, m[0][1] = m[0][2] = 0;
+	unit(m[0]);
+	cross(m[2], m[0], m[1]);
 }
 
 /* Text made in memory by write(f), then kept there for the run that
@@ -122,7 +141,7 @@ int mission_write_demo(const struct mission_args *a, struct mission *m,
 	struct orbit orb;
 	struct demo d;
 	char date[40];
-	double t0;
+	double t0, m0[3][3], mm[3][3];
 	float sun[3];
 	size_t i;
 	int rc;
@@ -142,13 +161,28 @@ int mission_write_demo(const struct mission_args *a, struct mission *m,
 		return stray_error_set(err, STRAY_ENOMEM, "records", NULL);
 	}
 	fdrfw_sun_dir((int32_t)lround(t0), sun);
-	orbit_sso(&orb, 550.0, 22.5, atan2(sun[1], sun[0]));
+	if (a->incl_deg < 0.0)
+		orbit_sso(&orb, a->altitude_km, a->ltan_h, atan2(sun[1], sun[0]));
+	else
+		orbit_inclined(&orb, a->altitude_km, a->incl_deg, a->ltan_h,
+			       atan2(sun[1], sun[0]));
 	for (i = 0; i < d.n; i++) {
 		double ts = (double)i * a->gen_step_s;
 
 		d.t[i] = t0 + ts;
 		orbit_state(&orb, ts, d.r[i], d.v[i]);
-		nadir_yaw_q(&orb, ts, d.r[i], d.v[i], d.q[i]);
+		if (a->attitude == MISSION_SUN) {
+			fdrfw_sun_dir((int32_t)lround(d.t[i]), sun);
+			sun_pointing_m(sun, mm);
+		} else {
+			nadir_yaw_m(&orb, ts, d.r[i], d.v[i], mm);
+			/* inertial: the epoch's nadir attitude, held */
+			if (i == 0)
+				memcpy(m0, mm, sizeof(m0));
+			if (a->attitude == MISSION_INERTIAL)
+				memcpy(mm, m0, sizeof(m0));
+		}
+		stray_dcm_q(mm, d.q[i]);
 	}
 	rc = make_text(a->write_oem, &m->oem_text, &m->oem_len, write_oem, &d,
 		       err);

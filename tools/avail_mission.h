@@ -27,7 +27,13 @@ struct mission_args {
 	double step_s, hours, gen_step_s;
 	int hours_given;
 	int year, month, day;
+	/* the mission --write-oem/--write-aem generates (any circular orbit) */
+	double altitude_km, ltan_h, incl_deg;	/* incl_deg < 0: sun-synchronous */
+	int attitude;				/* enum mission_attitude */
+	int orbit_given, incl_given;
 };
+
+enum mission_attitude { MISSION_NADIR, MISSION_INERTIAL, MISSION_SUN };
 
 struct mission_head {
 	char name[32];
@@ -59,7 +65,7 @@ struct mission {
 	size_t oem_len, aem_len;
 };
 
-/* The demo mission written to a->write_oem and a->write_aem, its text
+/* The mission of a (orbit and attitude) written to a->write_oem and a->write_aem, its text
  * kept in m->oem_text / aem_text for mission_load (the files themselves
  * are renamed into place only when the command succeeds). */
 int mission_write_demo(const struct mission_args *a, struct mission *m,

@@ -24,7 +24,8 @@ static const char usage[] =
 	"                          [--plot PREFIX] [--iers F] [--json]\n"
 	"       stray availability --write-oem O.oem --write-aem A.aem\n"
 	"                          [--epoch YYYY-MM-DD] [--hours H] [--gen-step-s S]\n"
-	"                          [--heads H.json ...]\n"
+	"                          [--altitude-km A] [--ltan HH:MM] [--inclination-deg I]\n"
+	"                          [--attitude nadir|inertial|sun] [--heads H.json ...]\n"
 	"\n"
 	"Fly the flight module of every head along the orbit of an OEM (CCSDS\n"
 	"502.0) and the attitude of an AEM (CCSDS 504.0), both in KVN text,\n"
@@ -48,12 +49,29 @@ static const char usage[] =
 	"                       Earth-fixed frame; zero without one\n"
 	"  --json               machine-readable summary\n"
 	"  --write-oem F, --write-aem F\n"
-	"                       write the demo mission: a 550 km sun-synchronous\n"
-	"                       orbit (LTAN 22:30), nadir pointing with yaw\n"
-	"                       steering, from 00:00 UTC of --epoch (2026-06-21)\n"
-	"                       for --hours (24) every --gen-step-s (60) s; with\n"
-	"                       --heads what was written is flown in the same run\n"
-	"                       (nothing is written if it fails)\n";
+	"                       write a mission: a circular orbit at --altitude-km\n"
+	"                       (550), sun-synchronous with its node at --ltan\n"
+	"                       (22:30) local time, or at --inclination-deg I\n"
+	"                       (node at --ltan at the epoch, J2 regression);\n"
+	"                       --attitude nadir (with yaw steering, default),\n"
+	"                       inertial (the epoch's nadir attitude held) or sun\n"
+	"                       (body +z to the Sun, +x equatorial); from 00:00\n"
+	"                       UTC of --epoch (2026-06-21) for --hours (24) every\n"
+	"                       --gen-step-s (60) s; with --heads what was written\n"
+	"                       is flown in the same run (nothing is written if\n"
+	"                       it fails)\n";
+
+/* "HH:MM" local time of the ascending node, in hours. */
+static int parse_ltan(const char *text, double *h)
+{
+	int hh, mm, n = 0;
+
+	if (sscanf(text, "%2d:%2d%n", &hh, &mm, &n) != 2 || text[n] ||
+	    hh < 0 || hh > 23 || mm < 0 || mm > 59)
+		return 0;
+	*h = hh + mm / 60.0;
+	return 1;
+}
 
 static int parse_date(const char *text, struct mission_args *a)
 {
@@ -111,6 +129,10 @@ static int parse_args(int argc, char **argv, struct mission_args *a)
 		{ "epoch", required_argument, NULL, 'e' },
 		{ "gen-step-s", required_argument, NULL, 'g' },
 		{ "iers", required_argument, NULL, 'I' },
+		{ "altitude-km", required_argument, NULL, 'k' },
+		{ "ltan", required_argument, NULL, 'L' },
+		{ "inclination-deg", required_argument, NULL, 'i' },
+		{ "attitude", required_argument, NULL, 't' },
 		{ "json", no_argument, &cli.json, 1 },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 }
@@ -137,6 +159,24 @@ static int parse_args(int argc, char **argv, struct mission_args *a)
 			rc = cli_parse_double(cmd, "hours", optarg, &a->hours);
 			break;
 		case 'g': rc = cli_parse_double(cmd, "gen-step-s", optarg, &a->gen_step_s); break;
+		case 'k': a->orbit_given = 1; rc = cli_parse_double(cmd, "altitude-km", optarg, &a->altitude_km); break;
+		case 'i': a->orbit_given = a->incl_given = 1; rc = cli_parse_double(cmd, "inclination-deg", optarg, &a->incl_deg); break;
+		case 'L':
+			a->orbit_given = 1;
+			if (!parse_ltan(optarg, &a->ltan_h))
+				return cli_usage_error(cmd, "option '--ltan': '%s' is not a time HH:MM", optarg);
+			break;
+		case 't':
+			a->orbit_given = 1;
+			if (strcmp(optarg, "nadir") == 0)
+				a->attitude = MISSION_NADIR;
+			else if (strcmp(optarg, "inertial") == 0)
+				a->attitude = MISSION_INERTIAL;
+			else if (strcmp(optarg, "sun") == 0)
+				a->attitude = MISSION_SUN;
+			else
+				return cli_usage_error(cmd, "option '--attitude': '%s' is not nadir, inertial or sun", optarg);
+			break;
 		case 'e':
 			if (!parse_date(optarg, a))
 				return cli_usage_error(cmd, "option '--epoch': '%s' is not a date YYYY-MM-DD in 1972..2065", optarg);
@@ -158,6 +198,12 @@ static int parse_args(int argc, char **argv, struct mission_args *a)
 		a->oem = a->write_oem;
 		a->aem = a->write_aem;
 	}
+	if (!a->write_oem && a->orbit_given)
+		return cli_usage_error(cmd, "--altitude-km, --ltan, --inclination-deg and --attitude describe the mission --write-oem/--write-aem writes");
+	if (!(a->altitude_km >= 160.0 && a->altitude_km <= 5000.0))
+		return cli_usage_error(cmd, "option '--altitude-km': %g is outside 160..5000", a->altitude_km);
+	if (a->incl_given && !(a->incl_deg >= 0.0 && a->incl_deg <= 180.0))
+		return cli_usage_error(cmd, "option '--inclination-deg': %g is outside 0..180", a->incl_deg);
 	if (!a->write_oem && (!a->oem || !a->aem || !a->heads))
 		return cli_usage_error(cmd, "--oem, --aem and --heads are required");
 	if (!(a->step_s >= 0.1 && a->step_s <= 86400.0))
@@ -185,6 +231,10 @@ int cmd_availability(int argc, char **argv)
 	a.year = 2026;
 	a.month = 6;
 	a.day = 21;
+	a.altitude_km = 550.0;	/* the demo's mission unless told */
+	a.ltan_h = 22.5;
+	a.incl_deg = -1.0;
+	a.attitude = MISSION_NADIR;
 	rc = parse_args(argc, argv, &a);
 	if (rc != CLI_OK)
 		return rc < 0 ? CLI_OK : rc;

@@ -29,5 +29,6 @@ int cmd_rig(int argc, char **argv);
 int cmd_frames(int argc, char **argv);
 int cmd_flightcheck(int argc, char **argv);
 int cmd_lens(int argc, char **argv);
+int cmd_review(int argc, char **argv);
 
 #endif /* STRAY_TOOLS_COMMANDS_H */

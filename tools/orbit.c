@@ -24,6 +24,19 @@ void orbit_sso(struct orbit *o, double altitude_km, double ltan_h,
 	o->raan0_rad = sun_ra_rad + (ltan_h - 12.0) / 24.0 * TWO_PI;
 }
 
+void orbit_inclined(struct orbit *o, double altitude_km, double incl_deg,
+		    double ltan_h, double sun_ra_rad)
+{
+	double a = ORBIT_RE_KM + altitude_km, ratio = ORBIT_RE_KM / a;
+
+	o->a_km = a;
+	o->n_rad_s = sqrt(ORBIT_MU_KM3_S2 / (a * a * a));
+	o->incl_rad = incl_deg * TWO_PI / 360.0;
+	o->raan_dot_rad_s = -1.5 * o->n_rad_s * ORBIT_J2 * ratio * ratio *
+			    cos(o->incl_rad);
+	o->raan0_rad = sun_ra_rad + (ltan_h - 12.0) / 24.0 * TWO_PI;
+}
+
 void orbit_state(const struct orbit *o, double t_s, double r[3],
 		 double v[3])
 {

@@ -29,6 +29,14 @@ struct orbit {
 void orbit_sso(struct orbit *o, double altitude_km, double ltan_h,
 	       double sun_ra_rad);
 
+/*
+ * A circular orbit at altitude_km and inclination incl_deg whose node is
+ * at local time ltan_h at t0; the node regresses by J2 alone (Vallado
+ * eq. 9-37), so it keeps its local time only when sun-synchronous.
+ */
+void orbit_inclined(struct orbit *o, double altitude_km, double incl_deg,
+		    double ltan_h, double sun_ra_rad);
+
 /* Position [km] and velocity [km/s] t_s after t0 (argument of latitude
  * 0 at t0), geocentric inertial (J2000). */
 void orbit_state(const struct orbit *o, double t_s, double r[3],

@@ -40,6 +40,8 @@ static const struct cmd commands[] = {
 	  "Sun, Moon and Earth exclusion angles of a curve" },
 	{ "report", cmd_report,
 	  "design-review report (HTML and Markdown) of a results folder" },
+	{ "review", cmd_review,
+	  "the design review of your own system from one project file" },
 	{ "photometer", cmd_photometer,
 	  "virtual photometer sweep of a baffle (noise, floor) from a true curve" },
 	{ "firmware-table", cmd_firmware_table, "flight table of firmware_fdr (C source and CRC-sealed blob)" },
