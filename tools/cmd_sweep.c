@@ -50,7 +50,7 @@ static const char usage[] =
 	"  --alpha-at LIST     angles to report alpha at (default 20,30,40)\n"
 	"  --rays N, --seed K, --threads T, --batches B, --lens L.csv,\n"
 	"  --set key=value     as 'stray trace' (rays default 300000)\n"
-	SENSOR_USAGE NORMALISATION_USAGE;
+	SENSOR_USAGE NORMALISATION_USAGE DETECTOR_USAGE;
 
 #define SETS_MAX 64
 
@@ -80,6 +80,7 @@ static const struct option sweep_opts[] = {
 	{ "help", no_argument, NULL, 'h' },
 	SENSOR_LONG_OPTIONS,
 	NORMALISATION_LONG_OPTION,
+	DETECTOR_LONG_OPTIONS,
 	{ NULL, 0, NULL, 0 }
 };
 
@@ -340,8 +341,12 @@ static int sweep(struct sweep_args *a, struct fdr_setup *fs,
 	int rc = fdr_setup_load(fs, err);
 
 	if (!rc) {
+		struct stray_detector_req req;
+
+		/* the detector's answer, both failure modes (thesis: eq. 2.18) */
 		fdr_setup_model(fs, fs->flux.sun, &m);
-		rc = stray_fdr_alpha_required(&m, fs->rate, &alpha_req, err);
+		rc = fdr_setup_alpha_required(fs, &m, &req, err);
+		alpha_req = req.alpha_req;
 	}
 	if (!rc)
 		rc = make_angles(a, &theta, &n, err);

@@ -13,6 +13,10 @@
 #define PSF_PER_RADIUS STRAY_R(0.25)
 #define DISK_HALF 64		/* fdr_field.h: windows up to r = 64 */
 #define PSF_HALF 4		/* the DRS's brightest pixels lie within */
+/* Past this pixel mean the Poisson tail is a Gaussian's (fdr.c's
+ * POISSON_GAUSS_MEAN): the incomplete gamma function would need > 1e5
+ * terms, and skew is below 1e-9. */
+#define PIXEL_GAUSS_MEAN STRAY_R(1e8)
 
 static const char *const names[STRAY_DET_COUNT] = {
 	"thesis", "window", "threshold", "tetra3"
@@ -213,6 +217,10 @@ static int log_pixel_exceed(stray_real mu_e, stray_real var_e, stray_real t_e,
 		*lp = 0;
 		return STRAY_OK;
 	}
+	if (mu > PIXEL_GAUSS_MEAN) {
+		*lp = stray_log_gauss_q(t_e / stray_sqrt(mu));
+		return STRAY_OK;
+	}
 	return stray_log_gamma_p(a, mu, lp, err);
 }
 
@@ -232,6 +240,10 @@ static int region_pixel_rate(const struct stray_detector *d,
 			*lr = -STRAY_HUGE;
 			return STRAY_OK;
 		}
+		/* far past any tolerated rate the pixel exceedance is ~1/2 and
+		 * the rate has saturated: hold it at PIXEL_GAUSS_MEAN */
+		if (mu + var > PIXEL_GAUSS_MEAN)
+			mu = PIXEL_GAUSS_MEAN - var;
 		return stray_fdr_log_rate_clusters(n_px, mu, var, t_e,
 						   d->min_px, lr, err);
 	}

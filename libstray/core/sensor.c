@@ -86,6 +86,11 @@ int stray_sensor_check(const struct stray_sensor *s, struct stray_error *err)
 		return stray_error_set_value(err, STRAY_EINVAL,
 			"dark_current_e_s", STRAY_MSG("must be finite and >= 0"),
 			s->dark_current_e_s);
+	/* 0 is "not given" (tetra3's default k = 3, stray/detector.h) */
+	if (!(s->detector_sigma == 0.0 ||
+	      (s->detector_sigma >= 0.5 && s->detector_sigma <= 20.0)))
+		return stray_error_set_value(err, STRAY_EINVAL, "detector_sigma",
+			STRAY_MSG("must lie in 0.5..20"), s->detector_sigma);
 	return STRAY_OK;
 }
 
