@@ -141,7 +141,7 @@ int stray_detector_alpha_required(const struct stray_detector *d,
 stray_real stray_detector_psf_pixel(stray_real s, stray_real ox,
 				    stray_real oy, int i, int j);
 /* The WINDOW model's positions near a star: offsets of pixel centres from
- * the star's pixel within sqrt(2) px; returns their number. */
+ * the star's pixel within sqrt(5) px; returns their number. */
 unsigned stray_detector_positions(int dx[STRAY_DET_POS_MAX],
 				  int dy[STRAY_DET_POS_MAX]);
 /* TETRA3's threshold above the background at alpha, e-. */
