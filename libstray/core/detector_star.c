@@ -21,6 +21,10 @@
 /* THRESHOLD: pixels within 2.5 px (within 1.5 or 2 px the prediction
  * falls 0.07-0.16 below the frames at 2e-7). */
 #define NEAR_R2 STRAY_R(6.25)
+/* TETRA3: the side of its local-mean filter (get_centroids_from_image's
+ * filtsize, 25): the star's own light in the box raises the background
+ * removed under it by I / 25^2. */
+#define TETRA3_FILTSIZE 25
 #define G_HALF 70		/* 1-D pixel fractions, |i| <= 64 + 3 */
 #define LOG_E_MIN STRAY_R(0)	/* limiting photons searched in 1..1e12 */
 #define LOG_E_MAX STRAY_R(27.631)
@@ -160,13 +164,19 @@ static stray_real tetra3_prob(const struct stray_detector *d, stray_real b,
 	static const int arm[5][2] = { { 0, 0 }, { 1, 0 }, { -1, 0 },
 				       { 0, 1 }, { 0, -1 } };
 	stray_real q[25], p = 0;
+	stray_real lift = star / (TETRA3_FILTSIZE * TETRA3_FILTSIZE);
 	unsigned long cross[9];
 	unsigned s, c, a, i;
 
-	for (i = 0; i < 25; i++)
-		q[i] = pixel_above(star * stray_detector_psf_pixel(
+	for (i = 0; i < 25; i++) {
+		stray_real sig = star * stray_detector_psf_pixel(
 			d->psf_sigma_px, ox, oy, (int)(i % 5) - 2,
-			(int)(i / 5) - 2), b, t);
+			(int)(i / 5) - 2);
+
+		/* the pixel's shot noise is its own; the local mean is
+		 * lifted by the star */
+		q[i] = pixel_above(sig, b, t + lift);
+	}
 	for (c = 0; c < 9; c++) {
 		int cx = (int)(c % 3) - 1, cy = (int)(c / 3) - 1;
 
