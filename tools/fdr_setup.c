@@ -174,13 +174,25 @@ void fdr_setup_model(const struct fdr_setup *s, double f_src,
 	m->map = s->map_path ? &s->map : NULL;
 }
 
+/* The sensor came from a file (its numbers are the user's to fix). */
+static int sensor_is_file(const struct fdr_setup *s)
+{
+	return strchr(s->sensor_spec, '/') || strstr(s->sensor_spec, ".json");
+}
+
 int fdr_setup_detector(const struct fdr_setup *s,
 		       const struct stray_fdr_model *m, struct stray_detector *d,
 		       struct stray_error *err)
 {
+	int rc;
+
 	stray_detector_init(d, s->detector, s->sensor.star_window_px);
 	d->sigma_k = s->detector_sigma;
-	return stray_detector_setup(d, m, err);
+	rc = stray_detector_setup(d, m, err);
+	/* what the detector refuses comes from the sensor's numbers */
+	if (rc != STRAY_OK && sensor_is_file(s))
+		stray_error_locate(err, s->sensor_spec, 0);
+	return rc;
 }
 
 int fdr_setup_alpha_required(const struct fdr_setup *s,
@@ -201,8 +213,11 @@ int fdr_setup_alpha_required(const struct fdr_setup *s,
 		r->alpha_req = r->alpha_false;
 		return rc;
 	}
-	return stray_detector_alpha_required(&d, m, s->rate, s->sensor.pr_drs,
-					     r, err);
+	rc = stray_detector_alpha_required(&d, m, s->rate, s->sensor.pr_drs, r,
+					   err);
+	if (rc != STRAY_OK && sensor_is_file(s))
+		stray_error_locate(err, s->sensor_spec, 0);
+	return rc;
 }
 
 void fdr_setup_detector_json(const struct fdr_setup *s, cJSON *o)

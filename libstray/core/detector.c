@@ -174,9 +174,9 @@ int stray_detector_setup(struct stray_detector *d,
 	if (!(d->window_r_px >= 1 && d->window_r_px <= DISK_HALF))
 		return stray_error_set_value(err, STRAY_EINVAL, "window_radius_px",
 			STRAY_MSG("must lie in 1..64"), d->window_r_px);
-	if (!(d->psf_sigma_px >= STRAY_R(0.3) && d->psf_sigma_px <= 16))
+	if (!(d->psf_sigma_px >= STRAY_R(0.25) && d->psf_sigma_px <= 16))
 		return stray_error_set_value(err, STRAY_EINVAL, "psf_sigma_px",
-			STRAY_MSG("must lie in 0.3..16"), d->psf_sigma_px);
+			STRAY_MSG("must lie in 0.25..16"), d->psf_sigma_px);
 	if ((rc = stray_fdr_model_check(m, err)) != STRAY_OK)
 		return rc;
 	if (d->kind == STRAY_DET_THESIS)
@@ -408,7 +408,8 @@ int stray_detector_alpha_required(const struct stray_detector *d,
 			STRAY_MSG("neither false stars nor lost stars bind for alpha up to 1e12"),
 			rate);
 	if (!(r->alpha_req > 0))
-		return stray_error_set_value(err, STRAY_ERANGE, "pr_drs",
+		/* the sensor asks what its detector cannot give: bad input */
+		return stray_error_set_value(err, STRAY_EINVAL, "pr_drs",
 			STRAY_MSG("the reference star is missed even in the dark"),
 			pr_min);
 	return STRAY_OK;

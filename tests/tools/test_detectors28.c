@@ -233,6 +233,30 @@ static void test_sensor_detector(void **state)
 			       "--sensor", good, "--detector", "thesis"), 0);
 }
 
+/* A sensor its detector cannot serve is refused naming the file: a window
+ * wider than the models' 64 px radius, a star too small for tetra3's
+ * 5 px opening to keep (the DRS missed with Pr_drs in the dark). */
+static void test_sensor_detector_refused(void **state)
+{
+	char *big = put_text("big.json",
+		"{\"name\": \"big\", \"star_window_px\": 20000}");
+	char *small = put_text("small.json",
+		"{\"name\": \"small\", \"star_window_px\": 3}");
+
+	(void)state;
+	assert_int_equal(STRAY("fdr", "--sensor", big, "--detector", "window"), 2);
+	assert_int_equal(r.err_lines, 1);
+	assert_non_null(strstr(r.err, "big.json"));
+	assert_non_null(strstr(r.err, "window_radius_px"));
+	assert_int_equal(STRAY("exclusion", "--curve", CURVE, "--sensor", small,
+			       "--detector", "tetra3"), 2);
+	assert_int_equal(r.err_lines, 1);
+	assert_non_null(strstr(r.err, "small.json"));
+	assert_non_null(strstr(r.err, "pr_drs"));
+	/* the thesis detector serves both, as before */
+	assert_int_equal(STRAY("fdr", "--sensor", small, "--json"), 0);
+}
+
 static int setup(void **state)
 {
 	(void)state;
@@ -256,6 +280,7 @@ int main(void)
 		cmocka_unit_test(test_exclusion_detector),
 		cmocka_unit_test(test_bad_options),
 		cmocka_unit_test(test_sensor_detector),
+		cmocka_unit_test(test_sensor_detector_refused),
 	};
 
 	return cmocka_run_group_tests(tests, setup, teardown);

@@ -126,7 +126,8 @@ struct stray_detector_req {
  * THESIS detector is eq. 2.18 as published: its answer is the false-star
  * one (its I_sdt detects the DRS with exactly Pr_drs in the dark, so
  * alpha_lost is 0 for pr_min = Pr_drs), alpha_lost is reported beside it.
- * STRAY_ERANGE when neither mode is reached, or both fail in the dark.
+ * STRAY_ERANGE when neither mode is reached; STRAY_EINVAL (pr_drs) when
+ * the DRS is missed with pr_min even in the dark.
  */
 int stray_detector_alpha_required(const struct stray_detector *d,
 				  const struct stray_fdr_model *m,
