@@ -337,12 +337,12 @@ static int sweep(struct sweep_args *a, struct fdr_setup *fs,
 	struct design_result *d;
 	struct stray_fdr_model m;
 	double *theta = NULL, alpha_req = NAN;
+	struct stray_detector_req req;
 	size_t n, i;
 	int rc = fdr_setup_load(fs, err);
 
+	req.binding = STRAY_FAIL_FALSE_STARS;
 	if (!rc) {
-		struct stray_detector_req req;
-
 		/* the detector's answer, both failure modes (thesis: eq. 2.18) */
 		fdr_setup_model(fs, fs->flux.sun, &m);
 		rc = fdr_setup_alpha_required(fs, &m, &req, err);
@@ -367,7 +367,8 @@ static int sweep(struct sweep_args *a, struct fdr_setup *fs,
 			a->n_at, alpha_req, fs->sensor_spec ?
 			fs->sensor_spec : "st16-like",
 			stray_normalisation_name(fs->normalisation),
-			fdr_setup_k_px(fs) };
+			fdr_setup_k_px(fs), stray_detector_name(fs->detector),
+			stray_failure_mode_name(req.binding) };
 
 		stray_file_defer();	/* the table and its plot, or neither */
 		if (a->out)

@@ -178,6 +178,25 @@ static void test_exclusion_detector(void **state)
 	assert_non_null(strstr(r.out, "lost stars bind"));
 }
 
+/* sweep answers every design with the detector's alpha_required. */
+static void test_sweep_detector(void **state)
+{
+	char st[128];
+	cJSON *j;
+
+	(void)state;
+	snprintf(st, sizeof(st), "%s/sweep", dir);
+	assert_int_equal(STRAY("sweep", "--scene", "ref4", "--state", st,
+			       "--grid", "reflectance=0.02,0.04", "--rays", "1000",
+			       "--angles", "0,20,40,60,80", "--detector", "window",
+			       "--json"), 0);
+	j = json_out();
+	assert_string_equal(str(j, "detector"), "window");
+	assert_string_equal(str(j, "binding"), "lost_stars");
+	assert_true(fabs(num(j, "alpha_required") / 4.449e-8 - 1) < 1e-3);
+	cJSON_Delete(j);
+}
+
 static void test_bad_options(void **state)
 {
 	(void)state;
@@ -278,6 +297,7 @@ int main(void)
 		cmocka_unit_test(test_fdr_tetra3),
 		cmocka_unit_test(test_fdr_threshold),
 		cmocka_unit_test(test_exclusion_detector),
+		cmocka_unit_test(test_sweep_detector),
 		cmocka_unit_test(test_bad_options),
 		cmocka_unit_test(test_sensor_detector),
 		cmocka_unit_test(test_sensor_detector_refused),
