@@ -11,6 +11,7 @@
 #include "commands.h"
 #include "fdr_setup.h"
 #include "plot.h"
+#include "sky_coverage.h"
 #include "stray/photometry.h"
 
 static const char usage[] =
@@ -42,6 +43,8 @@ struct fdr_result {
 	struct stray_detector det;
 	struct stray_detector_req req;
 	double p_drs, limiting_mag;	/* at --alpha */
+	double sky_coverage;		/* fraction with min_stars found */
+	int min_stars;
 };
 
 /* Photon flux of the chosen source. */
@@ -125,7 +128,9 @@ static int alpha_figures(const struct fdr_setup *s, const struct fdr_args *a,
 		return rc;
 	r->log10_fdr = lf / log(10.0);
 	r->limiting_mag = s->sensor.drs_mag - 2.5 * log10(lim_e / r->i_drs);
-	return STRAY_OK;
+	r->min_stars = s->sensor.min_stars > 0.0 ? (int)s->sensor.min_stars : 4;
+	return sky_coverage(&s->sensor, r->limiting_mag, r->min_stars,
+			    &r->sky_coverage, err);
 }
 
 static int print_result(const struct fdr_setup *s, const struct fdr_args *a,
@@ -169,6 +174,12 @@ static int print_result(const struct fdr_setup *s, const struct fdr_args *a,
 				cli_json_number(r->p_drs));
 			cJSON_AddItemToObject(o, "limiting_mag",
 				cli_json_number(r->limiting_mag));
+			cJSON_AddItemToObject(o, "sky_coverage",
+				cli_json_number(r->sky_coverage));
+			cJSON_AddItemToObject(o, "min_stars",
+				cli_json_number(r->min_stars));
+			cJSON_AddStringToObject(o, "sky_coverage_stars",
+						SKY_COVERAGE_SOURCE);
 		}
 		return cli_json_emit(o);
 	}
@@ -202,6 +213,9 @@ static int print_result(const struct fdr_setup *s, const struct fdr_args *a,
 		       r->p_drs, s->sensor.drs_mag);
 		printf("  limiting magnitude      %.3f   (detected with "
 		       "Pr_drs = %.2f)\n", r->limiting_mag, s->sensor.pr_drs);
+		printf("  sky coverage            %.3f   (>= %d stars that "
+		       "bright in the field; %s)\n", r->sky_coverage,
+		       r->min_stars, SKY_COVERAGE_SOURCE);
 	}
 	return CLI_OK;
 }

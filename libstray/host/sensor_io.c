@@ -31,7 +31,7 @@ static const struct sensor_key keys[] = {
 	NUM(read_noise_e), NUM(dark_current_e_s), NUM(vega_mag),
 	NUM(moon_mag), SPEC(qe), SPEC(sun), SPEC(vega),
 	{ "detector", KEY_DETECTOR, offsetof(struct stray_sensor, detector) },
-	NUM(detector_sigma),
+	NUM(detector_sigma), NUM(min_stars),
 };
 
 #define N_KEYS (sizeof(keys) / sizeof(keys[0]))

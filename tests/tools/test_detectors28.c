@@ -135,6 +135,40 @@ static void test_fdr_tetra3(void **state)
 	cJSON_Delete(j);
 }
 
+/* Sky coverage: the fraction of boresights over the (synthetic)
+ * catalogue with min_stars stars brighter than the limiting magnitude;
+ * falls as tetra3 loses stars; a sensor asking for 40 stars gets little
+ * sky; a fractional min_stars is refused. */
+static void test_sky_coverage(void **state)
+{
+	char *m40 = put_text("m40.json", "{\"name\": \"m40\", \"min_stars\": 40}");
+	char *mbad = put_text("mbad.json", "{\"name\": \"mb\", \"min_stars\": 2.5}");
+	cJSON *j;
+
+	(void)state;
+	assert_int_equal(STRAY("fdr", "--detector", "tetra3", "--alpha", "0",
+			       "--json"), 0);
+	j = json_out();
+	assert_true(num(j, "sky_coverage") == 1.0);
+	assert_true(num(j, "min_stars") == 4);
+	assert_non_null(strstr(str(j, "sky_coverage_stars"), "synthetic"));
+	cJSON_Delete(j);
+	assert_int_equal(STRAY("fdr", "--detector", "tetra3", "--alpha", "5e-7",
+			       "--json"), 0);
+	j = json_out();
+	assert_true(num(j, "sky_coverage") < 0.9 && num(j, "sky_coverage") > 0.5);
+	cJSON_Delete(j);
+	assert_int_equal(STRAY("fdr", "--sensor", m40, "--detector", "window",
+			       "--alpha", "1e-7", "--json"), 0);
+	j = json_out();
+	assert_true(num(j, "sky_coverage") < 0.1);
+	cJSON_Delete(j);
+	assert_int_equal(STRAY("fdr", "--sensor", mbad), 2);
+	assert_int_equal(r.err_lines, 1);
+	assert_non_null(strstr(r.err, "mbad.json"));
+	assert_non_null(strstr(r.err, "min_stars"));
+}
+
 /* The fixed pixel threshold: false stars bind. */
 static void test_fdr_threshold(void **state)
 {
@@ -296,6 +330,7 @@ int main(void)
 		cmocka_unit_test(test_fdr_window_both_modes),
 		cmocka_unit_test(test_fdr_tetra3),
 		cmocka_unit_test(test_fdr_threshold),
+		cmocka_unit_test(test_sky_coverage),
 		cmocka_unit_test(test_exclusion_detector),
 		cmocka_unit_test(test_sweep_detector),
 		cmocka_unit_test(test_bad_options),

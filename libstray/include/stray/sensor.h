@@ -36,6 +36,8 @@ struct stray_sensor {
 	 * the thesis's; its k for tetra3 (0: the default 3). */
 	char detector[16];
 	double detector_sigma;
+	/* Stars a solution needs in the field (0: the default 4). */
+	double min_stars;
 };
 
 /*
