@@ -142,7 +142,9 @@ static int print_result(const struct fdr_setup *s, const struct fdr_args *a,
 		cJSON_AddStringToObject(o, "sensor", s->sensor.name);
 		cJSON_AddStringToObject(o, "source", a->source);
 		cJSON_AddStringToObject(o, "noise", s->poisson ? "poisson" : "gauss");
-		cJSON_AddBoolToObject(o, "detector_noise", s->detector_noise);
+		/* the real detectors' models always carry it (fdr_setup.c) */
+		cJSON_AddBoolToObject(o, "detector_noise", s->detector_noise ||
+				      s->detector != STRAY_DET_THESIS);
 		fdr_setup_json(s, o);
 		cJSON_AddItemToObject(o, "source_flux", cli_json_number(r->f_src));
 		cJSON_AddItemToObject(o, "rate", cli_json_number(s->rate));
@@ -192,7 +194,8 @@ static int print_result(const struct fdr_setup *s, const struct fdr_args *a,
 	       r->i_sdt, s->sensor.pr_drs);
 	printf("  noise model             %s%s\n",
 	       s->poisson ? "exact Poisson" : "Gaussian (thesis)",
-	       s->detector_noise ? " + read noise and dark current" : "");
+	       s->detector_noise || s->detector != STRAY_DET_THESIS ?
+	       " + read noise and dark current" : "");
 	fdr_setup_print_normalisation(s);
 	printf("  detector                %s%s\n",
 	       stray_detector_name(s->detector),

@@ -94,6 +94,7 @@ static void test_fdr_window_both_modes(void **state)
 			       "--json"), 0);
 	j = json_out();
 	assert_string_equal(str(j, "detector"), "window");
+	assert_true(cJSON_IsTrue(cJSON_GetObjectItem(j, "detector_noise")));
 	af = num(j, "alpha_false_stars");
 	al = num(j, "alpha_lost_stars");
 	assert_true(af > 2.0e-7 && af < 2.3e-7);
