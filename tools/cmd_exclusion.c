@@ -37,6 +37,7 @@ static const char usage[] =
 struct body {
 	const char *name;
 	double flux, alpha_req;
+	struct stray_detector_req req;	/* both failure modes */
 	struct stray_exclusion ex;
 	int excluded;		/* 0: curve ends above alpha_req */
 	double angle_deg;	/* reported angle (Moon: with the field) */
@@ -55,9 +56,12 @@ static int solve_body(const struct fdr_setup *s, const struct excl_args *a,
 	int rc;
 
 	fdr_setup_model(s, b->flux, &m);
-	rc = stray_fdr_alpha_required(&m, s->rate, &b->alpha_req, err);
+	/* the detector's answer: below it both false stars and the DRS's
+	 * detection meet the requirements (thesis: eq. 2.18 alone) */
+	rc = fdr_setup_alpha_required(s, &m, &b->req, err);
 	if (rc != STRAY_OK)
 		return rc;
+	b->alpha_req = b->req.alpha_req;
 	/* libstray's one verdict: not excluded (NaN, a reason) is a result */
 	rc = stray_exclusion_interval(v, b->alpha_req, a->k_sigma, &b->ex, err);
 	b->excluded = rc == STRAY_OK && b->ex.excluded;
@@ -72,6 +76,12 @@ static cJSON *body_json(const struct body *b)
 	cJSON *o = cJSON_CreateObject();
 
 	cJSON_AddItemToObject(o, "alpha_required", cli_json_number(b->alpha_req));
+	cJSON_AddStringToObject(o, "binding",
+				stray_failure_mode_name(b->req.binding));
+	cJSON_AddItemToObject(o, "alpha_false_stars",
+			      cli_json_number(b->req.alpha_false));
+	cJSON_AddItemToObject(o, "alpha_lost_stars",
+			      cli_json_number(b->req.alpha_lost));
 	cJSON_AddItemToObject(o, "flux", cli_json_number(b->flux));
 	cJSON_AddBoolToObject(o, "excluded_within_curve", b->excluded);
 	if (!b->excluded)
@@ -95,6 +105,7 @@ static int print_json(const struct fdr_setup *s, const struct excl_args *a,
 	cJSON_AddStringToObject(o, "sensor", s->sensor.name);
 	cJSON_AddItemToObject(o, "rate", cli_json_number(s->rate));
 	fdr_setup_json(s, o);
+	fdr_setup_detector_json(s, o);
 	cJSON_AddItemToObject(o, "fov_half_deg", cli_json_number(s->sensor.fov_half_deg));
 	cJSON_AddItemToObject(o, "sun_deg", cli_json_number(b[0].angle_deg));
 	cJSON_AddItemToObject(o, "moon_deg", cli_json_number(b[1].angle_deg));
@@ -114,8 +125,16 @@ static void print_text(const struct fdr_setup *s, const struct excl_args *a,
 	printf("Exclusion angles of %s for %s at %g false stars per image\n",
 	       a->curve, s->sensor.name, s->rate);
 	fdr_setup_print_normalisation(s);
+	if (s->detector != STRAY_DET_THESIS)	/* the thesis's text as it was */
+		printf("  detector                %s (alpha_required: false "
+		       "stars <= %g per image and P(DRS) >= %.2f)\n",
+		       stray_detector_name(s->detector), s->rate,
+		       s->sensor.pr_drs);
 	for (i = 0; i < nb; i++) {
 		printf("  %-6s alpha_required %.3e  ", b[i].name, b[i].alpha_req);
+		if (s->detector != STRAY_DET_THESIS)
+			printf("(%s bind)  ", b[i].req.binding ==
+			       STRAY_FAIL_LOST_STARS ? "lost stars" : "false stars");
 		if (!b[i].excluded) {
 			printf("not excluded by the baffle: %s\n", b[i].ex.reason);
 			continue;

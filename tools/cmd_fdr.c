@@ -11,6 +11,7 @@
 #include "commands.h"
 #include "fdr_setup.h"
 #include "plot.h"
+#include "sky_coverage.h"
 #include "stray/photometry.h"
 
 static const char usage[] =
@@ -19,7 +20,10 @@ static const char usage[] =
 	"\n"
 	"The attenuation alpha_required at which the sensor sees R false stars\n"
 	"per image (default: the sensor's fdr_tolerated), and with --alpha the\n"
-	"false-detection rate at that attenuation.\n"
+	"false-detection rate at that attenuation.  With --detector, the\n"
+	"detector's own models: its false stars per image and the reference\n"
+	"star's detection probability, alpha_required the smaller of the two\n"
+	"attenuations that meet --rate and the sensor's pr_drs (docs/detectors.md).\n"
 	"\n"
 	"  --source B          stray-light source: sun (default), moon, earth\n"
 	"  --alpha A           also give FDR at system attenuation A\n"
@@ -36,6 +40,11 @@ struct fdr_args {
 
 struct fdr_result {
 	double f_src, i_drs, i_sdt, alpha_req, log10_fdr;
+	struct stray_detector det;
+	struct stray_detector_req req;
+	double p_drs, limiting_mag;	/* at --alpha */
+	double sky_coverage;		/* fraction with min_stars found */
+	int min_stars;
 };
 
 /* Photon flux of the chosen source. */
@@ -96,6 +105,34 @@ static int plot_fdr(const struct fdr_setup *s, const struct fdr_args *a,
 	}
 }
 
+/* Both failure modes at --alpha: false stars per image, the DRS's
+ * detection probability and the limiting magnitude (eq. 2.2 from the DRS:
+ * the faintest star found with Pr_drs). */
+static int alpha_figures(const struct fdr_setup *s, const struct fdr_args *a,
+			 const struct stray_fdr_model *m, struct fdr_result *r,
+			 struct stray_error *err)
+{
+	double lf, lim_e;
+	int rc;
+
+	if (!(a->alpha >= 0.0 && isfinite(a->alpha)))
+		return stray_error_set_value(err, STRAY_EINVAL, "alpha",
+			"must be finite and >= 0", a->alpha);
+	if ((rc = stray_detector_log_false_rate(&r->det, m, a->alpha, &lf,
+						err)) != STRAY_OK ||
+	    (rc = stray_detector_star_prob(&r->det, m, a->alpha, r->i_drs,
+					   &r->p_drs, err)) != STRAY_OK ||
+	    (rc = stray_detector_limiting_e(&r->det, m, a->alpha,
+					    s->sensor.pr_drs, &lim_e, err)) !=
+		    STRAY_OK)
+		return rc;
+	r->log10_fdr = lf / log(10.0);
+	r->limiting_mag = s->sensor.drs_mag - 2.5 * log10(lim_e / r->i_drs);
+	r->min_stars = s->sensor.min_stars > 0.0 ? (int)s->sensor.min_stars : 4;
+	return sky_coverage(&s->sensor, r->limiting_mag, r->min_stars,
+			    &r->sky_coverage, err);
+}
+
 static int print_result(const struct fdr_setup *s, const struct fdr_args *a,
 			const struct fdr_result *r)
 {
@@ -105,7 +142,9 @@ static int print_result(const struct fdr_setup *s, const struct fdr_args *a,
 		cJSON_AddStringToObject(o, "sensor", s->sensor.name);
 		cJSON_AddStringToObject(o, "source", a->source);
 		cJSON_AddStringToObject(o, "noise", s->poisson ? "poisson" : "gauss");
-		cJSON_AddBoolToObject(o, "detector_noise", s->detector_noise);
+		/* the real detectors' models always carry it (fdr_setup.c) */
+		cJSON_AddBoolToObject(o, "detector_noise", s->detector_noise ||
+				      s->detector != STRAY_DET_THESIS);
 		fdr_setup_json(s, o);
 		cJSON_AddItemToObject(o, "source_flux", cli_json_number(r->f_src));
 		cJSON_AddItemToObject(o, "rate", cli_json_number(s->rate));
@@ -113,12 +152,36 @@ static int print_result(const struct fdr_setup *s, const struct fdr_args *a,
 		cJSON_AddItemToObject(o, "threshold_e", cli_json_number(r->i_sdt));
 		cJSON_AddItemToObject(o, "alpha_required",
 				      cli_json_number(r->alpha_req));
+		fdr_setup_detector_json(s, o);
+		if (s->detector == STRAY_DET_THRESHOLD)
+			cJSON_AddItemToObject(o, "pixel_threshold_e",
+				cli_json_number(r->det.pixel_t_e));
+		cJSON_AddItemToObject(o, "pr_drs",
+				      cli_json_number(s->sensor.pr_drs));
+		cJSON_AddItemToObject(o, "alpha_false_stars",
+			cli_json_number(r->req.alpha_false));
+		cJSON_AddItemToObject(o, "alpha_lost_stars",
+			cli_json_number(r->req.alpha_lost));
+		cJSON_AddStringToObject(o, "binding",
+			stray_failure_mode_name(r->req.binding));
 		if (a->has_alpha) {
 			cJSON_AddItemToObject(o, "alpha", cli_json_number(a->alpha));
 			cJSON_AddItemToObject(o, "fdr",
 				cli_json_number(pow(10.0, r->log10_fdr)));
 			cJSON_AddItemToObject(o, "log10_fdr",
 				cli_json_number(r->log10_fdr));
+			cJSON_AddItemToObject(o, "false_stars_per_image",
+				cli_json_number(pow(10.0, r->log10_fdr)));
+			cJSON_AddItemToObject(o, "drs_detection_probability",
+				cli_json_number(r->p_drs));
+			cJSON_AddItemToObject(o, "limiting_mag",
+				cli_json_number(r->limiting_mag));
+			cJSON_AddItemToObject(o, "sky_coverage",
+				cli_json_number(r->sky_coverage));
+			cJSON_AddItemToObject(o, "min_stars",
+				cli_json_number(r->min_stars));
+			cJSON_AddStringToObject(o, "sky_coverage_stars",
+						SKY_COVERAGE_SOURCE);
 		}
 		return cli_json_emit(o);
 	}
@@ -131,13 +194,32 @@ static int print_result(const struct fdr_setup *s, const struct fdr_args *a,
 	       r->i_sdt, s->sensor.pr_drs);
 	printf("  noise model             %s%s\n",
 	       s->poisson ? "exact Poisson" : "Gaussian (thesis)",
-	       s->detector_noise ? " + read noise and dark current" : "");
+	       s->detector_noise || s->detector != STRAY_DET_THESIS ?
+	       " + read noise and dark current" : "");
 	fdr_setup_print_normalisation(s);
-	printf("  alpha_required          %.4e   (FDR = %g per image)\n",
-	       r->alpha_req, s->rate);
-	if (a->has_alpha)
+	printf("  detector                %s%s\n",
+	       stray_detector_name(s->detector),
+	       s->detector == STRAY_DET_THESIS ?
+	       " (eq. 2.18 as published)" : "");
+	if (s->detector != STRAY_DET_THESIS)
+		printf("  alpha where false stars reach %g: %.4e, where P(DRS) "
+		       "falls to %.2f: %.4e\n", s->rate, r->req.alpha_false,
+		       s->sensor.pr_drs, r->req.alpha_lost);
+	printf("  alpha_required          %.4e   (%s bind; FDR = %g per "
+	       "image)\n", r->alpha_req,
+	       r->req.binding == STRAY_FAIL_LOST_STARS ? "lost stars" :
+	       "false stars", s->rate);
+	if (a->has_alpha) {
 		printf("  FDR at alpha %-10.4g %.4e per image (log10 %.3f)\n",
 		       a->alpha, pow(10.0, r->log10_fdr), r->log10_fdr);
+		printf("  P(DRS detected)         %.4f   (m = %.2f)\n",
+		       r->p_drs, s->sensor.drs_mag);
+		printf("  limiting magnitude      %.3f   (detected with "
+		       "Pr_drs = %.2f)\n", r->limiting_mag, s->sensor.pr_drs);
+		printf("  sky coverage            %.3f   (>= %d stars that "
+		       "bright in the field; %s)\n", r->sky_coverage,
+		       r->min_stars, SKY_COVERAGE_SOURCE);
+	}
 	return CLI_OK;
 }
 
@@ -203,15 +285,12 @@ int cmd_fdr(int argc, char **argv)
 	r.i_drs = stray_fdr_drs_photons(&m);
 	r.log10_fdr = NAN;
 	if (stray_fdr_threshold(&m, &r.i_sdt, &err) != STRAY_OK ||
-	    stray_fdr_alpha_required(&m, s.rate, &r.alpha_req, &err) != STRAY_OK)
+	    fdr_setup_detector(&s, &m, &r.det, &err) != STRAY_OK ||
+	    fdr_setup_alpha_required(&s, &m, &r.req, &err) != STRAY_OK)
 		return cli_fail("fdr", &err);
-	if (a.has_alpha) {
-		double lf;
-
-		if (stray_fdr_log_rate(&m, a.alpha, r.i_sdt, &lf, &err) != STRAY_OK)
-			return cli_fail("fdr", &err);
-		r.log10_fdr = lf / log(10.0);
-	}
+	r.alpha_req = r.req.alpha_req;
+	if (a.has_alpha && alpha_figures(&s, &a, &m, &r, &err) != STRAY_OK)
+		return cli_fail("fdr", &err);
 	if (a.plot && plot_fdr(&s, &a, &m, &r, &err) != STRAY_OK)
 		return cli_fail("fdr", &err);
 	return print_result(&s, &a, &r);

@@ -33,7 +33,9 @@ static const char usage[] =
 	"  --hysteresis-deg H  flags clear H deg past the edge (default 0.5)\n"
 	"  --earth-albedo A    Lambertian albedo of the Earth (default 0.3)\n"
 	"  --json              machine-readable summary\n"
-	SENSOR_USAGE NORMALISATION_USAGE;
+	SENSOR_USAGE NORMALISATION_USAGE
+	"  --detector thesis   the only detector the flight module computes\n"
+	"                      (eq. 2.18 on board); the others are refused\n";
 
 struct ft_args {
 	const char *curve, *out_c, *out_bin, *name;
@@ -72,6 +74,7 @@ static int parse_args(int argc, char **argv, struct fdr_setup *s,
 		{ "earth-albedo", required_argument, NULL, 'e' },
 		SENSOR_LONG_OPTIONS,
 		NORMALISATION_LONG_OPTION,
+		DETECTOR_LONG_OPTIONS,
 		{ NULL, 0, NULL, 0 }
 	};
 	const char *cmd = "firmware-table";
@@ -225,6 +228,18 @@ int cmd_firmware_table(int argc, char **argv)
 		return rc < 0 ? CLI_OK : rc;
 	if (fdr_setup_load(&s, &err) != STRAY_OK)
 		return cli_fail("firmware-table", &err);
+	/* The module recomputes eq. 2.18 from the table and checks the
+	 * Sun's alpha_req against it: a table for another detector would
+	 * be refused on board, or fly the wrong angle (issue 28 item 5). */
+	if (s.detector != STRAY_DET_THESIS) {
+		stray_error_set(&err, STRAY_EINVAL, "detector",
+			"the flight module computes only the thesis detector "
+			"(eq. 2.18) on board; give --detector thesis");
+		stray_error_text(&err, stray_detector_name(s.detector));
+		if (!s.detector_name)
+			stray_error_locate(&err, s.sensor_spec, 0);
+		return cli_fail("firmware-table", &err);
+	}
 	if (stray_curve_load(a.curve, &c, &err) != STRAY_OK)
 		return cli_fail("firmware-table", &err);
 	p.f_sun_ph_s_m2 = s.flux.sun;

@@ -15,6 +15,7 @@
 #include "fdr_setup.h"
 #include "focal_map_io.h"
 #include "frames_io.h"
+#include "frames_lost.h"
 #include "frames_plot.h"
 #include "frames_run.h"
 #include "image_cv.h"
@@ -241,6 +242,7 @@ struct frames_state {
 	struct frames_alpha_req req;
 	struct stray_region_map map;
 	struct frames_evidence ev[2];
+	struct frames_lost lost;	/* stars found per magnitude (issue 28) */
 	long n_false[2], n_found[2];
 	uint16_t *det_rows;		/* detector row of each frame row */
 	struct stray_dir_out dir;	/* --out-dir, filled as a temporary */
@@ -369,6 +371,8 @@ static int setup_model(struct frames_state *st, struct stray_error *err)
 		rc = frames_alpha_required(&st->fm, &st->s.sensor, st->k_px,
 					   st->s.rate, &st->req, err);
 	frames_detect_cfg_init(&st->dc, &st->fm, &st->s.sensor);
+	if (rc == STRAY_OK)
+		rc = frames_lost_init(&st->lost, &st->fm, err);
 	return rc;
 }
 
@@ -577,6 +581,12 @@ static int run_frames(struct frames_state *st, struct stray_error *err)
 			st->n_found[d] += (long)(st->out[d].n - nf);
 			st->ev[d].frames = i + 1;
 		}
+		{
+			double match[2] = { st->dc.window_radius_px, 4.0 };
+
+			frames_lost_add(&st->lost, st->out, match, st->stars,
+					n_stars);
+		}
 		if (st->a.out_dir && i < (int)st->a.save &&
 		    (rc = save_frame(st, i, n_stars, err)) != STRAY_OK)
 			return rc;
@@ -660,6 +670,7 @@ static int print_json(const struct frames_state *st,
 	for (d = 0; d < 2; d++)
 		add_det(cJSON_AddObjectToObject(ds, r[d].name), st, &r[d]);
 	cJSON_AddItemToObject(o, "detectors", ds);
+	frames_lost_json(&st->lost, o);
 	return cli_json_emit(o);
 }
 
@@ -687,6 +698,7 @@ static void print_text(const struct frames_state *st,
 		       "            %s\n", r[d].name, r[d].measured, r[d].sigma,
 		       st->rates.model, st->rates.thesis, r[d].extended,
 		       r[d].verdict);
+	frames_lost_print(&st->lost);
 }
 
 int cmd_frames(int argc, char **argv)

@@ -50,7 +50,7 @@ static const char usage[] =
 	"  --alpha-at LIST     angles to report alpha at (default 20,30,40)\n"
 	"  --rays N, --seed K, --threads T, --batches B, --lens L.csv,\n"
 	"  --set key=value     as 'stray trace' (rays default 300000)\n"
-	SENSOR_USAGE NORMALISATION_USAGE;
+	SENSOR_USAGE NORMALISATION_USAGE DETECTOR_USAGE;
 
 #define SETS_MAX 64
 
@@ -80,6 +80,7 @@ static const struct option sweep_opts[] = {
 	{ "help", no_argument, NULL, 'h' },
 	SENSOR_LONG_OPTIONS,
 	NORMALISATION_LONG_OPTION,
+	DETECTOR_LONG_OPTIONS,
 	{ NULL, 0, NULL, 0 }
 };
 
@@ -339,12 +340,16 @@ static int sweep(struct sweep_args *a, struct fdr_setup *fs,
 	struct design_result *d;
 	struct stray_fdr_model m;
 	double *theta = NULL, alpha_req = NAN;
+	struct stray_detector_req req;
 	size_t n, i;
 	int rc = fdr_setup_load(fs, err);
 
+	req.binding = STRAY_FAIL_FALSE_STARS;
 	if (!rc) {
+		/* the detector's answer, both failure modes (thesis: eq. 2.18) */
 		fdr_setup_model(fs, fs->flux.sun, &m);
-		rc = stray_fdr_alpha_required(&m, fs->rate, &alpha_req, err);
+		rc = fdr_setup_alpha_required(fs, &m, &req, err);
+		alpha_req = req.alpha_req;
 	}
 	if (!rc)
 		rc = make_angles(a, &theta, &n, err);
@@ -365,7 +370,8 @@ static int sweep(struct sweep_args *a, struct fdr_setup *fs,
 			a->n_at, alpha_req, fs->sensor_spec ?
 			fs->sensor_spec : "st16-like",
 			stray_normalisation_name(fs->normalisation),
-			fdr_setup_k_px(fs) };
+			fdr_setup_k_px(fs), stray_detector_name(fs->detector),
+			stray_failure_mode_name(req.binding) };
 
 		stray_file_defer();	/* the table and its plot, or neither */
 		if (a->out)

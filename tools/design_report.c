@@ -5,6 +5,7 @@
  */
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 #include <stdlib.h>
 
 #include "cli.h"
@@ -81,6 +82,11 @@ void design_print_text(const struct sweep_summary *s)
 	printf("Sun exclusion angle per design (sensor %s, alpha_required "
 	       "%.3g with k_px %.4g, %s; interval from alpha -/+ sigma)\n",
 	       s->sensor, s->alpha_req, s->k_px, s->normalisation);
+	if (strcmp(s->detector, "thesis") != 0)	/* the thesis's text as it was */
+		printf("detector %s: alpha_required where %s bind first "
+		       "(docs/detectors.md)\n", s->detector,
+		       strcmp(s->binding, "lost_stars") == 0 ? "lost stars" :
+		       "false stars");
 	printf("%-4s %8s %15s", "#", "sun_deg", "interval");
 	for (k = 0; k < s->n_at; k++)
 		printf("  alpha@%-5g", s->at_deg[k]);
@@ -127,6 +133,8 @@ int design_print_json(const struct sweep_summary *s)
 			      cli_json_number(s->alpha_req));
 	cJSON_AddStringToObject(o, "normalisation", s->normalisation);
 	cJSON_AddItemToObject(o, "k_px", cli_json_number(s->k_px));
+	cJSON_AddStringToObject(o, "detector", s->detector);
+	cJSON_AddStringToObject(o, "binding", s->binding);
 	for (i = 0; i < s->n; i++) {
 		const struct design_result *d = &s->d[i];
 		cJSON *e = cJSON_CreateObject(), *at = cJSON_CreateObject();

@@ -30,6 +30,9 @@ struct sweep_summary {
 	const char *sensor;
 	const char *normalisation;	/* eq. 2.3's k_px: its name, value */
 	double k_px;
+	/* the detector whose failure modes set alpha_req, and which binds
+	 * (docs/detectors.md) */
+	const char *detector, *binding;
 };
 
 /* Best (smallest finite Sun exclusion angle) and worst; -1 when none. */

@@ -21,6 +21,7 @@ void fdr_setup_init(struct fdr_setup *s)
 	s->rate = NAN;
 	s->earth_albedo = 0.3;
 	s->altitude_km = 550.0;
+	s->detector_sigma = NAN;
 }
 
 int fdr_setup_option(struct fdr_setup *s, const char *cmd, int opt,
@@ -63,6 +64,25 @@ int fdr_setup_option(struct fdr_setup *s, const char *cmd, int opt,
 				arg);
 		s->normalisation = strcmp(arg, "thesis") == 0 ?
 			STRAY_NORM_THESIS : STRAY_NORM_CONSISTENT;
+		return 1;
+	case 1012: {
+		enum stray_detector_kind k;
+
+		if (stray_detector_parse(arg, &k, NULL) != STRAY_OK)
+			return cli_usage_error(cmd,
+				"option '--detector': '%s' is not thesis, window, threshold or tetra3",
+				arg);
+		s->detector_name = arg;
+		return 1;
+	}
+	case 1013:
+		if (cli_parse_double(cmd, "detector-sigma", arg,
+				     &s->detector_sigma))
+			return CLI_USAGE;
+		if (!(s->detector_sigma >= 0.5 && s->detector_sigma <= 20.0))
+			return cli_usage_error(cmd,
+				"option '--detector-sigma': %g is outside 0.5..20",
+				s->detector_sigma);
 		return 1;
 	default:
 		return 0;
@@ -117,6 +137,15 @@ int fdr_setup_load(struct fdr_setup *s, struct stray_error *err)
 		snprintf(s->sensor.qe, sizeof(s->sensor.qe), "%s", s->qe);
 	if (isnan(s->rate))
 		s->rate = s->sensor.fdr_tolerated;
+	/* the command line's detector, else the sensor file's, else thesis */
+	s->detector = STRAY_DET_THESIS;
+	if (s->detector_name)
+		stray_detector_parse(s->detector_name, &s->detector, NULL);
+	else if (s->sensor.detector[0])
+		stray_detector_parse(s->sensor.detector, &s->detector, NULL);
+	if (isnan(s->detector_sigma))
+		s->detector_sigma = s->sensor.detector_sigma > 0.0 ?
+			s->sensor.detector_sigma : 3.0;
 	rc = stray_reference_fluxes(&s->sensor, &s->flux, err);
 	if (rc == STRAY_OK && s->map_path)
 		rc = load_map(s->map_path, &s->map, err);
@@ -135,12 +164,68 @@ void fdr_setup_model(const struct fdr_setup *s, double f_src,
 {
 	stray_sensor_fdr_model(&s->sensor, f_src, s->flux.drs, m);
 	m->k_px = fdr_setup_k_px(s);
-	if (s->detector_noise) {
+	/* The real detectors' models are validated with the camera's read
+	 * noise and dark current (docs/detectors.md): always on for them. */
+	if (s->detector_noise || s->detector != STRAY_DET_THESIS) {
 		m->read_noise_e = s->sensor.read_noise_e;
 		m->dark_current_e_s = s->sensor.dark_current_e_s;
 	}
 	m->noise = s->poisson ? STRAY_NOISE_POISSON : STRAY_NOISE_GAUSS;
 	m->map = s->map_path ? &s->map : NULL;
+}
+
+/* The sensor came from a file (its numbers are the user's to fix). */
+static int sensor_is_file(const struct fdr_setup *s)
+{
+	return strchr(s->sensor_spec, '/') || strstr(s->sensor_spec, ".json");
+}
+
+int fdr_setup_detector(const struct fdr_setup *s,
+		       const struct stray_fdr_model *m, struct stray_detector *d,
+		       struct stray_error *err)
+{
+	int rc;
+
+	stray_detector_init(d, s->detector, s->sensor.star_window_px);
+	d->sigma_k = s->detector_sigma;
+	rc = stray_detector_setup(d, m, err);
+	/* what the detector refuses comes from the sensor's numbers */
+	if (rc != STRAY_OK && sensor_is_file(s))
+		stray_error_locate(err, s->sensor_spec, 0);
+	return rc;
+}
+
+int fdr_setup_alpha_required(const struct fdr_setup *s,
+			     const struct stray_fdr_model *m,
+			     struct stray_detector_req *r,
+			     struct stray_error *err)
+{
+	struct stray_detector d;
+	int rc = fdr_setup_detector(s, m, &d, err);
+
+	if (rc != STRAY_OK)
+		return rc;
+	if (s->detector == STRAY_DET_THESIS) {
+		/* eq. 2.18 as published, exactly as before detectors */
+		r->alpha_lost = NAN;
+		r->binding = STRAY_FAIL_FALSE_STARS;
+		rc = stray_fdr_alpha_required(m, s->rate, &r->alpha_false, err);
+		r->alpha_req = r->alpha_false;
+		return rc;
+	}
+	rc = stray_detector_alpha_required(&d, m, s->rate, s->sensor.pr_drs, r,
+					   err);
+	if (rc != STRAY_OK && sensor_is_file(s))
+		stray_error_locate(err, s->sensor_spec, 0);
+	return rc;
+}
+
+void fdr_setup_detector_json(const struct fdr_setup *s, cJSON *o)
+{
+	cJSON_AddStringToObject(o, "detector", stray_detector_name(s->detector));
+	if (s->detector == STRAY_DET_TETRA3)
+		cJSON_AddItemToObject(o, "detector_sigma",
+				      cli_json_number(s->detector_sigma));
 }
 
 double fdr_setup_k_px(const struct fdr_setup *s)

@@ -9,6 +9,7 @@
 #include <cJSON.h>
 #include <getopt.h>
 
+#include "stray/detector.h"
 #include "stray/fdr.h"
 #include "stray/photometry_io.h"
 #include "stray/sensor.h"
@@ -26,7 +27,12 @@ struct fdr_setup {
 	int earth_given;		/* --earth-albedo was given */
 	/* --normalisation: k_px of eq. 2.3 (docs/normalisation.md) */
 	enum stray_normalisation normalisation;
+	/* --detector, --detector-sigma (stray/detector.h); NULL / NaN: the
+	 * sensor file's, else thesis / 3 */
+	const char *detector_name;
+	double detector_sigma;
 	/* Filled by fdr_setup_load. */
+	enum stray_detector_kind detector;
 	struct stray_sensor sensor;
 	struct stray_fluxes flux;
 	struct stray_region_map map;
@@ -48,9 +54,22 @@ struct fdr_setup {
 	"                      eq. 2.3's per-pixel factor k_px: A_cs / (n_tot A_px)\n" \
 	"                      for a power-ratio curve (default), or the thesis's 1\n"
 
+/* --detector, for every command that answers with a detector's model. */
+#define DETECTOR_LONG_OPTIONS \
+	{ "detector", required_argument, NULL, 1012 }, \
+	{ "detector-sigma", required_argument, NULL, 1013 }
+
+#define DETECTOR_USAGE \
+	"  --detector D        the tracker's star detector: thesis (eq. 2.18 as\n" \
+	"                      published, default), window (sliding window sum),\n" \
+	"                      threshold (fixed pixel threshold), tetra3 (k sigma\n" \
+	"                      of the frame); default: the sensor file's\n" \
+	"  --detector-sigma K  tetra3's threshold in frame sigmas (3)\n"
+
 #define FDR_SETUP_LONG_OPTIONS \
 	SENSOR_LONG_OPTIONS, \
 	NORMALISATION_LONG_OPTION, \
+	DETECTOR_LONG_OPTIONS, \
 	{ "noise", required_argument, NULL, 1004 }, \
 	{ "detector-noise", no_argument, NULL, 1005 }, \
 	{ "map", required_argument, NULL, 1006 }, \
@@ -64,7 +83,7 @@ struct fdr_setup {
 	"  --sun F, --vega F, --qe F\n" \
 	"                      spectrum CSVs or builtin:NAME, replacing the sensor's\n"
 
-#define FDR_SETUP_USAGE SENSOR_USAGE NORMALISATION_USAGE \
+#define FDR_SETUP_USAGE SENSOR_USAGE NORMALISATION_USAGE DETECTOR_USAGE \
 	"  --noise gauss|poisson\n" \
 	"                      shot-noise model: the thesis's Gaussian (default)\n" \
 	"                      or exact Poisson tails\n" \
@@ -88,6 +107,21 @@ int fdr_setup_load(struct fdr_setup *s, struct stray_error *err);
 /* The FDR model for a source of photon flux f_src. */
 void fdr_setup_model(const struct fdr_setup *s, double f_src,
 		     struct stray_fdr_model *m);
+
+/* The chosen detector with its thresholds for the model m. */
+int fdr_setup_detector(const struct fdr_setup *s,
+		       const struct stray_fdr_model *m, struct stray_detector *d,
+		       struct stray_error *err);
+
+/* The attenuation both failure modes allow for the source of model m
+ * (the thesis detector: eq. 2.18's alpha_required, as before). */
+int fdr_setup_alpha_required(const struct fdr_setup *s,
+			     const struct stray_fdr_model *m,
+			     struct stray_detector_req *r,
+			     struct stray_error *err);
+
+/* "detector" (and "detector_sigma" for tetra3) into a --json object. */
+void fdr_setup_detector_json(const struct fdr_setup *s, cJSON *o);
 
 /* eq. 2.3's k_px for the chosen normalisation and sensor. */
 double fdr_setup_k_px(const struct fdr_setup *s);

@@ -106,6 +106,16 @@ int stray_sensor_check(const struct stray_sensor *s, struct stray_error *err)
 		return stray_error_set_value(err, STRAY_EINVAL,
 			"dark_current_e_s", STRAY_MSG("must be finite and >= 0"),
 			s->dark_current_e_s);
+	/* 0 is "not given" (tetra3's default k = 3, stray/detector.h) */
+	if (!(s->detector_sigma == 0.0 ||
+	      (s->detector_sigma >= 0.5 && s->detector_sigma <= 20.0)))
+		return stray_error_set_value(err, STRAY_EINVAL, "detector_sigma",
+			STRAY_MSG("must lie in 0.5..20"), s->detector_sigma);
+	if (!(s->min_stars == 0.0 || (s->min_stars >= 1.0 &&
+	      s->min_stars <= 100.0 && s->min_stars == (int)s->min_stars)))
+		return stray_error_set_value(err, STRAY_EINVAL, "min_stars",
+			STRAY_MSG("must be a whole number in 1..100"),
+			s->min_stars);
 	return STRAY_OK;
 }
 

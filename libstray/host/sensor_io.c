@@ -7,11 +7,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "stray/detector.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"
 #include "stray/sensor_io.h"
 
-enum key_kind { KEY_NUMBER, KEY_NAME, KEY_SPECTRUM };
+enum key_kind { KEY_NUMBER, KEY_NAME, KEY_SPECTRUM, KEY_DETECTOR };
 
 struct sensor_key {
 	const char *key;
@@ -29,6 +30,8 @@ static const struct sensor_key keys[] = {
 	NUM(pr_drs), NUM(fdr_tolerated), NUM(fov_half_deg),
 	NUM(read_noise_e), NUM(dark_current_e_s), NUM(vega_mag),
 	NUM(moon_mag), SPEC(qe), SPEC(sun), SPEC(vega),
+	{ "detector", KEY_DETECTOR, offsetof(struct stray_sensor, detector) },
+	NUM(detector_sigma), NUM(min_stars),
 };
 
 #define N_KEYS (sizeof(keys) / sizeof(keys[0]))
@@ -82,6 +85,18 @@ static int take_item(const char *name, const cJSON *item,
 	if (!cJSON_IsString(item))
 		return stray_error_at(err, STRAY_EINVAL, name, 0, k->key,
 				      "must be a string");
+	if (k->kind == KEY_DETECTOR) {
+		enum stray_detector_kind d;
+
+		if (stray_detector_parse(item->valuestring, &d, NULL) != STRAY_OK) {
+			stray_error_at(err, STRAY_EINVAL, name, 0, k->key,
+				"must be thesis, window, threshold or tetra3");
+			stray_error_text(err, item->valuestring);
+			return STRAY_EINVAL;
+		}
+		snprintf(field, sizeof(s->detector), "%s", item->valuestring);
+		return STRAY_OK;
+	}
 	if (k->kind == KEY_NAME) {
 		snprintf(field, STRAY_NAME_MAX, "%s", item->valuestring);
 		return STRAY_OK;

@@ -38,6 +38,12 @@ struct stray_sensor {
 	char qe[STRAY_PATH_MAX];
 	char sun[STRAY_PATH_MAX];
 	char vega[STRAY_PATH_MAX];
+	/* The tracker's star detector (stray/detector.h): a name, "" for
+	 * the thesis's; its k for tetra3 (0: the default 3). */
+	char detector[16];
+	double detector_sigma;
+	/* Stars a solution needs in the field (0: the default 4). */
+	double min_stars;
 };
 
 /*
