@@ -270,6 +270,10 @@ static int write_manifest(const char *dir, const struct review_project *p,
 	cJSON_Delete(root);
 	if (!text)
 		return stray_error_set(err, STRAY_ENOMEM, "manifest", NULL);
+	/* the review's own resumable record, read at --resume and written
+	 * again after every step: neither an input nor a second output */
+	stray_file_forget_input(path);
+	stray_file_forget_output(path);
 	if ((rc = stray_file_open_atomic(&fo, path, err)) == STRAY_OK) {
 		fputs(text, fo.f);
 		fputc('\n', fo.f);

@@ -108,6 +108,21 @@ void stray_file_forget_input(const char *path)
 		}
 }
 
+void stray_file_forget_output(const char *path)
+{
+	char c[PATH_MAX];
+	size_t i;
+
+	if (!armed || !path || stray_file_canonical(path, c, sizeof(c)) != 0)
+		return;
+	for (i = 0; i < n_outputs; i++)
+		if (strcmp(outputs[i], c) == 0) {
+			free(outputs[i]);
+			outputs[i] = outputs[--n_outputs];
+			return;
+		}
+}
+
 int stray_file_canonical(const char *path, char *out, size_t size)
 {
 	char dir[PATH_MAX], real[PATH_MAX];

@@ -96,6 +96,11 @@ static void test_output_once(void **state)
 	/* devices are written as often as asked */
 	assert_int_equal(write_one("/dev/null", &err), STRAY_OK);
 	assert_int_equal(write_one("/dev/null", &err), STRAY_OK);
+	/* a progress record rewritten on purpose (stray review's
+	 * manifest.json), once forgotten, and only then */
+	stray_file_forget_output(dotted);
+	assert_int_equal(write_one(b, &err), STRAY_OK);
+	assert_int_equal(write_one(b, &err), STRAY_EINVAL);
 }
 
 static void test_no_run_no_rule(void **state)

@@ -83,6 +83,9 @@ void stray_file_note_input(const char *path);
 /* A file this run read and now replaces on purpose (a stale entry of a
  * resumable store): no longer an input. */
 void stray_file_forget_input(const char *path);
+/* An output this run rewrites on purpose (a progress record written again
+ * after every step): it may be opened once more. */
+void stray_file_forget_output(const char *path);
 /* The refusal itself (also for writers outside stray_file_open_atomic);
  * records path as an output when accepted. */
 int stray_file_claim_output(const char *path, struct stray_error *err);
