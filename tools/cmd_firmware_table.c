@@ -160,11 +160,54 @@ static int write_outputs(const struct ft_args *a, const struct fdrfw_table *t,
 	return rc;
 }
 
-static int print_summary(const struct ft_args *a, const struct fdrfw_table *t,
-			 const struct stray_exclusion *sun)
+/*
+ * The table from the curve, thinned to the table's rows when longer (the
+ * default trace grid has 160-190 angles): a first pass gives the Sun's
+ * alpha_req (it depends on the sensor, not the curve), the second keeps
+ * the two samples around its crossing, so the table's Sun angle is the
+ * whole curve's.
+ */
+static int build_thinned(const struct stray_curve_view *v,
+			 const struct stray_sensor *sensor,
+			 const struct fdrfw_build_params *p,
+			 struct fdrfw_table *t, struct stray_exclusion *sun,
+			 struct fdrfw_thin_report *thin,
+			 struct stray_error *err)
 {
+	static double th[FDRFW_CURVE_MAX], al[FDRFW_CURVE_MAX];
+	struct stray_curve_view tv;
+	double req;
+	int rc = fdrfw_curve_thin(v, NULL, 0, th, al, &tv, thin, err);
+
+	if (rc == STRAY_OK)
+		rc = fdrfw_table_build_verdict(&tv, sensor, p, t, sun, err);
+	if (rc != STRAY_OK || thin->rows_in == thin->rows_out)
+		return rc;
+	req = (double)t->alpha_req_sun;
+	rc = fdrfw_curve_thin(v, &req, 1, th, al, &tv, thin, err);
+	return rc ? rc : fdrfw_table_build_verdict(&tv, sensor, p, t, sun, err);
+}
+
+static int print_summary(const struct ft_args *a, const struct fdrfw_table *t,
+			 const struct stray_exclusion *sun,
+			 const struct fdrfw_thin_report *thin)
+{
+	if (thin->rows_in != thin->rows_out && !cli.json)
+		printf("curve thinned from %zu to %zu rows for the table: "
+		       "largest change %.3g in log10 alpha, at %.2f deg\n",
+		       thin->rows_in, thin->rows_out, thin->max_err_dex,
+		       thin->at_deg);
 	if (cli.json) {
 		cJSON *o = cJSON_CreateObject();
+
+		cJSON_AddItemToObject(o, "curve_rows", cJSON_CreateNumber(
+				      (double)thin->rows_in));
+		if (thin->rows_in != thin->rows_out) {
+			cJSON_AddItemToObject(o, "thinned_max_log10_error",
+				cli_json_number(thin->max_err_dex));
+			cJSON_AddItemToObject(o, "thinned_max_error_at_deg",
+				cli_json_number(thin->at_deg));
+		}
 
 		cJSON_AddItemToObject(o, "n_curve", cJSON_CreateNumber(t->n_curve));
 		cJSON_AddItemToObject(o, "blob_bytes",
@@ -218,6 +261,7 @@ int cmd_firmware_table(int argc, char **argv)
 	struct stray_curve c;
 	struct stray_curve_view v;
 	struct stray_exclusion sun;
+	struct fdrfw_thin_report thin;
 	struct stray_error err;
 	int rc;
 
@@ -250,7 +294,7 @@ int cmd_firmware_table(int argc, char **argv)
 	p.earth_albedo = a.albedo;
 	p.normalisation = s.normalisation;
 	v = stray_curve_view_of(&c);
-	rc = fdrfw_table_build_verdict(&v, &s.sensor, &p, &t, &sun, &err);
+	rc = build_thinned(&v, &s.sensor, &p, &t, &sun, &thin, &err);
 	stray_curve_free(&c);
 	if (rc == STRAY_OK)
 		rc = write_outputs(&a, &t, &err);
@@ -259,5 +303,5 @@ int cmd_firmware_table(int argc, char **argv)
 			stray_error_locate(&err, a.curve, 0);
 		return cli_fail("firmware-table", &err);
 	}
-	return print_summary(&a, &t, &sun);
+	return print_summary(&a, &t, &sun, &thin);
 }

@@ -54,6 +54,27 @@ int fdrfw_table_build_verdict(const struct stray_curve_view *curve,
 			      struct stray_error *err);
 
 /*
+ * A curve longer than the table's FDRFW_CURVE_MAX rows thinned to them
+ * (curve_thin.c): the ends kept, and the two samples around the last fall
+ * below each of keep_crossings (an alpha_req: the exclusion angle then
+ * comes out of the same two samples as from the whole curve), then
+ * greedily the sample the kept ones interpolate worst in log10 alpha, as
+ * the module interpolates; *out views theta_deg/alpha (FDRFW_CURVE_MAX
+ * each, the caller's) or, for a curve that fits, is *in itself.  r says
+ * what was left out.
+ */
+struct fdrfw_thin_report {
+	size_t rows_in, rows_out;
+	double max_err_dex;	/* largest |log10 alpha| error left */
+	double at_deg;		/* where (NaN: nothing left out) */
+};
+int fdrfw_curve_thin(const struct stray_curve_view *in,
+		     const double *keep_crossings, size_t n_keep,
+		     double *theta_deg, double *alpha,
+		     struct stray_curve_view *out, struct fdrfw_thin_report *r,
+		     struct stray_error *err);
+
+/*
  * libstray's verdict on a sealed table's own curve and Sun alpha_req (a
  * table from before the verdict may carry 89.98 deg for a Sun the baffle
  * never excludes): what `stray availability` reports per head.
