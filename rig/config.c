@@ -142,7 +142,8 @@ static int parse_top(struct rig_config *cfg, const cJSON *root,
 		     const char *name, struct rig_error *err)
 {
 	static const char *const extra[] = {
-		"backend", "socket", "socket_mode", "socket_group", "stage",
+		"backend", "socket", "socket_mode", "socket_group",
+		"lock_dir", "stage",
 		"wheel", "gpio",
 		"camera", "monitor", "sweep", "vlab", "sim", NULL
 	};
@@ -173,6 +174,15 @@ static int parse_top(struct rig_config *cfg, const cJSON *root,
 			return rig_cfg_bad(err, name, "", "socket",
 				"expected a path shorter than 100 bytes");
 		strcpy(cfg->socket_path, p);
+	}
+	if (rc == RIG_OK && (v = SECTION("lock_dir")) != NULL) {
+		const char *p = cJSON_GetStringValue(v);
+
+		if (!p || strlen(p) >= 256)
+			return rig_cfg_bad(err, name, "", "lock_dir",
+				"expected a path shorter than 256 bytes");
+		strcpy(cfg->lock_dir, p);
+		cfg->lock_dir_set = 1;
 	}
 	if (rc == RIG_OK)
 		rc = rig_cfg_apply(&cfg->stage, stage_fields,
@@ -245,6 +255,11 @@ int rig_config_parse(struct rig_config *cfg, const char *name,
 	else
 		rc = parse_top(cfg, root, name, err);
 	cJSON_Delete(root);
+	/* Real devices are locked lab-wide unless told where; a simulated
+	 * lab is the daemon's own, so it locks nothing unless told to. */
+	if (rc == RIG_OK && !cfg->lock_dir_set)
+		strcpy(cfg->lock_dir, strcmp(cfg->backend, "real") == 0
+				      ? RIG_LOCK_DIR_DEFAULT : "");
 	if (rc == RIG_OK)
 		rc = check(cfg, name, err);
 	return rc;

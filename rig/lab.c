@@ -107,6 +107,8 @@ int rig_lab_open(struct rig_lab *lab, const struct rig_config *cfg,
 	for (dev = 0; rc == RIG_OK && dev < RIG_DEV_GPIO; dev++)
 		if (dev != RIG_DEV_MONITOR || cfg->monitor.enabled)
 			rc = open_dev(lab, dev, err);
+	if (rc == RIG_OK)
+		rc = rig_lab_check(lab, err);
 	if (rc != RIG_OK)
 		rig_lab_close(lab);
 	return rc;

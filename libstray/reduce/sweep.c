@@ -216,6 +216,9 @@ static int load_frame(struct workspace *w, const struct stray_sweep_entry *e,
 	f->nd_trans = w->fits.h.ndtrans;
 	f->monitor = w->fits.h.monitor;
 	f->sat_level = w->fits.h.satlevel;
+	if (e->type != STRAY_SWEEP_DARK &&
+	    stray_frame_clip_check(f, err) != STRAY_OK)
+		return stray_error_locate(err, path, 0), STRAY_EINVAL;
 	return STRAY_OK;
 }
 

@@ -14,6 +14,8 @@
 #include "rig/status.h"
 
 #define RIG_PATH_MAX 512
+/* Device locks of the real backend (devlock.h) unless lock_dir says. */
+#define RIG_LOCK_DIR_DEFAULT "/run/lock"
 
 struct rig_sweep_cfg {
 	double theta_start_deg, theta_stop_deg, theta_step_deg;
@@ -29,6 +31,8 @@ struct rig_config {
 	char socket_path[RIG_PATH_MAX];
 	int socket_mode;		/* octal permission, default 0600 */
 	char socket_group[RIG_NAME_MAX];	/* group owning it, "" = ours */
+	char lock_dir[RIG_PATH_MAX];	/* device locks (devlock.h); "" none */
+	int lock_dir_set;		/* given in the file, not defaulted */
 	struct rig_stage_cfg stage;
 	struct rig_wheel_cfg wheel;
 	struct rig_line_cfg lines[RIG_LINE_COUNT];

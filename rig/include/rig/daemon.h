@@ -17,6 +17,7 @@
 #include <stddef.h>
 
 #include "rig/config.h"
+#include "rig/devlock.h"
 #include "rig/lab.h"
 #include "rig/sim.h"
 #include "rig/sweep.h"
@@ -51,6 +52,8 @@ struct rig_daemon {
 	char last_error[RIG_ERROR_MSG_MAX];
 	int quit;
 	int listen_fd, sock_lock_fd;	/* rig_daemon_listen */
+	struct rig_devlock devlock;	/* every device, lab-wide */
+	char owner[RIG_NAME_MAX];	/* the daemon's user, or a sweep's */
 	struct rig_client clients[RIG_CLIENTS_MAX];
 };
 

@@ -29,6 +29,13 @@ int rig_lab_open(struct rig_lab *lab, const struct rig_config *cfg,
 		 const struct rig_hal *hal, struct rig_error *err);
 void rig_lab_close(struct rig_lab *lab);
 
+/* The config against what the devices report (lab_check.c), called by
+ * rig_lab_open before anything moves: the wheel's slot count, and two
+ * dark test frames at sweep.t_min_s and t_max_s (the window and exposure
+ * echoed, camera.sat_dn within the ADC's 2^bits - 1).  RIG_EINVAL names
+ * the config key to change. */
+int rig_lab_check(struct rig_lab *lab, struct rig_error *err);
+
 /* Lamp off, beam blocked, shutter closed, stage stopped; best effort on
  * every device, returns the first failure. */
 int rig_lab_safe(struct rig_lab *lab, struct rig_error *err);
