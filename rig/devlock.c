@@ -63,8 +63,16 @@ static int take_one(struct rig_devlock *l, const char *dir, const char *what,
 		return rig_error_set(err, RIG_EIO, "%s: cannot lock: %s",
 				     path, strerror(e));
 	}
-	n = snprintf(line, sizeof(line), "strayrigd pid %ld, owner %s, "
-		     "since %ld\n", (long)getpid(), owner, (long)time(NULL));
+	{
+		time_t now = time(NULL);
+		struct tm tm;
+		char when[32] = "?";
+
+		if (gmtime_r(&now, &tm))
+			strftime(when, sizeof(when), "%Y-%m-%dT%H:%M:%SZ", &tm);
+		n = snprintf(line, sizeof(line), "strayrigd pid %ld, owner "
+			     "%s, since %s\n", (long)getpid(), owner, when);
+	}
 	if (ftruncate(fd, 0) != 0 || pwrite(fd, line, (size_t)n, 0) != n) {
 		/* The lock holds all the same; only the note is missing. */
 	}

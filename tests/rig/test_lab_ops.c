@@ -11,6 +11,8 @@
 #include <cmocka.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <signal.h>
+#include <time.h>
 
 #include "rig_test_util.h"
 #include "rig/sim.h"
@@ -141,12 +143,79 @@ static void test_reduce_refuses_clipped_frames(void **state)
 	remove_tree(dir);
 }
 
+/* strayrigd serving a socket in the background; its pid. */
+static pid_t serve(const char *dir, const char *conf, const char *sock)
+{
+	char path[700];
+	struct stat st;
+	pid_t pid = fork();
+	int i;
+
+	assert_true(pid >= 0);
+	if (pid == 0) {
+		snprintf(path, sizeof(path), "%s/served.err", dir);
+		if (!freopen(path, "w", stderr))
+			_exit(126);
+		execl(rigd(), rigd(), "--config", conf, "--socket", sock,
+		      (char *)NULL);
+		_exit(127);
+	}
+	for (i = 0; i < 500 && stat(sock, &st) != 0; i++) {
+		struct timespec ts = { 0, 10000000 };
+
+		nanosleep(&ts, NULL);
+	}
+	return pid;
+}
+
+static void stop(pid_t pid)
+{
+	int status;
+
+	kill(pid, SIGTERM);
+	waitpid(pid, &status, 0);
+}
+
+/* A standalone --sweep beside the socket daemon on the same lab (other
+ * socket, other folder) is refused by the device locks, naming the
+ * device and the holder, before it touches a device or makes a folder. */
+static void test_device_lock_lab_wide(void **state)
+{
+	char *dir = temp_dir(), conf[700], sock[700], cmd[2048], out[8192];
+	char text[1200], path[700];
+	struct stat st;
+	pid_t pid;
+
+	(void)state;
+	snprintf(text, sizeof(text), "{\"lock_dir\":\"%s\",\"camera\":"
+		 "{\"rows\":[960,961],\"col0\":960,\"n_cols\":64},"
+		 "\"sweep\":{\"theta_stop_deg\":10,\"theta_step_deg\":5}}",
+		 dir);
+	put(dir, "c.json", text);
+	snprintf(conf, sizeof(conf), "%s/c.json", dir);
+	snprintf(sock, sizeof(sock), "%s/rig.sock", dir);
+	pid = serve(dir, conf, sock);
+	snprintf(cmd, sizeof(cmd), "%s --config %s --sweep %s/s", rigd(),
+		 conf, dir);
+	assert_int_equal(run_out(cmd, dir, out, sizeof(out)), 1);
+	stop(pid);
+	print_message("%s", out);
+	assert_non_null(strstr(out, "in use by another daemon"));
+	assert_non_null(strstr(out, "pid"));
+	snprintf(path, sizeof(path), "%s/s", dir);
+	assert_int_not_equal(stat(path, &st), 0);
+	/* Released at exit: the same sweep now runs. */
+	assert_int_equal(run_out(cmd, dir, out, sizeof(out)), 0);
+	remove_tree(dir);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_sat_dn_above_adc_refused),
 		cmocka_unit_test(test_wheel_slots_checked),
 		cmocka_unit_test(test_reduce_refuses_clipped_frames),
+		cmocka_unit_test(test_device_lock_lab_wide),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
