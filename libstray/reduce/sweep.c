@@ -538,6 +538,30 @@ static int keep_image(struct workspace *w, double theta,
 	return STRAY_OK;
 }
 
+/* A manifest row's time, s after the sweep's first frame. */
+static double when(const struct workspace *w, size_t i)
+{
+	return w->man.e[i].date_obs - w->man.e[0].date_obs;
+}
+
+/* Whether every row has a time (then the drift is fitted in time). */
+static int all_timed(const struct workspace *w, double *span)
+{
+	double lo = HUGE_VAL, hi = -HUGE_VAL;
+	size_t i;
+
+	for (i = 0; i < w->man.n; i++) {
+		double t = w->man.e[i].date_obs;
+
+		if (!(isfinite(t) && t > 0))
+			return 0;
+		lo = fmin(lo, t);
+		hi = fmax(hi, t);
+	}
+	*span = w->man.n ? hi - lo : 0;
+	return w->man.n > 0;
+}
+
 static int reduce_visit(struct workspace *w, size_t v,
 			struct stray_reduce_sweep_result *res, struct stray_error *err)
 {
@@ -559,11 +583,18 @@ static int reduce_visit(struct workspace *w, size_t v,
 	if (rc != STRAY_OK)
 		return at_frame(w, e0, rc, err);
 	vis->theta_deg = e0->angle_deg;
-	/* Acquisition order: the middle of the visit's frames. */
-	vis->order = p->n_runs == 1 ?
+	/* Acquisition order: the middle of the visit's frames, in time when
+	 * the folder has it (a pause, a kill and a resume, a night are then
+	 * as long as they were), else in manifest rows. */
+	vis->row_order = p->n_runs == 1 ?
 		0.5 * ((double)p->first[0] + (double)p->last[0]) :
 		0.25 * ((double)p->first[0] + (double)p->last[0] +
 			(double)p->first[1] + (double)p->last[1]);
+	vis->order = !res->drift_in_time ? vis->row_order :
+		p->n_runs == 1 ?
+		0.5 * (when(w, p->first[0]) + when(w, p->last[0])) :
+		0.25 * (when(w, p->first[0]) + when(w, p->last[0]) +
+			when(w, p->first[1]) + when(w, p->last[1]));
 	vis->power = s.power;
 	vis->var_power = s.var_power;
 	vis->sigma = s.sigma;
@@ -666,7 +697,9 @@ static void start_reading(struct workspace *w,
 	stray_prefetch_start(&w->pf, w->dir, seq, n, w->o->verify_sha256);
 }
 
-/* The fitted source drift per manifest row, relative (0: none fitted). */
+/* The fitted source drift per manifest row, relative (0: none fitted):
+ * over the on-axis visits' row span, however the fit measured it (the
+ * frame-common noise works within groups, in rows). */
 static double drift_per_row(const struct stray_reduce_sweep_result *res)
 {
 	double lo = HUGE_VAL, hi = -HUGE_VAL;
@@ -676,8 +709,8 @@ static double drift_per_row(const struct stray_reduce_sweep_result *res)
 		return 0.0;
 	for (v = 0; v < res->n_visits; v++)
 		if (fabs(res->visits[v].theta_deg) <= STRAY_THETA_TOL_DEG) {
-			lo = fmin(lo, res->visits[v].order);
-			hi = fmax(hi, res->visits[v].order);
+			lo = fmin(lo, res->visits[v].row_order);
+			hi = fmax(hi, res->visits[v].row_order);
 		}
 	return hi > lo ? res->drift.rel_change / (hi - lo) : 0.0;
 }
@@ -769,6 +802,7 @@ static int reduce_all(struct workspace *w,
 	    (rc = check_visits(w, res, err)) ||
 	    (rc = light_buffers(w, res, err)))
 		return rc;
+	res->drift_in_time = all_timed(w, &res->span_s);
 	for (v = 0; v < res->n_visits; v++)
 		if ((rc = reduce_visit(w, v, res, err)) != STRAY_OK)
 			return rc;

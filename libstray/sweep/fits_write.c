@@ -95,6 +95,20 @@ static int write_keys(fitsfile *f, const struct stray_sweep_image *img,
 		fits_write_key(f, TSTRING, "INSTRUME",
 			       STRAY_SWEEP_INSTRUME_RIG,
 			       "written by the straylight lab daemon", status);
+	if (m->date_obs > 0) {
+		char t0[STRAY_SWEEP_UTC_LEN], t1[STRAY_SWEEP_UTC_LEN];
+
+		stray_sweep_utc_format(m->date_obs, t0, sizeof(t0));
+		stray_sweep_utc_format(m->date_end > m->date_obs ? m->date_end
+				       : m->date_obs, t1, sizeof(t1));
+		t0[strlen(t0) - 1] = t1[strlen(t1) - 1] = '\0';	/* no Z */
+		fits_write_key(f, TSTRING, "TIMESYS", "UTC",
+			       "time scale of DATE-OBS and DATE-END", status);
+		fits_write_key(f, TSTRING, STRAY_SWEEP_KEY_DATE_OBS, t0,
+			       "start of the exposure", status);
+		fits_write_key(f, TSTRING, STRAY_SWEEP_KEY_DATE_END, t1,
+			       "end of the exposure (frame read)", status);
+	}
 	write_extra(f, m, status);
 	return *status;
 }

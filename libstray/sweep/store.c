@@ -8,6 +8,7 @@
 #define _DEFAULT_SOURCE	/* DT_REG in dirent, flock */
 #include <dirent.h>
 #include <errno.h>
+#include <math.h>
 #include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -156,6 +157,7 @@ static int create(struct stray_sweep_manifest *m, const char *path,
 			? "exists; resume the sweep or use a new folder"
 			: "cannot create");
 	rc = lock(m, fd, path, err);
+	m->has_date = 1;
 	return rc == STRAY_OK ? write_header(fd, path, err) : rc;
 }
 
@@ -173,8 +175,10 @@ static int resume_open(struct stray_sweep_manifest *m, const char *path,
 				      "cannot open");
 	if ((rc = lock(m, fd, path, err)) != STRAY_OK)
 		return rc;
-	if (fstat(fd, &st) == 0 && st.st_size == 0)
+	if (fstat(fd, &st) == 0 && st.st_size == 0) {
+		m->has_date = 1;
 		return write_header(fd, path, err);
+	}
 	rc = load(m, path, err);
 	if (rc == STRAY_OK)
 		rc = verify_rows(m, err);
@@ -226,13 +230,17 @@ static int append_row(struct stray_sweep_manifest *m,
 		      struct stray_error *err)
 {
 	char path[STRAY_SWEEP_DIR_MAX + 16], line[512];
+	char date[STRAY_SWEEP_UTC_LEN] = "";
 	int fd, n;
 
+	/* A folder begun before manifests had a time keeps its columns. */
+	if (m->has_date && e->date_obs > 0)
+		stray_sweep_utc_format(e->date_obs, date, sizeof(date));
 	manifest_path(m, path, sizeof(path));
-	n = snprintf(line, sizeof(line), "%s,%s,%.4f,%.6f,%.6g,%ld,%s\n",
+	n = snprintf(line, sizeof(line), "%s,%s,%.4f,%.6f,%.6g,%ld,%s%s%s\n",
 		     e->file, stray_sweep_frametyp_name(e->type),
 		     e->angle_deg, e->exptime_s, e->ndtrans, e->seqnum,
-		     e->sha256);
+		     e->sha256, m->has_date ? "," : "", date);
 	fd = open(path, O_WRONLY | O_APPEND);
 	if (fd < 0 || n >= (int)sizeof(line) ||
 	    write(fd, line, (size_t)n) != n || fsync(fd) != 0) {
@@ -263,6 +271,7 @@ int stray_sweep_store_append(struct stray_sweep_manifest *m,
 	e.exptime_s = f->exptime_s;
 	e.ndtrans = f->ndtrans;
 	e.seqnum = f->seqnum;
+	e.date_obs = f->date_obs > 0 ? f->date_obs : NAN;
 	e.line = (long)m->n + 2;	/* after the header */
 	rc = stray_sweep_fits_write(m->dir, e.file, img, f, e.sha256, err);
 	if (rc == STRAY_OK)

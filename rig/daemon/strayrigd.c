@@ -64,25 +64,34 @@ static void install_signals(void)
 	signal(SIGPIPE, SIG_IGN);
 }
 
-/* The folder was claimed before the lab started (rig_sweep_claim). */
-static int run_sweep(struct rig_daemon *d, struct rig_error *err)
+/* The folder claimed once the lab answered (rig_sweep_claim_as). */
+static int run_sweep(struct rig_daemon *d, int resumed, struct rig_error *err)
 {
 	struct rig_progress p;
+	char line[320];
 	int rc = rig_sweep_attach(&d->sweep, &d->lab, err);
 
 	d->sweep_open = rc == RIG_OK;	/* attach closes it on failure */
 	if (rc != RIG_OK)
 		return rc;
+	rig_daemon_log_start(d, resumed);
 	while (rc == RIG_OK && !d->sweep.finished && !stop_flag) {
 		rc = rig_sweep_step(&d->sweep, err);
 		rig_sweep_progress(&d->sweep, &p);
-		fprintf(stderr, "strayrigd: %ld/%ld frames, theta %.3f deg, "
-			"eta %.0f s\n", p.done, p.total, p.theta_deg, p.eta_s);
+		fprintf(stderr, "strayrigd: %ld/%ld frames (%.1f %%), theta "
+			"%.3f deg, %s, eta %.0f s\n", p.done, p.total,
+			p.percent, p.theta_deg, p.step, p.eta_s);
 	}
 	if (rc == RIG_OK && stop_flag)
 		rc = rig_error_set(err, RIG_ESTATE,
 				   "interrupted; lab made safe, resume with "
 				   "--resume");
+	if (rc != RIG_OK) {
+		rig_daemon_safe_line(d, line, sizeof(line));
+		rig_daemon_log(d, RIG_LOG_ERR, "sweep stopped: %s; %s",
+			       err->msg, line);
+	}
+	rig_daemon_log_end(d, rc == RIG_OK ? "complete" : "stopped");
 	rig_sweep_progress(&d->sweep, &p);
 	fprintf(stderr, "strayrigd: sweep %s: %ld frames (%ld this run) in "
 		"%.0f s lab time, %u recoveries, %u CRC re-reads, %u faults "
@@ -166,6 +175,7 @@ int main(int argc, char **argv)
 			 sock);
 	install_signals();
 	own_name(d.owner, sizeof(d.owner));
+	d.quiet_info = dir != NULL;
 	if ((rc = claim(&d, dir, &err)) != RIG_OK) {
 		fprintf(stderr, "strayrigd: %s\n", err.msg);
 		return exit_code(rc);
@@ -179,10 +189,11 @@ int main(int argc, char **argv)
 	/* The folder only once the devices have answered and passed the
 	 * config check: a refused start leaves nothing on disk. */
 	if (dir) {
-		rc = rig_sweep_claim(&d.sweep, &d.cfg, dir, flags, &err);
+		rc = rig_sweep_claim_as(&d.sweep, &d.cfg, dir, flags, d.owner,
+					&err);
 		d.sweep_open = rc == RIG_OK;
 		if (rc == RIG_OK)
-			rc = run_sweep(&d, &err);
+			rc = run_sweep(&d, flags & RIG_SWEEP_RESUME, &err);
 	} else {
 		rc = rig_daemon_serve(&d, &stop_flag, &err);
 	}

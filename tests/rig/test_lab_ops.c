@@ -9,61 +9,10 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <cmocka.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
-#include <signal.h>
-#include <time.h>
 
 #include "rig_test_util.h"
+#include "rig_ops_util.h"
 #include "rig/sim.h"
-
-/* Run cmd through the shell; exit status, stdout+stderr into out. */
-static int run_out(const char *cmd, const char *dir, char *out, size_t size)
-{
-	char full[4096], path[700];
-	FILE *f;
-	size_t n = 0;
-	int status;
-
-	snprintf(path, sizeof(path), "%s/out.txt", dir);
-	snprintf(full, sizeof(full), "%s >'%s' 2>&1", cmd, path);
-	status = system(full);
-	f = fopen(path, "r");
-	if (f) {
-		n = fread(out, 1, size - 1, f);
-		fclose(f);
-	}
-	out[n] = '\0';
-	return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-static const char *rigd(void)
-{
-	static char bin[600];
-	const char *b = getenv("STRAY_BUILD");
-
-	snprintf(bin, sizeof(bin), "%s/bin/strayrigd", b ? b : "build");
-	return bin;
-}
-
-static const char *stray(void)
-{
-	const char *s = getenv("STRAY_BIN");
-
-	return s ? s : "build/bin/stray";
-}
-
-static void put(const char *dir, const char *name, const char *text)
-{
-	char path[700];
-	FILE *f;
-
-	snprintf(path, sizeof(path), "%s/%s", dir, name);
-	f = fopen(path, "w");
-	assert_non_null(f);
-	fputs(text, f);
-	fclose(f);
-}
 
 /* The issue's reproducer: a 14-bit saturation level on the 12-bit
  * camera is refused before anything moves, naming the key and the
@@ -141,39 +90,6 @@ static void test_reduce_refuses_clipped_frames(void **state)
 	assert_non_null(strstr(out, "clipped at 4095"));
 	assert_non_null(strstr(out, "camera.sat_dn"));
 	remove_tree(dir);
-}
-
-/* strayrigd serving a socket in the background; its pid. */
-static pid_t serve(const char *dir, const char *conf, const char *sock)
-{
-	char path[700];
-	struct stat st;
-	pid_t pid = fork();
-	int i;
-
-	assert_true(pid >= 0);
-	if (pid == 0) {
-		snprintf(path, sizeof(path), "%s/served.err", dir);
-		if (!freopen(path, "w", stderr))
-			_exit(126);
-		execl(rigd(), rigd(), "--config", conf, "--socket", sock,
-		      (char *)NULL);
-		_exit(127);
-	}
-	for (i = 0; i < 500 && stat(sock, &st) != 0; i++) {
-		struct timespec ts = { 0, 10000000 };
-
-		nanosleep(&ts, NULL);
-	}
-	return pid;
-}
-
-static void stop(pid_t pid)
-{
-	int status;
-
-	kill(pid, SIGTERM);
-	waitpid(pid, &status, 0);
 }
 
 /* A standalone --sweep beside the socket daemon on the same lab (other

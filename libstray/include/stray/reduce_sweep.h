@@ -77,6 +77,10 @@ struct stray_reduce_sweep_result {
 	/* Largest |commanded - read-back| angle (ANGLERB) a visit was
 	 * carried over (reduce_angle.h), deg. */
 	double angle_rb_max_deg;
+	/* 1: the drift was fitted against time (every manifest row had its
+	 * date_obs), 0: against row order (a folder without times). */
+	int drift_in_time;
+	double span_s;		/* first to last frame, s (drift_in_time) */
 };
 
 /* Reduce DIR; res is zeroed first and must be freed. */
