@@ -803,9 +803,12 @@ static int reduce_all(struct workspace *w,
 	    (rc = light_buffers(w, res, err)))
 		return rc;
 	res->drift_in_time = all_timed(w, &res->span_s);
+	res->t0_utc = res->drift_in_time ? w->man.e[0].date_obs : 0;
 	for (v = 0; v < res->n_visits; v++)
 		if ((rc = reduce_visit(w, v, res, err)) != STRAY_OK)
 			return rc;
+	if (w->o->visits_only)
+		return STRAY_OK;	/* merged elsewhere (merge.c) */
 	res->points = calloc(res->n_visits, sizeof(*res->points));
 	if (!res->points)
 		return stray_error_set(err, STRAY_ENOMEM, "curve", "no memory");

@@ -52,6 +52,10 @@ static cJSON *plan_of(const struct rig_config *c)
 	cJSON_AddNumberToObject(o, "camera.n_cols", c->camera.n_cols);
 	cJSON_AddNumberToObject(o, "camera.sat_dn", c->camera.sat_dn);
 	add_array(o, "wheel.trans", c->wheel.trans, c->wheel.n_slots);
+	/* A list (or ranges) replaces start..stop by step: the angles as
+	 * taken, in order; absent otherwise, so older plans still match. */
+	if (s->n_list > 0)
+		add_array(o, "sweep.theta_list_deg", s->list, s->n_list);
 	return o;
 }
 
