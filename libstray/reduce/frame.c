@@ -56,7 +56,7 @@ int stray_frame_check(const struct stray_frame *f, struct stray_error *err)
 		return stray_error_set_value(err, STRAY_EINVAL, "MONITOR",
 			"must be finite and > 0", f->monitor);
 	if (f->sat_level <= 0 || f->sat_level > 65536)
-		return stray_error_set_value(err, STRAY_EINVAL, "counts clipped at",
+		return stray_error_set_value(err, STRAY_EINVAL, "SATLEVEL",
 			"must be in 1..65536", (double)f->sat_level);
 	return STRAY_OK;
 }

@@ -538,6 +538,15 @@ static int keep_image(struct workspace *w, double theta,
 	return STRAY_OK;
 }
 
+/* A visit's place in manifest rows: the middle of its frames. */
+static double row_order(const struct visit_plan *p)
+{
+	return p->n_runs == 1 ?
+		0.5 * ((double)p->first[0] + (double)p->last[0]) :
+		0.25 * ((double)p->first[0] + (double)p->last[0] +
+			(double)p->first[1] + (double)p->last[1]);
+}
+
 /* A manifest row's time, s after the sweep's first frame. */
 static double when(const struct workspace *w, size_t i)
 {
@@ -586,11 +595,7 @@ static int reduce_visit(struct workspace *w, size_t v,
 	/* Acquisition order: the middle of the visit's frames, in time when
 	 * the folder has it (a pause, a kill and a resume, a night are then
 	 * as long as they were), else in manifest rows. */
-	vis->row_order = p->n_runs == 1 ?
-		0.5 * ((double)p->first[0] + (double)p->last[0]) :
-		0.25 * ((double)p->first[0] + (double)p->last[0] +
-			(double)p->first[1] + (double)p->last[1]);
-	vis->order = !res->drift_in_time ? vis->row_order :
+	vis->order = !res->drift_in_time ? row_order(p) :
 		p->n_runs == 1 ?
 		0.5 * (when(w, p->first[0]) + when(w, p->last[0])) :
 		0.25 * (when(w, p->first[0]) + when(w, p->last[0]) +
@@ -700,7 +705,8 @@ static void start_reading(struct workspace *w,
 /* The fitted source drift per manifest row, relative (0: none fitted):
  * over the on-axis visits' row span, however the fit measured it (the
  * frame-common noise works within groups, in rows). */
-static double drift_per_row(const struct stray_reduce_sweep_result *res)
+static double drift_per_row(const struct workspace *w,
+			    const struct stray_reduce_sweep_result *res)
 {
 	double lo = HUGE_VAL, hi = -HUGE_VAL;
 	size_t v;
@@ -709,8 +715,8 @@ static double drift_per_row(const struct stray_reduce_sweep_result *res)
 		return 0.0;
 	for (v = 0; v < res->n_visits; v++)
 		if (fabs(res->visits[v].theta_deg) <= STRAY_THETA_TOL_DEG) {
-			lo = fmin(lo, res->visits[v].row_order);
-			hi = fmax(hi, res->visits[v].row_order);
+			lo = fmin(lo, row_order(&w->plan[v]));
+			hi = fmax(hi, row_order(&w->plan[v]));
 		}
 	return hi > lo ? res->drift.rel_change / (hi - lo) : 0.0;
 }
@@ -727,7 +733,7 @@ static int add_common(struct workspace *w,
 	size_t n = 2 * res->n_visits, v, g;
 	double *est = malloc(n * sizeof(*est)), *ind = malloc(n * sizeof(*ind));
 	size_t *dof = malloc(n * sizeof(*dof));
-	double s2, beta = drift_per_row(res);
+	double s2, beta = drift_per_row(w, res);
 
 	*redo = 0;
 

@@ -13,6 +13,7 @@
 #include "rig_ops_util.h"
 #include "rig/vlab.h"
 #include "stray/table.h"
+#include <cJSON.h>
 
 #define WINDOW "\"camera\":{\"rows\":[960,961],\"col0\":960,\"n_cols\":64}"
 
@@ -112,11 +113,47 @@ static void test_partial_and_live_said(void **state)
 	remove_tree(dir);
 }
 
+/* The demo sweep's one simulated ghost (vlab: 1000 + 8 px/deg) is one
+ * track, following its line.  Before: ghosts A 14-16, B 16-18, C 18-25
+ * and D 19-23 deg, a peak that splits in two some 6 px apart. */
+static void test_one_ghost_one_track(void **state)
+{
+	char *dir = temp_dir(), cmd[2048], out[65536];
+	cJSON *r, *g, *th, *col;
+	int i;
+
+	(void)state;
+	snprintf(cmd, sizeof(cmd), "%s --config examples/rig-demo.json "
+		 "--sweep %s/demo", rigd(), dir);
+	assert_int_equal(run_out(cmd, dir, out, sizeof(out)), 0);
+	snprintf(cmd, sizeof(cmd), "%s reduce %s/demo --out %s/lens.csv "
+		 "--json 2>/dev/null", stray(), dir, dir);
+	assert_int_equal(run_out(cmd, dir, out, sizeof(out)), 0);
+	r = cJSON_Parse(out);
+	assert_non_null(r);
+	g = cJSON_GetObjectItem(r, "ghosts");
+	print_message("%d ghost track(s)\n", cJSON_GetArraySize(g));
+	assert_int_equal(cJSON_GetArraySize(g), 1);
+	th = cJSON_GetObjectItem(cJSON_GetArrayItem(g, 0), "theta_deg");
+	col = cJSON_GetObjectItem(cJSON_GetArrayItem(g, 0), "column");
+	assert_true(cJSON_GetArraySize(th) >= 10);
+	for (i = 0; i < cJSON_GetArraySize(th); i++) {
+		double t = cJSON_GetNumberValue(cJSON_GetArrayItem(th, i));
+		double c = cJSON_GetNumberValue(cJSON_GetArrayItem(col, i));
+
+		print_message("  %4.1f deg: column %.1f\n", t, c);
+		assert_true(fabs(c - (1000 + 8 * t)) < 12);
+	}
+	cJSON_Delete(r);
+	remove_tree(dir);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_two_folders_one_curve),
 		cmocka_unit_test(test_partial_and_live_said),
+		cmocka_unit_test(test_one_ghost_one_track),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

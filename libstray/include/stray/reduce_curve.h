@@ -23,7 +23,6 @@ struct stray_visit {
 	double order;		/* acquisition order: mean time of its frames
 				 * (s after the sweep's first) when every
 				 * frame has one, else its mean manifest row */
-	double row_order;	/* its mean manifest row, always */
 	double power;		/* eq. 3.9 */
 	double var_power;
 	double sigma;		/* eq. 3.14 */
