@@ -212,10 +212,15 @@ int stray_sweep_fits_write(const char *dir, const char *name,
 	}
 	if (write_tmp(tmp, buf, len) != 0 || rename(tmp, path) != 0 ||
 	    sync_path(dir, O_RDONLY | O_DIRECTORY) != 0) {
+		int e = errno;	/* the cause: a full disk, a read-only one */
+
 		unlink(tmp);
 		free(buf);
-		return stray_error_at(err, STRAY_EIO, path, 0, "file",
-				      "cannot write, sync or rename the frame");
+		stray_error_at(err, STRAY_EIO, path, 0, "file",
+			       "cannot write, sync or rename the frame; "
+			       "free space (or fix the folder), then resume");
+		stray_error_text(err, strerror(e));
+		return STRAY_EIO;
 	}
 	rc = stray_sweep_sha256_mem(buf, len, sha_hex);
 	free(buf);

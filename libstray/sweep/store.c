@@ -142,20 +142,34 @@ static int write_header(int fd, const char *path, struct stray_error *err)
 	return STRAY_OK;
 }
 
+/* An I/O failure with its cause: errno's text as the value, what to do
+ * in the reason ("F: dir 'Permission denied': cannot create ..."). */
+static int with_cause(struct stray_error *err, const char *path,
+		      const char *field, const char *reason)
+{
+	int e = errno;
+
+	stray_error_at(err, STRAY_EIO, path, 0, field, reason);
+	stray_error_text(err, strerror(e));
+	return STRAY_EIO;
+}
+
 static int create(struct stray_sweep_manifest *m, const char *path,
 		  struct stray_error *err)
 {
 	int fd, rc;
 
 	if (mkdir(m->dir, 0755) != 0 && errno != EEXIST)
-		return stray_error_at(err, STRAY_EIO, m->dir, 0, "dir",
-				      "cannot create the sweep folder");
+		return with_cause(err, m->dir, "dir", "cannot create the sweep "
+				  "folder; check that its parent exists and "
+				  "is writable, or choose another");
 	fd = open(path, O_WRONLY | O_CREAT | O_EXCL, 0644);
-	if (fd < 0)
+	if (fd < 0 && errno == EEXIST)
 		return stray_error_at(err, STRAY_EIO, path, 0, "file",
-			errno == EEXIST
-			? "exists; resume the sweep or use a new folder"
-			: "cannot create");
+			"exists; resume the sweep or use a new folder");
+	if (fd < 0)
+		return with_cause(err, path, "file", "cannot create the "
+				  "manifest; check the folder is writable");
 	rc = lock(m, fd, path, err);
 	m->has_date = 1;
 	return rc == STRAY_OK ? write_header(fd, path, err) : rc;
@@ -244,10 +258,14 @@ static int append_row(struct stray_sweep_manifest *m,
 	fd = open(path, O_WRONLY | O_APPEND);
 	if (fd < 0 || n >= (int)sizeof(line) ||
 	    write(fd, line, (size_t)n) != n || fsync(fd) != 0) {
+		int e = errno;
+
 		if (fd >= 0)
 			close(fd);
-		return stray_error_at(err, STRAY_EIO, path, 0, "file",
-				      "cannot append");
+		errno = e;
+		return with_cause(err, path, "file", "cannot append the "
+				  "frame's row; free space (or fix the "
+				  "folder), then resume");
 	}
 	close(fd);
 	return STRAY_OK;

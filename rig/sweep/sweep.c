@@ -124,6 +124,7 @@ int rig_sweep_claim_as(struct rig_sweep *sw, const struct rig_config *cfg,
 		       struct rig_error *err)
 {
 	struct stray_error se;
+	long planned;
 	int rc;
 
 	memset(sw, 0, sizeof(*sw));
@@ -136,11 +137,26 @@ int rig_sweep_claim_as(struct rig_sweep *sw, const struct rig_config *cfg,
 		rig_sweep_close(sw);
 		return rc;
 	}
+	/* The disk from the plan, before a frame is taken: every frame
+	 * of a new sweep, the rest of a resumed one. */
+	planned = (long)sw->n_angles * 4 * sw->cfg->repeats;
+	if (!(flags & RIG_SWEEP_RESUME) &&
+	    (rc = rig_sweep_space_check(dir, cfg, planned, err)) != RIG_OK) {
+		rig_sweep_close(sw);
+		return rc;
+	}
 	stray_error_clear(&se);
 	if (stray_sweep_store_open(&sw->mf, dir, flags & RIG_SWEEP_RESUME,
 				   &se) != STRAY_OK) {
 		rig_sweep_close(sw);
 		return store_fail(err, &se);
+	}
+	if ((flags & RIG_SWEEP_RESUME) &&
+	    (rc = rig_sweep_space_check(dir, cfg, planned > (long)sw->mf.n ?
+					planned - (long)sw->mf.n : 0, err)) !=
+	    RIG_OK) {
+		rig_sweep_close(sw);
+		return rc;
 	}
 	/* The lock is ours: the plan cannot change under us. */
 	rc = rig_sweep_plan_check_as(dir, cfg, flags & RIG_SWEEP_FORCE_PLAN,

@@ -125,6 +125,40 @@ static void test_device_lock_lab_wide(void **state)
 	remove_tree(dir);
 }
 
+/* Errors say their cause and what to do: a folder that cannot be made
+ * names the system's reason; a plan the disk cannot hold is refused
+ * before the first move, with both figures.  Before: "cannot create the
+ * sweep folder", and a sweep that ran into the full disk. */
+static void test_errors_with_causes(void **state)
+{
+	char *dir = temp_dir(), cmd[2048], out[8192], path[700];
+	struct stat st;
+
+	(void)state;
+	put(dir, "c.json", "{\"camera\":{\"rows\":[960,961],\"col0\":960,"
+	    "\"n_cols\":64},\"sweep\":{\"theta_stop_deg\":10,"
+	    "\"theta_step_deg\":5}}");
+	put(dir, "afile", "not a folder\n");
+	snprintf(cmd, sizeof(cmd), "%s --config %s/c.json --sweep %s/afile/s",
+		 rigd(), dir, dir);
+	assert_int_equal(run_out(cmd, dir, out, sizeof(out)), 1);
+	print_message("%s", out);
+	assert_non_null(strstr(out, "Not a directory"));
+	assert_non_null(strstr(out, "choose another"));
+	/* 1781 angles x 1000 repeats of 14 full rows: ~600 GB */
+	put(dir, "big.json", "{\"sweep\":{\"theta_ranges_deg\":"
+	    "[[0,89,0.05]],\"repeats\":1000}}");
+	snprintf(cmd, sizeof(cmd), "%s --config %s/big.json --sweep %s/big",
+		 rigd(), dir, dir);
+	assert_int_equal(run_out(cmd, dir, out, sizeof(out)), 1);
+	print_message("%s", out);
+	assert_non_null(strstr(out, "not enough free space"));
+	assert_non_null(strstr(out, "MB free"));
+	snprintf(path, sizeof(path), "%s/big", dir);
+	assert_int_not_equal(stat(path, &st), 0);
+	remove_tree(dir);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -132,6 +166,7 @@ int main(void)
 		cmocka_unit_test(test_wheel_slots_checked),
 		cmocka_unit_test(test_reduce_refuses_clipped_frames),
 		cmocka_unit_test(test_device_lock_lab_wide),
+		cmocka_unit_test(test_errors_with_causes),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -93,6 +93,14 @@ int rig_sweep_plan_check(const char *dir, const struct rig_config *cfg,
 int rig_sweep_plan_check_as(const char *dir, const struct rig_config *cfg,
 			    int force, const char *owner,
 			    struct rig_error *err);
+/* Free space (space.c): the bytes of one frame on disk (FITS blocks and
+ * its manifest row), and RIG_EIO when dir's file system (its parent's,
+ * before it exists) has less than frames of them with 10 % and 16 MB to
+ * spare, naming both figures. */
+double rig_sweep_bytes_per_frame(const struct rig_config *cfg);
+int rig_sweep_space_check(const char *dir, const struct rig_config *cfg,
+			  long frames, struct rig_error *err);
+
 /* Take the next frame (or finish); on failure the lab is made safe. */
 int rig_sweep_step(struct rig_sweep *sw, struct rig_error *err);
 void rig_sweep_progress(const struct rig_sweep *sw, struct rig_progress *p);
