@@ -366,7 +366,10 @@ static int step_once(struct rig_sweep *sw, struct rig_error *err)
 		sw->finished = 1;
 		return rig_lab_safe(sw->lab, err);
 	}
-	if (!sw->at_angle) {
+	/* The stage may have been moved (an operator's move while the
+	 * sweep was held after a fault) or lost (a reconnect): go back. */
+	if (!sw->at_angle ||
+	    !(fabs(sw->lab->theta_deg - sw->angles[sw->i_angle]) < 1e-9)) {
 		rc = rig_lab_move(sw->lab, sw->angles[sw->i_angle], err);
 		if (rc != RIG_OK)
 			return rc;

@@ -36,6 +36,7 @@ static void test_sat_dn_above_adc_refused(void **state)
 	snprintf(path, sizeof(path), "%s/s/manifest.csv", dir);
 	assert_int_not_equal(stat(path, &st), 0);
 	remove_tree(dir);
+	free(dir);
 }
 
 /* A wheel with fewer slots than wheel.trans lists is refused too. */
@@ -54,6 +55,7 @@ static void test_wheel_slots_checked(void **state)
 	assert_non_null(strstr(out, "wheel.trans"));
 	assert_non_null(strstr(out, "reports 4"));
 	remove_tree(dir);
+	free(dir);
 }
 
 /* A folder whose frames clip at 4095 while SATLEVEL says 16383 (taken
@@ -90,6 +92,7 @@ static void test_reduce_refuses_clipped_frames(void **state)
 	assert_non_null(strstr(out, "clipped at 4095"));
 	assert_non_null(strstr(out, "camera.sat_dn"));
 	remove_tree(dir);
+	free(dir);
 }
 
 /* A standalone --sweep beside the socket daemon on the same lab (other
@@ -123,6 +126,7 @@ static void test_device_lock_lab_wide(void **state)
 	/* Released at exit: the same sweep now runs. */
 	assert_int_equal(run_out(cmd, dir, out, sizeof(out)), 0);
 	remove_tree(dir);
+	free(dir);
 }
 
 /* Errors say their cause and what to do: a folder that cannot be made
@@ -157,6 +161,7 @@ static void test_errors_with_causes(void **state)
 	snprintf(path, sizeof(path), "%s/big", dir);
 	assert_int_not_equal(stat(path, &st), 0);
 	remove_tree(dir);
+	free(dir);
 }
 
 int main(void)

@@ -73,6 +73,7 @@ static void test_two_folders_one_curve(void **state)
 	}
 	stray_table_free(&t);
 	remove_tree(dir);
+	free(dir);
 }
 
 /* Reducing a sweep that was killed half-way, or one still being taken,
@@ -111,6 +112,7 @@ static void test_partial_and_live_said(void **state)
 	print_message("%s", out);
 	assert_non_null(strstr(out, "the sweep is live"));
 	remove_tree(dir);
+	free(dir);
 }
 
 /* The demo sweep's one simulated ghost (vlab: 1000 + 8 px/deg) is one
@@ -146,6 +148,7 @@ static void test_one_ghost_one_track(void **state)
 	}
 	cJSON_Delete(r);
 	remove_tree(dir);
+	free(dir);
 }
 
 int main(void)

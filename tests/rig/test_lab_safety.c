@@ -49,6 +49,7 @@ static void test_gpio_lost_socket_mode(void **state)
 	assert_null(strstr(err, "stopped safe"));
 	assert_non_null(strstr(err, "safe state NOT confirmed"));
 	remove_tree(dir);
+	free(dir);
 }
 
 /* --sweep mode says it in the same words. */
@@ -67,6 +68,7 @@ static void test_gpio_lost_sweep_mode(void **state)
 				    "unknown, beam_block unknown, lamp "
 				    "unknown"));
 	remove_tree(dir);
+	free(dir);
 }
 
 /* The event log: start, the plan and owner, each fault retried and its
@@ -104,6 +106,7 @@ static void test_event_log_in_folder(void **state)
 	slurp(path, log, sizeof(log));
 	assert_non_null(strstr(log, "\"owner\""));
 	remove_tree(dir);
+	free(dir);
 }
 
 /* `safe` during a sweep makes the lab safe and keeps the sweep: status
@@ -136,6 +139,7 @@ static void test_safe_keeps_sweep(void **state)
 	assert_non_null(strstr(out, "\"finished\":true"));
 	stop(pid);
 	remove_tree(dir);
+	free(dir);
 }
 
 int main(void)

@@ -75,6 +75,7 @@ static void test_time_in_frames_and_manifest(void **state)
 	}
 	stray_sweep_manifest_free(&mf);
 	remove_tree(dir);
+	free(dir);
 }
 
 /* alpha at one angle from `stray reduce` (its CSV), or NAN. */
@@ -146,6 +147,7 @@ static void test_drift_fitted_against_time(void **state)
 	assert_true(fabs(a / truth - 1) < 0.01);
 	assert_non_null(strstr(out, "fitted against time"));
 	remove_tree(dir);
+	free(dir);
 }
 
 /* The lab's plan: a list in the order taken (0 deg again at the end is
@@ -197,6 +199,7 @@ static void test_angle_list_and_ranges(void **state)
 	assert_int_equal(run_out(cmd, dir, out, sizeof(out)), 2);
 	assert_non_null(strstr(out, "sweep.theta_list_deg"));
 	remove_tree(dir);
+	free(dir);
 }
 
 int main(void)
