@@ -11,6 +11,7 @@
  */
 #define _DEFAULT_SOURCE	/* vsyslog */
 #include <fcntl.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
@@ -67,15 +68,21 @@ void rig_daemon_log_start(struct rig_daemon *d, int resumed)
 	const struct rig_sweep *sw = &d->sweep;
 	const struct rig_sweep_cfg *c = sw->cfg;
 	struct rig_progress p;
+	double lo = 0, hi = 0;
+	int i, returns = 0;
 
+	for (i = 0; i < sw->n_angles; i++) {
+		lo = i ? fmin(lo, sw->angles[i]) : sw->angles[i];
+		hi = i ? fmax(hi, sw->angles[i]) : sw->angles[i];
+		returns += sw->visit_no[i] > 0;
+	}
 	rig_sweep_progress(sw, &p);
 	rig_daemon_log(d, RIG_LOG_INFO, "sweep %s in %s by %s: %d angles "
-		       "%g..%g deg, %d repeats, t %g-%g s; %ld of about %ld "
-		       "frames already taken", resumed ? "resumed" : "started",
-		       sw->mf.dir, sw->owner, sw->n_angles,
-		       sw->n_angles ? sw->angles[0] : 0,
-		       sw->n_angles ? sw->angles[sw->n_angles - 1] : 0,
-		       c->repeats, c->t_min_s, c->t_max_s, p.done, p.total);
+		       "%g..%g deg (%d returns), %d repeats, t %g-%g s; %ld of "
+		       "about %ld frames already taken",
+		       resumed ? "resumed" : "started", sw->mf.dir, sw->owner,
+		       sw->n_angles, lo, hi, returns, c->repeats, c->t_min_s,
+		       c->t_max_s, p.done, p.total);
 }
 
 void rig_daemon_log_end(struct rig_daemon *d, const char *how)

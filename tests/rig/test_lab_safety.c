@@ -98,7 +98,7 @@ static void test_event_log_in_folder(void **state)
 	assert_true(strlen(log) > 24 && log[4] == '-' && log[10] == 'T' &&
 		    log[23] == 'Z');
 	assert_non_null(strstr(log, "sweep started in"));
-	assert_non_null(strstr(log, "3 angles 0..10 deg"));
+	assert_non_null(strstr(log, "3 angles 0..10 deg (0 returns)"));
 	assert_non_null(strstr(log, "retry 1 of 3"));
 	assert_non_null(strstr(log, "camera recovered after 1 retry"));
 	assert_non_null(strstr(log, "sweep complete"));
