@@ -173,6 +173,11 @@ int main(int argc, char **argv)
 	if (sock)
 		snprintf(d.cfg.socket_path, sizeof(d.cfg.socket_path), "%s",
 			 sock);
+	/* Test beds and CI runs on one machine each lock their own
+	 * emulated lab, not the real one's /run/lock. */
+	if (getenv("STRAYRIGD_LOCK_DIR"))
+		snprintf(d.cfg.lock_dir, sizeof(d.cfg.lock_dir), "%s",
+			 getenv("STRAYRIGD_LOCK_DIR"));
 	install_signals();
 	own_name(d.owner, sizeof(d.owner));
 	d.quiet_info = dir != NULL;
