@@ -4,6 +4,7 @@
  * are errors, so a typo cannot silently leave a default in place.
  */
 #include <cJSON.h>
+#include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -97,6 +98,79 @@ static int parse_wheel(struct rig_config *cfg, const cJSON *o,
 	return RIG_OK;
 }
 
+/* Ranges [start, stop, step] into the list, start..stop inclusive by
+ * step; a range starting where the last ended does not repeat it. */
+static int add_ranges(struct rig_sweep_cfg *s, const cJSON *r,
+		      const char *name, struct rig_error *err)
+{
+	const cJSON *t;
+	int n = 0;
+
+	if (!cJSON_IsArray(r) || cJSON_GetArraySize(r) < 1 ||
+	    cJSON_GetArraySize(r) > RIG_RANGES_MAX)
+		return rig_cfg_bad(err, name, "sweep", "theta_ranges_deg",
+			"expected 1-32 ranges [start, stop, step] in deg");
+	s->n_list = 0;
+	cJSON_ArrayForEach(t, r) {
+		double v[3];
+		long k, count;
+
+		if (rig_cfg_num_array(t, v, 3, -360, 360) != 3 ||
+		    !(v[2] >= 1e-3) || v[1] < v[0])
+			return rig_cfg_bad(err, name, "sweep",
+				"theta_ranges_deg", "each range must be "
+				"[start, stop, step] with start <= stop and "
+				"step >= 0.001 deg, within -360..360");
+		count = (long)floor((v[1] - v[0]) / v[2] + 1e-9) + 1;
+		for (k = 0; k < count; k++) {
+			double a = v[0] + k * v[2];
+
+			if (s->n_list > 0 && n > 0 && k == 0 &&
+			    fabs(a - s->list[s->n_list - 1]) < 1e-9)
+				continue;
+			if (s->n_list >= RIG_ANGLE_LIST_MAX)
+				return rig_cfg_bad(err, name, "sweep",
+					"theta_ranges_deg",
+					"more than 2000 angles in all");
+			s->list[s->n_list++] = a;
+		}
+		n++;
+	}
+	s->list_from_ranges = 1;
+	return RIG_OK;
+}
+
+static int parse_sweep(struct rig_config *cfg, const cJSON *o,
+		       const char *name, struct rig_error *err)
+{
+	static const char *const extra[] = { "theta_list_deg",
+					     "theta_ranges_deg", NULL };
+	const cJSON *l = cJSON_GetObjectItemCaseSensitive(o, "theta_list_deg");
+	const cJSON *r = cJSON_GetObjectItemCaseSensitive(o,
+							  "theta_ranges_deg");
+	struct rig_sweep_cfg *s = &cfg->sweep;
+	int rc = rig_cfg_apply(s, sweep_fields, o, extra, name, "sweep", err);
+
+	if (rc != RIG_OK)
+		return rc;
+	if (l && r)
+		return rig_cfg_bad(err, name, "sweep", "theta_ranges_deg",
+				   "give theta_list_deg or theta_ranges_deg, "
+				   "not both");
+	if (r)
+		return add_ranges(s, r, name, err);
+	if (!l)
+		return RIG_OK;
+	rc = rig_cfg_num_array(l, s->list, RIG_ANGLE_LIST_MAX, -360, 360);
+	if (rc < 1)
+		return rig_cfg_bad(err, name, "sweep", "theta_list_deg",
+				   "expected 1-2000 angles in deg, each "
+				   "within -360..360");
+	s->n_list = rc;
+	s->list_from_ranges = 0;
+	return RIG_OK;
+}
+
 static int parse_camera(struct rig_config *cfg, const cJSON *o,
 			const char *name, struct rig_error *err)
 {
@@ -142,7 +216,8 @@ static int parse_top(struct rig_config *cfg, const cJSON *root,
 		     const char *name, struct rig_error *err)
 {
 	static const char *const extra[] = {
-		"backend", "socket", "socket_mode", "socket_group", "stage",
+		"backend", "socket", "socket_mode", "socket_group",
+		"lock_dir", "stage",
 		"wheel", "gpio",
 		"camera", "monitor", "sweep", "vlab", "sim", NULL
 	};
@@ -174,6 +249,15 @@ static int parse_top(struct rig_config *cfg, const cJSON *root,
 				"expected a path shorter than 100 bytes");
 		strcpy(cfg->socket_path, p);
 	}
+	if (rc == RIG_OK && (v = SECTION("lock_dir")) != NULL) {
+		const char *p = cJSON_GetStringValue(v);
+
+		if (!p || strlen(p) >= 256)
+			return rig_cfg_bad(err, name, "", "lock_dir",
+				"expected a path shorter than 256 bytes");
+		strcpy(cfg->lock_dir, p);
+		cfg->lock_dir_set = 1;
+	}
 	if (rc == RIG_OK)
 		rc = rig_cfg_apply(&cfg->stage, stage_fields,
 				   SECTION("stage"), NULL, name, "stage", err);
@@ -188,8 +272,7 @@ static int parse_top(struct rig_config *cfg, const cJSON *root,
 				   SECTION("monitor"), NULL, name, "monitor",
 				   err);
 	if (rc == RIG_OK)
-		rc = rig_cfg_apply(&cfg->sweep, sweep_fields,
-				   SECTION("sweep"), NULL, name, "sweep", err);
+		rc = parse_sweep(cfg, SECTION("sweep"), name, err);
 	/* The simulator's sections, parsed by rig/sim (sim_config.h). */
 	if (rc == RIG_OK)
 		rc = rig_sim_config_parse(&cfg->sim, SECTION("vlab"),
@@ -203,6 +286,7 @@ static int check(const struct rig_config *c, const char *name,
 		 struct rig_error *err)
 {
 	const struct rig_sweep_cfg *s = &c->sweep;
+	int i;
 
 	if (c->socket_mode & 0002)
 		return rig_cfg_bad(err, name, "", "socket_mode",
@@ -211,9 +295,17 @@ static int check(const struct rig_config *c, const char *name,
 	if (c->stage.min_deg >= c->stage.max_deg)
 		return rig_cfg_bad(err, name, "stage", "min_deg",
 				   "not below max_deg");
-	if (s->theta_start_deg > s->theta_stop_deg ||
+	for (i = 0; i < s->n_list; i++)
+		if (s->list[i] < c->stage.min_deg ||
+		    s->list[i] > c->stage.max_deg)
+			return rig_cfg_bad(err, name, "sweep",
+				s->list_from_ranges ? "theta_ranges_deg"
+						    : "theta_list_deg",
+				"an angle outside the stage limits "
+				"[stage.min_deg, stage.max_deg]");
+	if (s->n_list == 0 && (s->theta_start_deg > s->theta_stop_deg ||
 	    s->theta_start_deg < c->stage.min_deg ||
-	    s->theta_stop_deg > c->stage.max_deg)
+	    s->theta_stop_deg > c->stage.max_deg))
 		return rig_cfg_bad(err, name, "sweep", "theta_stop_deg",
 				   "sweep range not inside the stage limits");
 	if (!(s->t_min_s <= s->t_init_s && s->t_init_s <= s->t_max_s))
@@ -245,6 +337,11 @@ int rig_config_parse(struct rig_config *cfg, const char *name,
 	else
 		rc = parse_top(cfg, root, name, err);
 	cJSON_Delete(root);
+	/* Real devices are locked lab-wide unless told where; a simulated
+	 * lab is the daemon's own, so it locks nothing unless told to. */
+	if (rc == RIG_OK && !cfg->lock_dir_set)
+		strcpy(cfg->lock_dir, strcmp(cfg->backend, "real") == 0
+				      ? RIG_LOCK_DIR_DEFAULT : "");
 	if (rc == RIG_OK)
 		rc = check(cfg, name, err);
 	return rc;

@@ -5,6 +5,8 @@
  * fails is returned with the device's own one-line message.
  */
 #include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "rig/lab.h"
@@ -107,6 +109,8 @@ int rig_lab_open(struct rig_lab *lab, const struct rig_config *cfg,
 	for (dev = 0; rc == RIG_OK && dev < RIG_DEV_GPIO; dev++)
 		if (dev != RIG_DEV_MONITOR || cfg->monitor.enabled)
 			rc = open_dev(lab, dev, err);
+	if (rc == RIG_OK)
+		rc = rig_lab_check(lab, err);
 	if (rc != RIG_OK)
 		rig_lab_close(lab);
 	return rc;
@@ -137,6 +141,43 @@ int rig_lab_safe(struct rig_lab *lab, struct rig_error *err)
 	return rc;
 }
 
+int rig_lab_is_safe(const struct rig_lab *lab, char *why, size_t size)
+{
+	/* The safe level of each line: lamp off, beam blocked, shutter
+	 * closed; only a read-back counts. */
+	static const int safe_level[RIG_LINE_COUNT] = {
+		[RIG_LINE_SHUTTER] = 0, [RIG_LINE_BEAM_BLOCK] = 1,
+		[RIG_LINE_LAMP] = 0,
+	};
+	static const char *const bad[RIG_LINE_COUNT] = {
+		[RIG_LINE_SHUTTER] = "shutter open",
+		[RIG_LINE_BEAM_BLOCK] = "beam not blocked",
+		[RIG_LINE_LAMP] = "lamp on",
+	};
+	int open = (lab->open_mask & (1 << RIG_DEV_GPIO)) != 0, i, ok = 1;
+	size_t n = 0;
+
+	if (size)
+		why[0] = '\0';
+	for (i = 0; i < RIG_LINE_COUNT; i++) {
+		int st = open ? lab->lines.state[i] : -1;
+		int w;
+
+		if (st == safe_level[i])
+			continue;
+		ok = 0;
+		if (n >= size)
+			continue;
+		w = snprintf(why + n, size - n, "%s%s", n ? ", " : "",
+			     st < 0 ? "" : bad[i]);
+		if (st < 0 && w >= 0 && (size_t)w < size - n)
+			w = snprintf(why + n, size - n, "%s%s unknown",
+				     n ? ", " : "", rig_line_name(i));
+		n += w > 0 ? (size_t)w : 0;
+	}
+	return ok;
+}
+
 int rig_lab_reconnect(struct rig_lab *lab, int dev, struct rig_error *err)
 {
 	struct rig_error tmp;
@@ -153,6 +194,29 @@ int rig_lab_reconnect(struct rig_lab *lab, int dev, struct rig_error *err)
 	if (rc != RIG_OK)
 		return rig_error_set(err, rc, "%s", tmp.msg);
 	return RIG_OK;
+}
+
+static const char *const dev_name[RIG_DEV_COUNT] = {
+	[RIG_DEV_STAGE] = "stage", [RIG_DEV_WHEEL] = "wheel",
+	[RIG_DEV_CAMERA] = "camera", [RIG_DEV_MONITOR] = "monitor",
+	[RIG_DEV_GPIO] = "gpio",
+};
+
+static void tell(struct rig_lab *lab, int recovered, const char *fmt, ...)
+	__attribute__((format(printf, 3, 4)));
+
+/* A fault or a recovery, to whoever listens (the event log). */
+static void tell(struct rig_lab *lab, int recovered, const char *fmt, ...)
+{
+	char msg[RIG_ERROR_MSG_MAX + 80];
+	va_list ap;
+
+	if (!lab->on_event)
+		return;
+	va_start(ap, fmt);
+	vsnprintf(msg, sizeof(msg), fmt, ap);
+	va_end(ap);
+	lab->on_event(lab->event_ctx, recovered, msg);
 }
 
 /* One device operation; arg carries its parameters. */
@@ -175,10 +239,18 @@ static int with_retries(struct rig_lab *lab, int dev, lab_op op, void *arg,
 			rc = op(lab, arg, &e);
 		if (rc == RIG_OK) {
 			lab->recoveries += n > 0;
+			if (n > 0)
+				tell(lab, 1, "%s recovered after %d "
+				     "retr%s", dev_name[dev], n,
+				     n == 1 ? "y" : "ies");
 			return RIG_OK;
 		}
 		if (!rig_status_is_transient(rc))
 			break;
+		if (n < lab->cfg->sweep.retries)
+			tell(lab, 0, "%s; retry %d of %d%s", e.msg, n + 1,
+			     lab->cfg->sweep.retries, rc == RIG_ETARGET
+			     ? " after re-homing" : " after reconnecting");
 		if (rc != RIG_ETARGET)	/* a miss re-homes instead */
 			close_dev(lab, dev);
 	}

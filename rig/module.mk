@@ -52,6 +52,8 @@ $(B)/tests/rig/test_hal_fail_wrap: LDWRAP := \
 $(B)/tests/rig/test_daemon: $(STRAY_BIN)
 # The end-to-end test runs `stray reduce` and reads its CSV with libstray.
 $(B)/tests/rig/test_e2e_reduce: $(STRAY_BIN)
+# issue 29: strayrigd and stray run as programs
+$(B)/tests/rig/test_lab_ops $(B)/tests/rig/test_lab_safety $(B)/tests/rig/test_lab_time $(B)/tests/rig/test_lab_reduce: $(STRAY_BIN)
 $(B)/tests/rig/%: $(B)/obj/tests/rig/%.o $(RIG_LIB) $(RIG_BIN) $(STRAY_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_BASE) $(LDWRAP) -o $@ $< $(RIG_LIB) $(LDEXTRA) \

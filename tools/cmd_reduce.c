@@ -23,8 +23,12 @@
 #include "stray/reduce_sweep.h"
 
 static const char usage[] =
-	"usage: stray reduce SWEEP_DIR --out C.csv [--zemax F.DAT] [--json]\n"
-	"                    [options]\n"
+	"usage: stray reduce SWEEP_DIR [SWEEP_DIR...] --out C.csv\n"
+	"                    [--zemax F.DAT] [--json] [options]\n"
+	"\n"
+	"Several folders of one lens (the same window) are reduced together:\n"
+	"each with its own darks, their visits on one time line (date_obs),\n"
+	"one curve; one on-axis (0 deg) visit among them is enough.\n"
 	"\n"
 	"The lens attenuation curve from a lab sweep: darks per Bayer read\n"
 	"channel, J = L_ful/(t1 nd1) - L_amb/(t2 nd2) (eq. 3.6), P(theta)\n"
@@ -52,6 +56,8 @@ static const char usage[] =
 	"  --json               machine-readable output (ghosts, curve, pixels)\n";
 
 struct reduce_args {
+	char *const *dirs;	/* the sweep folders, n_dirs of them */
+	int n_dirs;
 	const char *dir, *out, *zemax, *coating, *plot_dir, *map;
 	double wave_um;
 	size_t map_regions;
@@ -137,10 +143,11 @@ static int parse_args(int argc, char **argv, struct reduce_args *a,
 			return rc;
 	if (rc != CLI_OK)
 		return rc;
-	if (optind + 1 != argc)
-		return cli_usage_error("reduce", optind < argc ?
-			"expected one SWEEP_DIR" : "SWEEP_DIR is required");
+	if (optind >= argc)
+		return cli_usage_error("reduce", "SWEEP_DIR is required");
 	a->dir = argv[optind];
+	a->dirs = argv + optind;
+	a->n_dirs = argc - optind;
 	if (!a->out)
 		return cli_usage_error("reduce", "--out is required");
 	if (!(o->hot_sigma > 0.0) || !(o->ghost.min_z > 0.0) ||
@@ -210,12 +217,12 @@ static int write_outputs(const struct reduce_args *a,
 
 int cmd_reduce(int argc, char **argv)
 {
-	struct reduce_args a = { NULL, NULL, NULL, "LENS_ATTEN", NULL, NULL,
-				 0.55, 16 };
+	struct reduce_args a = { NULL, 0, NULL, NULL, NULL, "LENS_ATTEN", NULL,
+				 NULL, 0.55, 16 };
 	struct stray_reduce_sweep_opts o;
 	struct stray_reduce_sweep_result r;
 	struct stray_error err;
-	int rc;
+	int rc, i;
 
 	stray_reduce_sweep_opts_default(&o);
 	rc = parse_args(argc, argv, &a, &o);
@@ -224,18 +231,22 @@ int cmd_reduce(int argc, char **argv)
 	if ((a.plot_dir || a.map) && !o.keep_image)
 		o.keep_image = 1;	/* J at 0 deg unless told otherwise */
 	stray_error_clear(&err);
-	{
+	for (i = 0; i < a.n_dirs; i++) {
 		struct stat st;
 
-		if (stat(a.dir, &st) == 0 && !S_ISDIR(st.st_mode)) {
-			stray_error_at(&err, STRAY_EINVAL, a.dir, 0, "SWEEP",
-				"is a file, not a sweep folder (a folder with "
-				"manifest.csv)");
+		if (stat(a.dirs[i], &st) == 0 && !S_ISDIR(st.st_mode)) {
+			stray_error_at(&err, STRAY_EINVAL, a.dirs[i], 0,
+				"SWEEP", "is a file, not a sweep folder (a "
+				"folder with manifest.csv)");
 			return cli_fail("reduce", &err);
 		}
+		reduce_warn_partial(stderr, a.dirs[i]);
 	}
 	stray_file_defer();	/* every output renamed at the end, or none */
-	rc = stray_reduce_sweep(a.dir, &o, &r, &err);
+	rc = a.n_dirs == 1 ? stray_reduce_sweep(a.dir, &o, &r, &err)
+			   : stray_reduce_sweeps((const char *const *)a.dirs,
+						 (size_t)a.n_dirs, &o, &r,
+						 &err);
 	if (rc == STRAY_OK)
 		rc = write_outputs(&a, &r, &err);
 	if (stray_file_finish(rc == STRAY_OK, &err) != STRAY_OK &&

@@ -7,6 +7,7 @@
 #include <errno.h>
 #include <getopt.h>
 #include <math.h>
+#include <pwd.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -46,6 +47,22 @@ static const char usage[] =
 static const char *const plain[] = { "status", "home", "pause", "resume",
 				     "abort", "safe", "shutdown", NULL };
 
+/* Who asks: the user name, for the daemon's log and the sweep's owner. */
+static void add_owner(cJSON *req)
+{
+	struct passwd *pw = getpwuid(getuid());
+	const char *p;
+
+	if (!pw || !pw->pw_name || !pw->pw_name[0] ||
+	    strlen(pw->pw_name) > 47)
+		return;
+	for (p = pw->pw_name; *p; p++)
+		if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') ||
+		      (*p >= '0' && *p <= '9') || strchr("._-@", *p)))
+			return;
+	cJSON_AddStringToObject(req, "owner", pw->pw_name);
+}
+
 /* Build the request for argv[0..n); NULL after a usage message. */
 static cJSON *build_request(int n, char **args, int resume, int force_plan,
 			    int *rc)
@@ -56,6 +73,7 @@ static cJSON *build_request(int n, char **args, int resume, int force_plan,
 
 	*rc = CLI_USAGE;
 	cJSON_AddStringToObject(req, "cmd", args[0]);
+	add_owner(req);
 	for (p = plain; *p; p++)
 		if (!strcmp(*p, args[0]) && n == 1 && !resume && !force_plan)
 			return req;
@@ -130,6 +148,87 @@ static void print_human(const cJSON *resp)
 		printf("ok\n");
 }
 
+/* Seconds as 1 h 02 min, 3 min 05 s or 12 s. */
+static void duration(double s, char *out, size_t size)
+{
+	long t = s > 0 && s < 1e9 ? (long)(s + 0.5) : 0;
+
+	if (t >= 3600)
+		snprintf(out, size, "%ld h %02ld min", t / 3600, t / 60 % 60);
+	else if (t >= 60)
+		snprintf(out, size, "%ld min %02ld s", t / 60, t % 60);
+	else
+		snprintf(out, size, "%ld s", t);
+}
+
+static const char *str_of(const cJSON *o, const char *key)
+{
+	const char *v = cJSON_GetStringValue(cJSON_GetObjectItem(o, key));
+
+	return v ? v : "";
+}
+
+static double num_of(const cJSON *o, const char *key)
+{
+	const cJSON *v = cJSON_GetObjectItem(o, key);
+
+	return cJSON_IsNumber(v) ? v->valuedouble : NAN;
+}
+
+/* A line's state in words; "unknown" when the daemon could not read it
+ * back (null). */
+static const char *line_word(const cJSON *o, const char *key,
+			     const char *on, const char *off)
+{
+	const cJSON *v = cJSON_GetObjectItem(o, key);
+
+	return !cJSON_IsNumber(v) ? "unknown" : v->valuedouble != 0 ? on
+								    : off;
+}
+
+/* `stray rig status` for a person: plain units, the sweep in words. */
+static void print_status(const cJSON *r)
+{
+	const cJSON *sw = cJSON_GetObjectItem(r, "sweep");
+	char el[32], eta[32];
+
+	printf("state: %s%s%s\n", str_of(r, "state"),
+	       *str_of(r, "faulted_since") ? " since " : "",
+	       str_of(r, "faulted_since"));
+	if (cJSON_IsTrue(cJSON_GetObjectItem(r, "safe")))
+		printf("safe: yes (lamp off, beam blocked, shutter closed, "
+		       "read back)\n");
+	else
+		printf("safe: NO: %s\n", *str_of(r, "unsafe")
+		       ? str_of(r, "unsafe") : "not reported");
+	printf("lines: lamp %s, beam %s, shutter %s\n",
+	       line_word(r, "lamp", "on", "off"),
+	       line_word(r, "beam_blocked", "blocked", "not blocked"),
+	       line_word(r, "shutter_open", "open", "closed"));
+	if (isfinite(num_of(r, "theta_deg")))
+		printf("stage: %.3f deg\n", num_of(r, "theta_deg"));
+	else
+		printf("stage: position unknown (home it)\n");
+	if (*str_of(r, "last_error"))
+		printf("last error: %s\n", str_of(r, "last_error"));
+	printf("recoveries: %.0f\n", num_of(r, "recoveries"));
+	if (!sw)
+		return;
+	duration(num_of(sw, "elapsed_s"), el, sizeof(el));
+	duration(num_of(sw, "eta_s"), eta, sizeof(eta));
+	printf("sweep: %s (owner %s)\n", str_of(sw, "dir"),
+	       str_of(sw, "owner"));
+	printf("  %.0f of %.0f frames (%.1f %%), angle %.0f of %.0f\n",
+	       num_of(sw, "done"), num_of(sw, "total"),
+	       num_of(sw, "percent"), num_of(sw, "angle_no"),
+	       num_of(sw, "n_angles"));
+	printf("  now: %s\n", str_of(sw, "step"));
+	if (cJSON_IsTrue(cJSON_GetObjectItem(sw, "finished")))
+		printf("  finished after %s\n", el);
+	else
+		printf("  elapsed %s, about %s to go\n", el, eta);
+}
+
 static int talk(const char *sock, cJSON *req)
 {
 	char *text = cJSON_PrintUnformatted(req), *buf = malloc(RESPONSE_MAX);
@@ -150,11 +249,21 @@ static int talk(const char *sock, cJSON *req)
 	if (cli.json) {
 		printf("%s\n", buf);
 	} else if (cJSON_IsTrue(cJSON_GetObjectItem(resp, "ok"))) {
-		print_human(resp);
+		if (!strcmp(str_of(req, "cmd"), "status"))
+			print_status(resp);
+		else
+			print_human(resp);
 	}
 	if (cJSON_IsTrue(cJSON_GetObjectItem(resp, "ok")))
 		rc = CLI_OK;
-	else
+	/* A faulted lab is not "ok" to a script polling status. */
+	if (rc == CLI_OK && !strcmp(str_of(resp, "state"), "faulted")) {
+		fprintf(stderr, "stray rig: strayrigd is faulted: %s; %s\n",
+			str_of(resp, "last_error"),
+			cJSON_IsTrue(cJSON_GetObjectItem(resp, "safe"))
+			? "lab safe" : "safe state NOT confirmed");
+		rc = CLI_FAIL;
+	} else if (rc != CLI_OK)
 		fprintf(stderr, "stray rig: %s\n", cJSON_GetStringValue(
 			cJSON_GetObjectItem(resp, "error")));
 out:

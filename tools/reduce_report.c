@@ -168,6 +168,11 @@ static cJSON *drift_json(const struct stray_reduce_sweep_result *r)
 			      cli_json_number(r->drift.rel_change));
 	cJSON_AddItemToObject(o, "z", cli_json_number(r->drift.z));
 	cJSON_AddBoolToObject(o, "monitor", r->has_monitor);
+	/* against time (date_obs) or, in a folder without it, row order */
+	cJSON_AddStringToObject(o, "against", r->drift_in_time ? "time"
+							     : "row order");
+	if (r->drift_in_time)
+		cJSON_AddNumberToObject(o, "span_s", r->span_s);
 	return o;
 }
 
@@ -219,8 +224,9 @@ void reduce_print(FILE *out, const struct stray_reduce_sweep_result *r,
 		r->n_sat_pixels);
 	if (r->drift.fitted)
 		fprintf(out, "source drift: %+.3g%% over the sweep (%.1f sigma)"
-			" from %zu on-axis visits%s\n",
+			" from %zu on-axis visits, fitted against %s%s\n",
 			100.0 * r->drift.rel_change, r->drift.z, r->drift.n_ref,
+			r->drift_in_time ? "time" : "row order (no date_obs)",
 			r->drift.detected ? ": DETECTED, corrected" : "");
 	fprintf(out, "frame-common noise: %.3g%% per frame (%zu dof), in "
 		"every sigma\n", 100.0 * r->common_rel_sigma, r->common_dof);

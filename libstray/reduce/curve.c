@@ -77,7 +77,9 @@ static int fit_p0(const struct stray_visit *v, size_t n, struct p0_line *f,
 	}
 	if (drift->n_ref == 0)
 		return stray_error_set(err, STRAY_ENOTFOUND, "ANGLE",
-				       "no on-axis (0 deg) visit to normalise by");
+				       "no on-axis (0 deg) visit to normalise by; "
+				       "reduce the folder together with one that "
+				       "has it (stray reduce A B)");
 	f->o_bar = swo / sw;
 	f->a = swp / sw;
 	f->var_a = swwv / (sw * sw);	/* exact for any weights */

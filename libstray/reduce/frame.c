@@ -66,3 +66,30 @@ int stray_frame_sat_at(const struct stray_frame *f)
 	return f->sat_level < 0 ? 0 : f->sat_level > 65536 ? 65536 :
 	       (int)f->sat_level;
 }
+
+int stray_frame_clip_check(const struct stray_frame *f,
+			   struct stray_error *err)
+{
+	size_t i, n = f->n_rows * f->n_cols, at_max = 0, below = 0;
+	unsigned vmax = 0;
+	int k;
+
+	for (i = 0; i < n; i++)
+		if (f->pix[i] > vmax)
+			vmax = f->pix[i];
+	for (k = 8; k <= 16 && (1UL << k) - 1 != vmax; k++)
+		;
+	if (k > 16 || (long)vmax >= f->sat_level || vmax == 0)
+		return STRAY_OK;
+	for (i = 0; i < n; i++) {
+		at_max += f->pix[i] == vmax;
+		below += f->pix[i] == vmax - 1;
+	}
+	if (at_max < 3 || at_max <= 2 * below)
+		return STRAY_OK;
+	return stray_error_set_value(err, STRAY_EINVAL, "counts clipped at",
+		"pile-up at an ADC full scale (2^k - 1 DN) below the "
+		"frame's SATLEVEL, so its counts are not what they say; set "
+		"camera.sat_dn to at most it and measure again",
+		(stray_real)vmax);
+}

@@ -225,6 +225,8 @@ static double predict(const struct stray_ghost_track *k, double theta)
 		(b->theta_deg - a->theta_deg) * (theta - b->theta_deg);
 }
 
+#define STRAY_GHOST_THETA_TOL 1e-6
+
 static size_t best_track(const struct stray_ghost_tracker *t, double theta,
 			 double column, const unsigned char *taken)
 {
@@ -277,10 +279,128 @@ void stray_ghost_tracker_add(struct stray_ghost_tracker *t, double theta_deg,
 	}
 }
 
+/* Max |residual| of the union of two tracks about its least-squares
+ * line column = a + b theta, and whether their angles meet (overlap,
+ * or a gap of at most two of their steps). */
+static double union_residual(const struct stray_ghost_track *x,
+			     const struct stray_ghost_track *y, int *meet)
+{
+	const struct stray_ghost_track *tr[2] = { x, y };
+	double n = 0, st = 0, sc = 0, stt = 0, stc = 0, a, b, d, worst = 0;
+	double step = HUGE_VAL, lo[2], hi[2];
+	size_t k, i;
+
+	for (k = 0; k < 2; k++) {
+		lo[k] = tr[k]->pt[0].theta_deg;
+		hi[k] = tr[k]->pt[tr[k]->n - 1].theta_deg;
+		for (i = 0; i < tr[k]->n; i++) {
+			double th = tr[k]->pt[i].theta_deg;
+			double c = tr[k]->pt[i].column;
+
+			n += 1;
+			st += th;
+			sc += c;
+			stt += th * th;
+			stc += th * c;
+			if (i > 0 && th - tr[k]->pt[i - 1].theta_deg > 0)
+				step = fmin(step, th -
+					    tr[k]->pt[i - 1].theta_deg);
+		}
+	}
+	if (!isfinite(step))
+		step = 0;
+	*meet = fmin(hi[0], hi[1]) >= fmax(lo[0], lo[1]) - 2.0 * step;
+	d = n * stt - st * st;
+	if (!(d > 0))
+		return HUGE_VAL;
+	b = (n * stc - st * sc) / d;
+	a = (sc - b * st) / n;
+	for (k = 0; k < 2; k++)
+		for (i = 0; i < tr[k]->n; i++)
+			worst = fmax(worst, fabs(tr[k]->pt[i].column - a -
+						 b * tr[k]->pt[i].theta_deg));
+	return worst;
+}
+
+/* y into x: points by increasing angle, the stronger kept where both
+ * saw the ghost; 0 when x has no room. */
+static int merge_into(struct stray_ghost_track *x,
+		      const struct stray_ghost_track *y)
+{
+	struct stray_ghost_point tmp[256];
+	size_t i = 0, j = 0, n = 0;
+
+	while (i < x->n || j < y->n) {
+		const struct stray_ghost_point *p;
+
+		if (n == sizeof(tmp) / sizeof(tmp[0]))
+			return 0;
+		if (j >= y->n || (i < x->n && x->pt[i].theta_deg <
+				  y->pt[j].theta_deg - STRAY_GHOST_THETA_TOL))
+			p = &x->pt[i++];
+		else if (i >= x->n || y->pt[j].theta_deg <
+			 x->pt[i].theta_deg - STRAY_GHOST_THETA_TOL)
+			p = &y->pt[j++];
+		else	/* one angle: the stronger peak is the ghost */
+			p = x->pt[i].excess >= y->pt[j].excess ? &x->pt[i++]
+							       : &y->pt[j++];
+		if (n > 0 && fabs(tmp[n - 1].theta_deg - p->theta_deg) <
+		    STRAY_GHOST_THETA_TOL) {
+			if (p->excess > tmp[n - 1].excess)
+				tmp[n - 1] = *p;
+			continue;
+		}
+		tmp[n++] = *p;
+	}
+	if (n > x->cap)
+		return 0;
+	memcpy(x->pt, tmp, n * sizeof(*tmp));
+	x->n = n;
+	if (y->last_step > x->last_step)
+		x->last_step = y->last_step;
+	return 1;
+}
+
+/*
+ * One ghost, one track: a reflection whose profile peak splits in two at
+ * some angles (6 px apart on the demo sweep) leaves tracks that hand
+ * over or run side by side.  Two tracks whose angles meet and whose
+ * points together lie within 1.5 gates of one straight line are one
+ * ghost; two reflections crossing at different rates are not (their
+ * union is far from any line).
+ */
+static void merge_tracks(struct stray_ghost_tracker *t)
+{
+	size_t i, j;
+	int meet, again = 1;
+
+	while (again) {
+		again = 0;
+		for (i = 0; i < t->n_tracks && !again; i++)
+			for (j = i + 1; j < t->n_tracks && !again; j++) {
+				struct stray_ghost_track tmp;
+
+				if (union_residual(&t->tracks[i],
+						   &t->tracks[j], &meet) >
+				    1.5 * t->opts.gate_cols || !meet ||
+				    !merge_into(&t->tracks[i], &t->tracks[j]))
+					continue;
+				/* j out, its array kept for the caller */
+				tmp = t->tracks[j];
+				t->tracks[j] = t->tracks[t->n_tracks - 1];
+				t->tracks[t->n_tracks - 1] = tmp;
+				t->tracks[t->n_tracks - 1].n = 0;
+				t->n_tracks--;
+				again = 1;
+			}
+	}
+}
+
 size_t stray_ghost_tracker_finish(struct stray_ghost_tracker *t)
 {
 	size_t i, kept = 0;
 
+	merge_tracks(t);
 	for (i = 0; i < t->n_tracks; i++) {
 		if (t->tracks[i].n < t->opts.min_points)
 			continue;

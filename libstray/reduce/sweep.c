@@ -216,6 +216,9 @@ static int load_frame(struct workspace *w, const struct stray_sweep_entry *e,
 	f->nd_trans = w->fits.h.ndtrans;
 	f->monitor = w->fits.h.monitor;
 	f->sat_level = w->fits.h.satlevel;
+	if (e->type != STRAY_SWEEP_DARK &&
+	    stray_frame_clip_check(f, err) != STRAY_OK)
+		return stray_error_locate(err, path, 0), STRAY_EINVAL;
 	return STRAY_OK;
 }
 
@@ -535,6 +538,39 @@ static int keep_image(struct workspace *w, double theta,
 	return STRAY_OK;
 }
 
+/* A visit's place in manifest rows: the middle of its frames. */
+static double row_order(const struct visit_plan *p)
+{
+	return p->n_runs == 1 ?
+		0.5 * ((double)p->first[0] + (double)p->last[0]) :
+		0.25 * ((double)p->first[0] + (double)p->last[0] +
+			(double)p->first[1] + (double)p->last[1]);
+}
+
+/* A manifest row's time, s after the sweep's first frame. */
+static double when(const struct workspace *w, size_t i)
+{
+	return w->man.e[i].date_obs - w->man.e[0].date_obs;
+}
+
+/* Whether every row has a time (then the drift is fitted in time). */
+static int all_timed(const struct workspace *w, double *span)
+{
+	double lo = HUGE_VAL, hi = -HUGE_VAL;
+	size_t i;
+
+	for (i = 0; i < w->man.n; i++) {
+		double t = w->man.e[i].date_obs;
+
+		if (!(isfinite(t) && t > 0))
+			return 0;
+		lo = fmin(lo, t);
+		hi = fmax(hi, t);
+	}
+	*span = w->man.n ? hi - lo : 0;
+	return w->man.n > 0;
+}
+
 static int reduce_visit(struct workspace *w, size_t v,
 			struct stray_reduce_sweep_result *res, struct stray_error *err)
 {
@@ -556,11 +592,14 @@ static int reduce_visit(struct workspace *w, size_t v,
 	if (rc != STRAY_OK)
 		return at_frame(w, e0, rc, err);
 	vis->theta_deg = e0->angle_deg;
-	/* Acquisition order: the middle of the visit's frames. */
-	vis->order = p->n_runs == 1 ?
-		0.5 * ((double)p->first[0] + (double)p->last[0]) :
-		0.25 * ((double)p->first[0] + (double)p->last[0] +
-			(double)p->first[1] + (double)p->last[1]);
+	/* Acquisition order: the middle of the visit's frames, in time when
+	 * the folder has it (a pause, a kill and a resume, a night are then
+	 * as long as they were), else in manifest rows. */
+	vis->order = !res->drift_in_time ? row_order(p) :
+		p->n_runs == 1 ?
+		0.5 * (when(w, p->first[0]) + when(w, p->last[0])) :
+		0.25 * (when(w, p->first[0]) + when(w, p->last[0]) +
+			when(w, p->first[1]) + when(w, p->last[1]));
 	vis->power = s.power;
 	vis->var_power = s.var_power;
 	vis->sigma = s.sigma;
@@ -663,8 +702,11 @@ static void start_reading(struct workspace *w,
 	stray_prefetch_start(&w->pf, w->dir, seq, n, w->o->verify_sha256);
 }
 
-/* The fitted source drift per manifest row, relative (0: none fitted). */
-static double drift_per_row(const struct stray_reduce_sweep_result *res)
+/* The fitted source drift per manifest row, relative (0: none fitted):
+ * over the on-axis visits' row span, however the fit measured it (the
+ * frame-common noise works within groups, in rows). */
+static double drift_per_row(const struct workspace *w,
+			    const struct stray_reduce_sweep_result *res)
 {
 	double lo = HUGE_VAL, hi = -HUGE_VAL;
 	size_t v;
@@ -673,8 +715,8 @@ static double drift_per_row(const struct stray_reduce_sweep_result *res)
 		return 0.0;
 	for (v = 0; v < res->n_visits; v++)
 		if (fabs(res->visits[v].theta_deg) <= STRAY_THETA_TOL_DEG) {
-			lo = fmin(lo, res->visits[v].order);
-			hi = fmax(hi, res->visits[v].order);
+			lo = fmin(lo, row_order(&w->plan[v]));
+			hi = fmax(hi, row_order(&w->plan[v]));
 		}
 	return hi > lo ? res->drift.rel_change / (hi - lo) : 0.0;
 }
@@ -691,7 +733,7 @@ static int add_common(struct workspace *w,
 	size_t n = 2 * res->n_visits, v, g;
 	double *est = malloc(n * sizeof(*est)), *ind = malloc(n * sizeof(*ind));
 	size_t *dof = malloc(n * sizeof(*dof));
-	double s2, beta = drift_per_row(res);
+	double s2, beta = drift_per_row(w, res);
 
 	*redo = 0;
 
@@ -766,9 +808,13 @@ static int reduce_all(struct workspace *w,
 	    (rc = check_visits(w, res, err)) ||
 	    (rc = light_buffers(w, res, err)))
 		return rc;
+	res->drift_in_time = all_timed(w, &res->span_s);
+	res->t0_utc = res->drift_in_time ? w->man.e[0].date_obs : 0;
 	for (v = 0; v < res->n_visits; v++)
 		if ((rc = reduce_visit(w, v, res, err)) != STRAY_OK)
 			return rc;
+	if (w->o->visits_only)
+		return STRAY_OK;	/* merged elsewhere (merge.c) */
 	res->points = calloc(res->n_visits, sizeof(*res->points));
 	if (!res->points)
 		return stray_error_set(err, STRAY_ENOMEM, "curve", "no memory");

@@ -96,6 +96,20 @@ static int write_keys(fitsfile *f, const struct stray_sweep_image *img,
 		fits_write_key(f, TSTRING, "INSTRUME",
 			       STRAY_SWEEP_INSTRUME_RIG,
 			       "written by the straylight lab daemon", status);
+	if (m->date_obs > 0) {
+		char t0[STRAY_SWEEP_UTC_LEN], t1[STRAY_SWEEP_UTC_LEN];
+
+		stray_sweep_utc_format(m->date_obs, t0, sizeof(t0));
+		stray_sweep_utc_format(m->date_end > m->date_obs ? m->date_end
+				       : m->date_obs, t1, sizeof(t1));
+		t0[strlen(t0) - 1] = t1[strlen(t1) - 1] = '\0';	/* no Z */
+		fits_write_key(f, TSTRING, "TIMESYS", "UTC",
+			       "time scale of DATE-OBS and DATE-END", status);
+		fits_write_key(f, TSTRING, STRAY_SWEEP_KEY_DATE_OBS, t0,
+			       "start of the exposure", status);
+		fits_write_key(f, TSTRING, STRAY_SWEEP_KEY_DATE_END, t1,
+			       "end of the exposure (frame read)", status);
+	}
 	write_extra(f, m, status);
 	stray_sweep_fits_provenance(f, status);
 	return *status;
@@ -217,10 +231,15 @@ int stray_sweep_fits_write(const char *dir, const char *name,
 	}
 	if (write_tmp(tmp, buf, len) != 0 || rename(tmp, path) != 0 ||
 	    sync_path(dir, O_RDONLY | O_DIRECTORY) != 0) {
+		int e = errno;	/* the cause: a full disk, a read-only one */
+
 		unlink(tmp);
 		free(buf);
-		return stray_error_at(err, STRAY_EIO, path, 0, "file",
-				      "cannot write, sync or rename the frame");
+		stray_error_at(err, STRAY_EIO, path, 0, "file",
+			       "cannot write, sync or rename the frame; "
+			       "free space (or fix the folder), then resume");
+		stray_error_text(err, strerror(e));
+		return STRAY_EIO;
 	}
 	rc = stray_sweep_sha256_mem(buf, len, sha_hex);
 	free(buf);

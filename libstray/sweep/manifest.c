@@ -26,7 +26,7 @@ static const char *const columns[] = {
 	STRAY_SWEEP_COL_SEQNUM, STRAY_SWEEP_COL_SHA256
 };
 enum { COL_FILE, COL_TYPE, COL_ANGLE, COL_EXP, COL_ND, COL_SEQ, COL_SHA,
-       N_COLS };
+       N_COLS, COL_DATE = N_COLS };	/* COL_DATE: optional, -1 absent */
 
 struct fields {
 	size_t n;
@@ -177,6 +177,15 @@ static int take_entry(const char *name, long line, const struct fields *r,
 				err);
 	e->seqnum = (long)seq;
 	e->line = line;
+	e->date_obs = NAN;
+	if (idx[COL_DATE] >= 0 && (size_t)idx[COL_DATE] < r->n &&
+	    r->f[idx[COL_DATE]][0] &&
+	    stray_sweep_utc_parse(r->f[idx[COL_DATE]], &e->date_obs) !=
+	    STRAY_OK)
+		return bad_cell(name, line, STRAY_SWEEP_COL_DATE_OBS,
+				"must be a UTC time like "
+				"2026-12-02T04:50:00.123Z",
+				r->f[idx[COL_DATE]], err);
 	return STRAY_OK;
 }
 
@@ -195,6 +204,11 @@ static int take_header(const char *name, long line, const struct fields *r,
 					      columns[c],
 					      "column missing from the header");
 	}
+	/* A folder written before frames had a time has no date_obs. */
+	idx[COL_DATE] = -1;
+	for (k = 0; k < r->n; k++)
+		if (strcmp(r->f[k], STRAY_SWEEP_COL_DATE_OBS) == 0)
+			idx[COL_DATE] = (int)k;
 	return STRAY_OK;
 }
 
@@ -291,7 +305,7 @@ int stray_sweep_manifest_parse_text(const char *name, const char *text,
 				    struct stray_error *err)
 {
 	struct fields *r = malloc(sizeof(*r));
-	int idx[N_COLS], have_header = 0, rc = STRAY_OK;
+	int idx[N_COLS + 1], have_header = 0, rc = STRAY_OK;
 	size_t pos = 0, cap = 0;
 	long line = 0;
 
@@ -311,6 +325,7 @@ int stray_sweep_manifest_parse_text(const char *name, const char *text,
 	}
 	free(r);
 	m->cap = cap;
+	m->has_date = have_header && idx[COL_DATE] >= 0;
 	if (rc == STRAY_OK && m->n == 0 && !(allow_empty && have_header))
 		rc = stray_error_at(err, STRAY_EPARSE, name, line ? line : 1,
 				    columns[COL_FILE],

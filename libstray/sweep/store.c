@@ -8,6 +8,7 @@
 #define _DEFAULT_SOURCE	/* DT_REG in dirent, flock */
 #include <dirent.h>
 #include <errno.h>
+#include <math.h>
 #include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -141,21 +142,36 @@ static int write_header(int fd, const char *path, struct stray_error *err)
 	return STRAY_OK;
 }
 
+/* An I/O failure with its cause: errno's text as the value, what to do
+ * in the reason ("F: dir 'Permission denied': cannot create ..."). */
+static int with_cause(struct stray_error *err, const char *path,
+		      const char *field, const char *reason)
+{
+	int e = errno;
+
+	stray_error_at(err, STRAY_EIO, path, 0, field, reason);
+	stray_error_text(err, strerror(e));
+	return STRAY_EIO;
+}
+
 static int create(struct stray_sweep_manifest *m, const char *path,
 		  struct stray_error *err)
 {
 	int fd, rc;
 
 	if (mkdir(m->dir, 0755) != 0 && errno != EEXIST)
-		return stray_error_at(err, STRAY_EIO, m->dir, 0, "dir",
-				      "cannot create the sweep folder");
+		return with_cause(err, m->dir, "dir", "cannot create the sweep "
+				  "folder; check that its parent exists and "
+				  "is writable, or choose another");
 	fd = open(path, O_WRONLY | O_CREAT | O_EXCL, 0644);
-	if (fd < 0)
+	if (fd < 0 && errno == EEXIST)
 		return stray_error_at(err, STRAY_EIO, path, 0, "file",
-			errno == EEXIST
-			? "exists; resume the sweep or use a new folder"
-			: "cannot create");
+			"exists; resume the sweep or use a new folder");
+	if (fd < 0)
+		return with_cause(err, path, "file", "cannot create the "
+				  "manifest; check the folder is writable");
 	rc = lock(m, fd, path, err);
+	m->has_date = 1;
 	return rc == STRAY_OK ? write_header(fd, path, err) : rc;
 }
 
@@ -173,8 +189,10 @@ static int resume_open(struct stray_sweep_manifest *m, const char *path,
 				      "cannot open");
 	if ((rc = lock(m, fd, path, err)) != STRAY_OK)
 		return rc;
-	if (fstat(fd, &st) == 0 && st.st_size == 0)
+	if (fstat(fd, &st) == 0 && st.st_size == 0) {
+		m->has_date = 1;
 		return write_header(fd, path, err);
+	}
 	rc = load(m, path, err);
 	if (rc == STRAY_OK)
 		rc = verify_rows(m, err);
@@ -226,20 +244,28 @@ static int append_row(struct stray_sweep_manifest *m,
 		      struct stray_error *err)
 {
 	char path[STRAY_SWEEP_DIR_MAX + 16], line[512];
+	char date[STRAY_SWEEP_UTC_LEN] = "";
 	int fd, n;
 
+	/* A folder begun before manifests had a time keeps its columns. */
+	if (m->has_date && e->date_obs > 0)
+		stray_sweep_utc_format(e->date_obs, date, sizeof(date));
 	manifest_path(m, path, sizeof(path));
-	n = snprintf(line, sizeof(line), "%s,%s,%.4f,%.6f,%.6g,%ld,%s\n",
+	n = snprintf(line, sizeof(line), "%s,%s,%.4f,%.6f,%.6g,%ld,%s%s%s\n",
 		     e->file, stray_sweep_frametyp_name(e->type),
 		     e->angle_deg, e->exptime_s, e->ndtrans, e->seqnum,
-		     e->sha256);
+		     e->sha256, m->has_date ? "," : "", date);
 	fd = open(path, O_WRONLY | O_APPEND);
 	if (fd < 0 || n >= (int)sizeof(line) ||
 	    write(fd, line, (size_t)n) != n || fsync(fd) != 0) {
+		int e = errno;
+
 		if (fd >= 0)
 			close(fd);
-		return stray_error_at(err, STRAY_EIO, path, 0, "file",
-				      "cannot append");
+		errno = e;
+		return with_cause(err, path, "file", "cannot append the "
+				  "frame's row; free space (or fix the "
+				  "folder), then resume");
 	}
 	close(fd);
 	return STRAY_OK;
@@ -263,6 +289,7 @@ int stray_sweep_store_append(struct stray_sweep_manifest *m,
 	e.exptime_s = f->exptime_s;
 	e.ndtrans = f->ndtrans;
 	e.seqnum = f->seqnum;
+	e.date_obs = f->date_obs > 0 ? f->date_obs : NAN;
 	e.line = (long)m->n + 2;	/* after the header */
 	rc = stray_sweep_fits_write(m->dir, e.file, img, f, e.sha256, err);
 	if (rc == STRAY_OK)

@@ -63,6 +63,28 @@ static int parse_args(const cJSON *o, struct rig_request *req, char *msg,
 	return RIG_OK;
 }
 
+/* Optional "owner": who asks (a user name), for the log and the sweep. */
+static int parse_owner(const cJSON *o, struct rig_request *req, char *msg,
+		       size_t size)
+{
+	const cJSON *w = cJSON_GetObjectItemCaseSensitive(o, "owner");
+	const char *p;
+
+	if (!w)
+		return RIG_OK;
+	if (!cJSON_IsString(w) || !w->valuestring[0] ||
+	    strlen(w->valuestring) >= sizeof(req->owner))
+		return bad(msg, size, "%s", "owner must be a user name of "
+			   "1-47 characters");
+	for (p = w->valuestring; *p; p++)
+		if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') ||
+		      (*p >= '0' && *p <= '9') || strchr("._-@", *p)))
+			return bad(msg, size, "%s", "owner: letters, digits "
+				   "and ._-@ only");
+	strcpy(req->owner, w->valuestring);
+	return RIG_OK;
+}
+
 int rig_request_parse(const char *text, struct rig_request *req, char *msg,
 		      size_t size)
 {
@@ -86,6 +108,8 @@ int rig_request_parse(const char *text, struct rig_request *req, char *msg,
 	}
 	if (rc == RIG_OK)
 		rc = parse_args(o, req, msg, size);
+	if (rc == RIG_OK)
+		rc = parse_owner(o, req, msg, size);
 	cJSON_Delete(o);
 	return rc;
 }

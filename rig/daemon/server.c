@@ -22,6 +22,16 @@ int rig_daemon_start(struct rig_daemon *d, struct rig_error *err)
 		return rig_error_set(err, rc, "backend '%s': cannot start",
 				     d->cfg.backend);
 	rc = rig_lab_open(&d->lab, &d->cfg, &d->hal, err);
+	if (rc == RIG_OK) {
+		d->lab.on_event = rig_daemon_lab_event;
+		d->lab.event_ctx = d;
+		rig_daemon_log(d, RIG_LOG_INFO, "started by %s: backend %s, "
+			       "config %s, %s%s; devices checked, lab safe",
+			       d->owner, d->cfg.backend,
+			       d->cfg.path[0] ? d->cfg.path : "(defaults)",
+			       d->listen_fd >= 0 ? "socket " : "one sweep",
+			       d->listen_fd >= 0 ? d->cfg.socket_path : "");
+	}
 	if (rc != RIG_OK) {
 		if (d->is_sim)
 			rig_sim_fini(&d->sim);
@@ -31,14 +41,32 @@ int rig_daemon_start(struct rig_daemon *d, struct rig_error *err)
 	return rc;
 }
 
+int rig_daemon_safe_line(const struct rig_daemon *d, char *buf, size_t size)
+{
+	char why[200];
+	int safe = rig_lab_is_safe(&d->lab, why, sizeof(why));
+
+	if (safe)
+		snprintf(buf, size, "lab safe (lamp off, beam blocked, "
+			 "shutter closed: each read back)");
+	else
+		snprintf(buf, size, "safe state NOT confirmed: %s; check the "
+			 "lamp, beam block and shutter by hand", why);
+	return safe;
+}
+
 void rig_daemon_stop(struct rig_daemon *d)
 {
 	struct rig_error err;
+	char line[320];
 
 	rig_error_clear(&err);
-	if (rig_lab_safe(&d->lab, &err) != RIG_OK)
-		fprintf(stderr, "strayrigd: safe state not confirmed: %s\n",
-			err.msg);
+	if (rig_lab_safe(&d->lab, &err) != RIG_OK ||
+	    !rig_daemon_safe_line(d, line, sizeof(line))) {
+		rig_daemon_safe_line(d, line, sizeof(line));
+		rig_daemon_log(d, RIG_LOG_ERR, "%s%s%s", line,
+			       err.msg[0] ? ": " : "", err.msg);
+	}
 	if (d->sweep_open)
 		rig_sweep_close(&d->sweep);
 	d->sweep_open = 0;

@@ -5,9 +5,11 @@
  *   strayrigd --config FILE --sweep DIR [--resume [--force-plan]]
  *                                              one sweep, then exit
  *
- * The socket, or the sweep folder, is claimed before the lab is touched:
- * a second daemon on the same socket or folder is refused at once and
- * never drives the devices.  Exit 0 done, 1 refused because in use (a
+ * The socket and every device (a lab-wide lock per device, devlock.h)
+ * are claimed before the lab is touched: a second daemon on the same
+ * socket or devices is refused at once and never drives them.  A sweep
+ * folder is made only after the devices answered and the config passed
+ * the check against them (rig_lab_check).  Exit 0 done, 1 refused because in use (a
  * live socket, a folder another writer holds) or a device/I/O failure,
  * 2 bad input (config, arguments, a path that is not a socket, a resume
  * whose plan differs from the folder's plan.json).
@@ -18,10 +20,12 @@
  * a restart after kill -9 begins from a safe state too.
  */
 #include <getopt.h>
+#include <pwd.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "rig/daemon.h"
 
@@ -60,25 +64,34 @@ static void install_signals(void)
 	signal(SIGPIPE, SIG_IGN);
 }
 
-/* The folder was claimed before the lab started (rig_sweep_claim). */
-static int run_sweep(struct rig_daemon *d, struct rig_error *err)
+/* The folder claimed once the lab answered (rig_sweep_claim_as). */
+static int run_sweep(struct rig_daemon *d, int resumed, struct rig_error *err)
 {
 	struct rig_progress p;
+	char line[320];
 	int rc = rig_sweep_attach(&d->sweep, &d->lab, err);
 
 	d->sweep_open = rc == RIG_OK;	/* attach closes it on failure */
 	if (rc != RIG_OK)
 		return rc;
+	rig_daemon_log_start(d, resumed);
 	while (rc == RIG_OK && !d->sweep.finished && !stop_flag) {
 		rc = rig_sweep_step(&d->sweep, err);
 		rig_sweep_progress(&d->sweep, &p);
-		fprintf(stderr, "strayrigd: %ld/%ld frames, theta %.3f deg, "
-			"eta %.0f s\n", p.done, p.total, p.theta_deg, p.eta_s);
+		fprintf(stderr, "strayrigd: %ld/%ld frames (%.1f %%), theta "
+			"%.3f deg, %s, eta %.0f s\n", p.done, p.total,
+			p.percent, p.theta_deg, p.step, p.eta_s);
 	}
 	if (rc == RIG_OK && stop_flag)
 		rc = rig_error_set(err, RIG_ESTATE,
 				   "interrupted; lab made safe, resume with "
 				   "--resume");
+	if (rc != RIG_OK) {
+		rig_daemon_safe_line(d, line, sizeof(line));
+		rig_daemon_log(d, RIG_LOG_ERR, "sweep stopped: %s; %s",
+			       err->msg, line);
+	}
+	rig_daemon_log_end(d, rc == RIG_OK ? "complete" : "stopped");
 	rig_sweep_progress(&d->sweep, &p);
 	fprintf(stderr, "strayrigd: sweep %s: %ld frames (%ld this run) in "
 		"%.0f s lab time, %u recoveries, %u CRC re-reads, %u faults "
@@ -95,19 +108,28 @@ static int exit_code(int rc)
 	return rc == RIG_OK ? 0 : rc == RIG_EPARSE || rc == RIG_EINVAL ? 2 : 1;
 }
 
-/* Claim the folder or the socket: nothing else may hold it. */
-static int claim(struct rig_daemon *d, const char *dir, int flags,
-		 struct rig_error *err)
+/* The user the daemon runs as: the owner of a --sweep sweep and of the
+ * device locks. */
+static void own_name(char *out, size_t size)
 {
+	struct passwd *pw = getpwuid(getuid());
+
+	snprintf(out, size, "%s", pw && pw->pw_name ? pw->pw_name : "?");
+}
+
+/* Claim the socket (socket mode) and every device, before the lab is
+ * touched: nothing else may hold them. */
+static int claim(struct rig_daemon *d, const char *dir, struct rig_error *err)
+{
+	int rc;
+
 	d->listen_fd = d->sock_lock_fd = -1;
-	if (dir) {
-		if (rig_sweep_claim(&d->sweep, &d->cfg, dir, flags, err) !=
-		    RIG_OK)
-			return err->code;
-		d->sweep_open = 1;
-		return RIG_OK;
-	}
-	return rig_daemon_listen(d, err);
+	if (!dir && (rc = rig_daemon_listen(d, err)) != RIG_OK)
+		return rc;
+	rc = rig_devlock_take(&d->devlock, &d->cfg, d->owner, err);
+	if (rc != RIG_OK)
+		rig_daemon_unlisten(d);
+	return rc;
 }
 
 int main(int argc, char **argv)
@@ -151,22 +173,38 @@ int main(int argc, char **argv)
 	if (sock)
 		snprintf(d.cfg.socket_path, sizeof(d.cfg.socket_path), "%s",
 			 sock);
+	/* Test beds and CI runs on one machine each lock their own
+	 * emulated lab, not the real one's /run/lock. */
+	if (getenv("STRAYRIGD_LOCK_DIR"))
+		snprintf(d.cfg.lock_dir, sizeof(d.cfg.lock_dir), "%s",
+			 getenv("STRAYRIGD_LOCK_DIR"));
 	install_signals();
-	if ((rc = claim(&d, dir, flags, &err)) != RIG_OK) {
+	own_name(d.owner, sizeof(d.owner));
+	d.quiet_info = dir != NULL;
+	if ((rc = claim(&d, dir, &err)) != RIG_OK) {
 		fprintf(stderr, "strayrigd: %s\n", err.msg);
 		return exit_code(rc);
 	}
-	if (rig_daemon_start(&d, &err) != RIG_OK) {
+	if ((rc = rig_daemon_start(&d, &err)) != RIG_OK) {
 		fprintf(stderr, "strayrigd: %s\n", err.msg);
-		if (d.sweep_open)
-			rig_sweep_close(&d.sweep);
+		rig_devlock_release(&d.devlock);
 		rig_daemon_unlisten(&d);
-		return 1;
+		return exit_code(rc);
 	}
-	rc = dir ? run_sweep(&d, &err)
-		 : rig_daemon_serve(&d, &stop_flag, &err);
+	/* The folder only once the devices have answered and passed the
+	 * config check: a refused start leaves nothing on disk. */
+	if (dir) {
+		rc = rig_sweep_claim_as(&d.sweep, &d.cfg, dir, flags, d.owner,
+					&err);
+		d.sweep_open = rc == RIG_OK;
+		if (rc == RIG_OK)
+			rc = run_sweep(&d, flags & RIG_SWEEP_RESUME, &err);
+	} else {
+		rc = rig_daemon_serve(&d, &stop_flag, &err);
+	}
 	rig_daemon_stop(&d);
 	rig_daemon_unlisten(&d);
+	rig_devlock_release(&d.devlock);
 	if (rc != RIG_OK) {
 		fprintf(stderr, "strayrigd: %s\n", err.msg);
 		return exit_code(rc);

@@ -142,6 +142,7 @@ static int check_frame(struct rig_camera *c, size_t len,
 	img->col0 = h.col0;
 	img->t_exp_s = h.exposure_us * 1e-6;
 	img->seq = h.seq;
+	img->bits = c->bits = h.bits;
 	return RIG_OK;
 }
 

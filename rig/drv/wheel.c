@@ -101,6 +101,29 @@ int rig_wheel_goto(struct rig_wheel *w, int slot, struct rig_error *err)
 			     w->cfg->move_timeout_s);
 }
 
+int rig_wheel_count(struct rig_wheel *w, int *n_slots, struct rig_error *err)
+{
+	struct rig_wheel_in in;
+	double t_end = rig_hal_now(w->hal) + w->cfg->move_timeout_s;
+	int rc;
+
+	/* A stale answer to an earlier QUERY carries another sequence. */
+	while (rig_hal_now(w->hal) <= t_end) {
+		rc = query(w, &in, err);
+		if (rc == RIG_ETIMEOUT)
+			continue;
+		if (rc != RIG_OK)
+			return rc;
+		if (in.seq == w->seq) {
+			*n_slots = in.n_slots;
+			return RIG_OK;
+		}
+	}
+	return rig_error_set(err, RIG_ETIMEOUT,
+			     "wheel: no answer to QUERY within %.1f s",
+			     w->cfg->move_timeout_s);
+}
+
 void rig_wheel_close(struct rig_wheel *w)
 {
 	rig_hal_hid_close(&w->hid);

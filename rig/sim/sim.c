@@ -7,6 +7,7 @@
  * others (the camera: stage angle, ND slot, lines) is gathered here.
  */
 #include <string.h>
+#include <time.h>
 
 #include "rig/sim.h"
 #include "rig/status.h"
@@ -277,6 +278,17 @@ static int s_gpio_get(void *self, void *dev, int *value)
 				 value);
 }
 
+/* The wall clock plus the virtual time: a pause shows as real time
+ * passing, frames as their virtual exposures. */
+static double s_utc(void *self)
+{
+	struct timespec ts;
+
+	clock_gettime(CLOCK_REALTIME, &ts);
+	return (double)ts.tv_sec + ts.tv_nsec * 1e-9 +
+	       ((struct rig_sim *)self)->core.t_s;
+}
+
 static double s_now(void *self)
 {
 	return ((struct rig_sim *)self)->core.t_s;
@@ -304,6 +316,7 @@ static const struct rig_hal_ops sim_ops = {
 	.gpio_close = s_close,
 	.clock_now = s_now,
 	.clock_sleep = s_sleep,
+	.clock_utc = s_utc,
 };
 
 int rig_sim_init(struct rig_sim *sim, const struct rig_config *cfg,

@@ -55,7 +55,11 @@ static int render(struct sim_camera *c, const struct rig_sim_core *core,
 	h.n_rows = c->window.n_rows;
 	h.n_cols = c->window.n_cols;
 	h.col0 = c->window.col0;
-	h.bits = 12;
+	/* The ADC's width is what the virtual lab clips at: 4095 is
+	 * 12 bits, so the frames tell the host what they can hold. */
+	for (h.bits = 1; h.bits < 16 &&
+	     (1L << h.bits) - 1 < core->cfg->sim.vlab.sat_dn; h.bits++)
+		;
 	h.payload_len = (uint32_t)h.n_rows * (2u + 2u * h.n_cols);
 	rc = ensure_buffers(c, rig_fl_frame_len(&h));
 	px = malloc(npx * sizeof(*px));

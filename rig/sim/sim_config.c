@@ -126,6 +126,8 @@ static int parse_sim(struct rig_sim_config *sc, const cJSON *o,
 		  offsetof(struct rig_sim_config, monitor_noise), 0, 0.1 },
 		{ "stage_error_deg", K_NUM,
 		  offsetof(struct rig_sim_config, stage_error_deg), 0, 1 },
+		{ "wheel_slots", K_INT,
+		  offsetof(struct rig_sim_config, wheel_slots), 0, 12 },
 		{ NULL, 0, 0, 0, 0 }
 	};
 	const cJSON *fl = cJSON_GetObjectItemCaseSensitive(o, "faults");

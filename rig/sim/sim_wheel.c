@@ -45,7 +45,9 @@ int rig_sim_wheel_write(struct sim_wheel *w, struct rig_sim_core *core,
 		in.flags |= RIG_WHEEL_MOVING;
 	in.slot = (uint8_t)w->slot;
 	in.seq = o.seq;
-	in.n_slots = (uint8_t)core->cfg->wheel.n_slots;
+	in.n_slots = (uint8_t)(core->cfg->sim.wheel_slots > 0
+			       ? core->cfg->sim.wheel_slots
+			       : core->cfg->wheel.n_slots);
 	in.fault = 0;
 	if (o.cmd == RIG_WHEEL_QUERY) {
 		rig_wheel_in_encode(&in, w->report);

@@ -52,6 +52,10 @@ static cJSON *plan_of(const struct rig_config *c)
 	cJSON_AddNumberToObject(o, "camera.n_cols", c->camera.n_cols);
 	cJSON_AddNumberToObject(o, "camera.sat_dn", c->camera.sat_dn);
 	add_array(o, "wheel.trans", c->wheel.trans, c->wheel.n_slots);
+	/* A list (or ranges) replaces start..stop by step: the angles as
+	 * taken, in order; absent otherwise, so older plans still match. */
+	if (s->n_list > 0)
+		add_array(o, "sweep.theta_list_deg", s->list, s->n_list);
 	return o;
 }
 
@@ -120,19 +124,42 @@ static int plan_read(const char *dir, cJSON **plan, struct rig_error *err)
 	return RIG_OK;
 }
 
+/* Keys that record who and when, not what: never compared. */
+static int is_note(const char *key)
+{
+	return !strcmp(key, "owner") || !strcmp(key, "created_utc");
+}
+
 /* The first key whose value differs between the two plans, or NULL. */
 static const char *first_change(const cJSON *was, const cJSON *now)
 {
 	const cJSON *k;
 
 	cJSON_ArrayForEach(k, now)
-		if (!cJSON_Compare(k, cJSON_GetObjectItemCaseSensitive(was,
+		if (!is_note(k->string) &&
+		    !cJSON_Compare(k, cJSON_GetObjectItemCaseSensitive(was,
 				   k->string), 1))
 			return k->string;
 	cJSON_ArrayForEach(k, was)
-		if (!cJSON_GetObjectItemCaseSensitive(now, k->string))
+		if (!is_note(k->string) &&
+		    !cJSON_GetObjectItemCaseSensitive(now, k->string))
 			return k->string;
 	return NULL;
+}
+
+/* The notes of the plan written: the stored ones kept (the sweep's first
+ * owner), else this run's. */
+static void add_notes(cJSON *now, const cJSON *was, const char *owner)
+{
+	const cJSON *o = cJSON_GetObjectItemCaseSensitive(was, "owner");
+	const cJSON *c = cJSON_GetObjectItemCaseSensitive(was, "created_utc");
+	char when[40];
+
+	rig_utc_stamp(when, sizeof(when));
+	cJSON_AddStringToObject(now, "owner", cJSON_IsString(o)
+				? o->valuestring : owner ? owner : "?");
+	cJSON_AddStringToObject(now, "created_utc", cJSON_IsString(c)
+				? c->valuestring : when);
 }
 
 static int refuse(const char *dir, const char *key, const cJSON *was,
@@ -155,10 +182,18 @@ static int refuse(const char *dir, const char *key, const cJSON *was,
 int rig_sweep_plan_check(const char *dir, const struct rig_config *cfg,
 			 int force, struct rig_error *err)
 {
+	return rig_sweep_plan_check_as(dir, cfg, force, NULL, err);
+}
+
+int rig_sweep_plan_check_as(const char *dir, const struct rig_config *cfg,
+			    int force, const char *owner,
+			    struct rig_error *err)
+{
 	cJSON *now = plan_of(cfg), *was = NULL;
 	const char *key;
 	int rc = plan_read(dir, &was, err);
 
+	add_notes(now, rc == RIG_OK ? was : NULL, owner);
 	if (rc == RIG_OK && was && !force &&
 	    (key = first_change(was, now)) != NULL)
 		rc = refuse(dir, key, was, now, err);

@@ -151,7 +151,8 @@ static inline int count_fits_files(const char *dir)
 	while (d && (e = readdir(d)) != NULL)
 		n += e->d_name[0] != '.' &&
 		     strcmp(e->d_name, "manifest.csv") != 0 &&
-		     strcmp(e->d_name, "plan.json") != 0;
+		     strcmp(e->d_name, "plan.json") != 0 &&
+		     strcmp(e->d_name, "events.log") != 0;
 	if (d)
 		closedir(d);
 	return n;

@@ -20,7 +20,9 @@
 /* One visit of the gimbal to an angle: the sums of its J image. */
 struct stray_visit {
 	double theta_deg;
-	double order;		/* acquisition order, e.g. mean manifest row */
+	double order;		/* acquisition order: mean time of its frames
+				 * (s after the sweep's first) when every
+				 * frame has one, else its mean manifest row */
 	double power;		/* eq. 3.9 */
 	double var_power;
 	double sigma;		/* eq. 3.14 */

@@ -56,4 +56,16 @@ int stray_frame_check(const struct stray_frame *f, struct stray_error *err);
  * pix >= it is exactly (long)pix >= sat_level, without widening. */
 int stray_frame_sat_at(const struct stray_frame *f);
 
+/*
+ * A frame clipped below its SATLEVEL: its largest count is 2^k - 1
+ * (k = 8..16, an ADC's full scale), under SATLEVEL, and at least three
+ * pixels pile up there (more than twice as many as one count below).
+ * Such a frame says its counts are good to SATLEVEL when the ADC stopped
+ * earlier, so every clipped sample would enter the curve as a true one
+ * (camera.sat_dn above the ADC: alpha 1.0 at every angle).  Returns
+ * STRAY_EINVAL with SATLEVEL and the clip level in the message.
+ */
+int stray_frame_clip_check(const struct stray_frame *f,
+			   struct stray_error *err);
+
 #endif /* STRAY_REDUCE_FRAME_H */

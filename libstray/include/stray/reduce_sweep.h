@@ -36,6 +36,11 @@ struct stray_reduce_sweep_opts {
 				 * (reduce_common.h); it is still measured */
 	int no_angle_rb;	/* keep visits at their read-back angles
 				 * (ANGLERB ignored, reduce_angle.h) */
+	int visits_only;	/* stop at the visits (a folder with no
+				 * on-axis visit, merged by
+				 * stray_reduce_sweeps): no curve, no
+				 * frame-common noise, no ANGLERB carry,
+				 * no ghost tracks */
 };
 
 void stray_reduce_sweep_opts_default(struct stray_reduce_sweep_opts *o);
@@ -77,6 +82,12 @@ struct stray_reduce_sweep_result {
 	/* Largest |commanded - read-back| angle (ANGLERB) a visit was
 	 * carried over (reduce_angle.h), deg. */
 	double angle_rb_max_deg;
+	/* 1: the drift was fitted against time (every manifest row had its
+	 * date_obs), 0: against row order (a folder without times). */
+	int drift_in_time;
+	double span_s;		/* first to last frame, s (drift_in_time) */
+	double t0_utc;		/* the first frame's date_obs (drift_in_time) */
+	size_t n_folders;	/* folders merged (stray_reduce_sweeps) */
 };
 
 /* Reduce DIR; res is zeroed first and must be freed. */
@@ -84,6 +95,19 @@ int stray_reduce_sweep(const char *dir,
 		       const struct stray_reduce_sweep_opts *o,
 		       struct stray_reduce_sweep_result *res,
 		       struct stray_error *err);
+
+/*
+ * Several sweep folders of one lens reduced together (merge.c): each
+ * folder's frames with its own darks and masks, their visits put on one
+ * time line (every manifest needs date_obs) and one curve fitted, P(0)
+ * and its drift from the on-axis visits of all of them (at least one
+ * folder must have one).  Same window (rows, columns) in all; ghost
+ * tracks, pixel lists and the J image are the first on-axis folder's.
+ */
+int stray_reduce_sweeps(const char *const *dirs, size_t n_dirs,
+			const struct stray_reduce_sweep_opts *o,
+			struct stray_reduce_sweep_result *res,
+			struct stray_error *err);
 
 void stray_reduce_sweep_result_free(struct stray_reduce_sweep_result *res);
 

@@ -33,10 +33,14 @@ enum stray_sweep_frametyp {
 #define STRAY_SWEEP_COL_NDTRANS "ndtrans"
 #define STRAY_SWEEP_COL_SEQNUM "seqnum"
 #define STRAY_SWEEP_COL_SHA256 "sha256"
+/* optional: UTC at the exposure's start, 2026-12-02T04:50:00.123Z (a
+ * folder written before it has none; its frames then have no time) */
+#define STRAY_SWEEP_COL_DATE_OBS "date_obs"
 #define STRAY_SWEEP_MANIFEST_HEADER STRAY_SWEEP_COL_FILE "," \
 	STRAY_SWEEP_COL_FRAMETYP "," STRAY_SWEEP_COL_ANGLE "," \
 	STRAY_SWEEP_COL_EXPTIME "," STRAY_SWEEP_COL_NDTRANS "," \
-	STRAY_SWEEP_COL_SEQNUM "," STRAY_SWEEP_COL_SHA256 "\n"
+	STRAY_SWEEP_COL_SEQNUM "," STRAY_SWEEP_COL_SHA256 "," \
+	STRAY_SWEEP_COL_DATE_OBS "\n"
 
 /* FITS keywords of a frame (primary HDU, BITPIX 16, BZERO 32768). */
 #define STRAY_SWEEP_KEY_FRAMETYP "FRAMETYP"
@@ -52,6 +56,17 @@ enum stray_sweep_frametyp {
 /* optional [deg]: the stage's read-back angle (position counter) for
  * the frame, where ANGLE is the commanded one */
 #define STRAY_SWEEP_KEY_ANGLERB "ANGLERB"
+/* optional: UTC at the exposure's start and end (ISO 8601), TIMESYS UTC */
+#define STRAY_SWEEP_KEY_DATE_OBS "DATE-OBS"
+#define STRAY_SWEEP_KEY_DATE_END "DATE-END"
+
+/* A UTC instant, in seconds since 1970-01-01 (leap seconds not counted,
+ * as time_t), as 2026-12-02T04:50:00.123Z, and back; the parse takes
+ * that form with 0-6 decimals and an optional Z, years 1970-9999, and
+ * returns STRAY_EPARSE otherwise. */
+#define STRAY_SWEEP_UTC_LEN 32
+void stray_sweep_utc_format(double t, char *out, size_t size);
+int stray_sweep_utc_parse(const char *text, double *t);
 
 #define STRAY_SWEEP_FILE_MAX 256
 #define STRAY_SWEEP_DIR_MAX 1024
@@ -77,6 +92,7 @@ struct stray_sweep_entry {
 	long seqnum;
 	char sha256[STRAY_SWEEP_SHA256_HEX];	/* lower-case hex */
 	long line;			/* line in manifest.csv */
+	double date_obs;		/* UTC s (date_obs); NAN when absent */
 };
 
 /* The rows of a manifest; a writer also holds the folder's lock. */
@@ -86,6 +102,7 @@ struct stray_sweep_manifest {
 	struct stray_sweep_entry *e;
 	int writer;			/* 1: lock_fd holds the flock */
 	int lock_fd;
+	int has_date;			/* the header has date_obs */
 };
 
 /*
@@ -190,6 +207,7 @@ struct stray_sweep_frame {
 	const char *instrument;	/* INSTRUME; NULL: the lab daemon */
 	const struct stray_sweep_key *extra;	/* n_extra more keywords */
 	size_t n_extra;
+	double date_obs, date_end;	/* UTC s; 0: not written */
 };
 
 /* A frame's pixels: n_rows x n_cols, row-major, of detector rows[]. */

@@ -14,9 +14,24 @@
 #include "rig/status.h"
 
 #define RIG_PATH_MAX 512
+/* Device locks of the real backend (devlock.h) unless lock_dir says. */
+#define RIG_LOCK_DIR_DEFAULT "/run/lock"
+
+/* Angles a sweep may list (theta_list_deg, or theta_ranges_deg in all). */
+#define RIG_ANGLE_LIST_MAX 2000
+/* Ranges of theta_ranges_deg. */
+#define RIG_RANGES_MAX 32
 
 struct rig_sweep_cfg {
 	double theta_start_deg, theta_stop_deg, theta_step_deg;
+	/* The angles as labs write them, instead of start..stop by step:
+	 * an explicit list in the order taken (an angle may come back:
+	 * each return is another visit, e.g. 0 deg for the drift), or
+	 * ranges [start, stop, step] one after the other.  n_list = 0:
+	 * start..stop by step. */
+	int n_list;
+	double list[RIG_ANGLE_LIST_MAX];
+	int list_from_ranges;	/* 1: list came from theta_ranges_deg */
 	int repeats;		/* frames per (angle, type), thesis: 3 */
 	double t_min_s, t_max_s, t_init_s;	/* thesis: 0.01-1 s, 0.1 s */
 	double peak_target;	/* fraction of SATLEVEL aimed at */
@@ -29,6 +44,8 @@ struct rig_config {
 	char socket_path[RIG_PATH_MAX];
 	int socket_mode;		/* octal permission, default 0600 */
 	char socket_group[RIG_NAME_MAX];	/* group owning it, "" = ours */
+	char lock_dir[RIG_PATH_MAX];	/* device locks (devlock.h); "" none */
+	int lock_dir_set;		/* given in the file, not defaulted */
 	struct rig_stage_cfg stage;
 	struct rig_wheel_cfg wheel;
 	struct rig_line_cfg lines[RIG_LINE_COUNT];

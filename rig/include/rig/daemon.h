@@ -17,6 +17,7 @@
 #include <stddef.h>
 
 #include "rig/config.h"
+#include "rig/devlock.h"
 #include "rig/lab.h"
 #include "rig/sim.h"
 #include "rig/sweep.h"
@@ -49,8 +50,13 @@ struct rig_daemon {
 	int sweep_open;
 	enum rig_run_state state;
 	char last_error[RIG_ERROR_MSG_MAX];
+	char fault_utc[40];		/* when the last fault came */
 	int quit;
 	int listen_fd, sock_lock_fd;	/* rig_daemon_listen */
+	struct rig_devlock devlock;	/* every device, lab-wide */
+	char owner[RIG_NAME_MAX];	/* the daemon's user, or a sweep's */
+	int quiet_info;			/* --sweep: info lines not on stderr
+					 * (its progress lines are there) */
 	struct rig_client clients[RIG_CLIENTS_MAX];
 };
 
@@ -69,6 +75,7 @@ struct rig_request {
 	char dir[RIG_PATH_MAX];	/* sweep */
 	int resume;		/* sweep */
 	int force_plan;		/* sweep: resume even if the plan changed */
+	char owner[48];		/* who asks ("" unknown): log, sweep owner */
 };
 
 /* Parse and check one request line (pure: no lab, no files).  On error
@@ -102,5 +109,23 @@ void rig_clients_close(struct rig_daemon *d);
 /* Serve the claimed socket until shutdown or *stop becomes nonzero. */
 int rig_daemon_serve(struct rig_daemon *d, volatile int *stop,
 		     struct rig_error *err);
+
+/* The event log (evlog.c): one line, stamped in UTC, to stderr, syslog
+ * and (a sweep open) DIR/events.log. */
+enum rig_log_level { RIG_LOG_INFO, RIG_LOG_WARN, RIG_LOG_ERR };
+#define RIG_EVENTS_LOG "events.log"
+void rig_daemon_log(struct rig_daemon *d, int level, const char *fmt, ...)
+	__attribute__((format(printf, 3, 4)));
+
+/* The sweep's start (its plan, owner, frames already there) and end. */
+void rig_daemon_log_start(struct rig_daemon *d, int resumed);
+void rig_daemon_log_end(struct rig_daemon *d, const char *how);
+/* rig_lab's on_event: retries as warnings, recoveries as info. */
+void rig_daemon_lab_event(void *ctx, int recovered, const char *msg);
+
+/* The lab's safe state in one phrase (both modes say the same): 1 and
+ * "lab safe (...)" when every line read back safe, else 0 and "safe state
+ * NOT confirmed: lamp unknown, ...". */
+int rig_daemon_safe_line(const struct rig_daemon *d, char *buf, size_t size);
 
 #endif /* RIG_DAEMON_H */

@@ -88,6 +88,8 @@ struct rig_wheel {
 int rig_wheel_open(struct rig_wheel *w, const struct rig_hal *hal,
 		   const struct rig_wheel_cfg *cfg, struct rig_error *err);
 int rig_wheel_goto(struct rig_wheel *w, int slot, struct rig_error *err);
+/* The slot count the wheel reports (one QUERY, nothing moves). */
+int rig_wheel_count(struct rig_wheel *w, int *n_slots, struct rig_error *err);
 void rig_wheel_close(struct rig_wheel *w);
 
 /* ---- lamp monitor photodiode (optional) ---- */
@@ -157,6 +159,7 @@ struct rig_image {
 	uint16_t *px;		/* n_rows * n_cols, caller-owned */
 	double t_exp_s;
 	uint32_t seq;
+	int bits;		/* ADC bits the frame header reports */
 };
 
 struct rig_camera {
@@ -168,6 +171,7 @@ struct rig_camera {
 	uint32_t seq;
 	uint32_t exposure_us;
 	unsigned crc_rereads;	/* frames re-read after a CRC failure */
+	int bits;		/* ADC bits of the last frame; 0 before one */
 };
 
 int rig_camera_open(struct rig_camera *c, const struct rig_hal *hal,

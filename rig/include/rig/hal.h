@@ -54,6 +54,9 @@ struct rig_hal_ops {
 	void (*gpio_close)(void *self, void *dev);
 	double (*clock_now)(void *self);	/* seconds, monotonic */
 	void (*clock_sleep)(void *self, double s);
+	/* UTC, s since 1970 (NULL: the system's CLOCK_REALTIME); the
+	 * simulator adds its virtual time to the wall clock */
+	double (*clock_utc)(void *self);
 };
 
 /* A backend: its ops and its state. */
@@ -94,6 +97,11 @@ void rig_hal_gpio_close(struct rig_hal_dev *d);
 
 double rig_hal_now(const struct rig_hal *hal);
 void rig_hal_sleep(const struct rig_hal *hal, double s);
+/* UTC in s since 1970 through the backend (frames' DATE-OBS). */
+double rig_hal_utc(const struct rig_hal *hal);
+/* The system's UTC as 2026-12-02T04:50:00.123Z (the event log). */
+#include <stddef.h>
+void rig_utc_stamp(char *out, size_t size);
 
 /* The real backend: libusb, hidapi, libgpiod and the monotonic clock. */
 int rig_hal_real_init(struct rig_hal *hal);

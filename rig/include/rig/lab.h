@@ -9,6 +9,7 @@
 
 #include "rig/config.h"
 #include "rig/devices.h"
+#include <stddef.h>
 
 struct rig_lab {
 	const struct rig_config *cfg;
@@ -23,15 +24,32 @@ struct rig_lab {
 	double theta_rb_deg;	/* the stage's read-back there; NAN unknown */
 	unsigned recoveries;	/* faults survived by retry or reconnect */
 	unsigned crc_rereads;	/* of camera connections already closed */
+	/* Told of each fault retried and of each recovery, in words (the
+	 * daemon's event log); NULL: nobody listens. */
+	void (*on_event)(void *ctx, int recovered, const char *msg);
+	void *event_ctx;
 };
 
 int rig_lab_open(struct rig_lab *lab, const struct rig_config *cfg,
 		 const struct rig_hal *hal, struct rig_error *err);
 void rig_lab_close(struct rig_lab *lab);
 
+/* The config against what the devices report (lab_check.c), called by
+ * rig_lab_open before anything moves: the wheel's slot count, and two
+ * dark test frames at sweep.t_min_s and t_max_s (the window and exposure
+ * echoed, camera.sat_dn within the ADC's 2^bits - 1).  RIG_EINVAL names
+ * the config key to change. */
+int rig_lab_check(struct rig_lab *lab, struct rig_error *err);
+
 /* Lamp off, beam blocked, shutter closed, stage stopped; best effort on
  * every device, returns the first failure. */
 int rig_lab_safe(struct rig_lab *lab, struct rig_error *err);
+
+/* 1 when every line has read back its safe level (lamp off, beam
+ * blocked, shutter closed); else 0 and why lists each line that is not,
+ * "lamp unknown" for one whose state was not read back (a failed write,
+ * the GPIO chip gone). */
+int rig_lab_is_safe(const struct rig_lab *lab, char *why, size_t size);
 
 /* Close and reopen one device (after a disconnect), re-homing a stage. */
 int rig_lab_reconnect(struct rig_lab *lab, int dev, struct rig_error *err);

@@ -22,6 +22,9 @@ struct rig_progress {
 	double elapsed_s, eta_s;	/* HAL clock */
 	double theta_deg;
 	int finished;
+	double percent;		/* done / total, 0-100 */
+	int angle_no, n_angles;	/* the current angle, 1-based, of n */
+	char step[80];		/* the frame to take next, in words */
 };
 
 struct rig_sweep {
@@ -29,7 +32,8 @@ struct rig_sweep {
 	const struct rig_sweep_cfg *cfg;
 	struct stray_sweep_manifest mf;	/* the folder, written through the
 					 * sweep store (libstray/sweep) */
-	double *angles;
+	double *angles;		/* in the order taken; may return to one */
+	int *visit_no;		/* per angle: earlier visits to it */
 	int n_angles, i_angle;
 	int at_angle;		/* stage verified at angles[i_angle] */
 	int have[STRAY_SWEEP_FRAMETYP_COUNT];	/* exposure found at this angle */
@@ -39,6 +43,10 @@ struct rig_sweep {
 	struct rig_image img;
 	long done_at_open, taken;
 	double t_open_s;
+	double busy_s;		/* HAL time spent in steps (not paused) */
+	long steps;		/* steps taken, test frames included */
+	double utc_floor;	/* the last frame's time: none goes before */
+	char owner[48];		/* who started (or resumed) it */
 	int finished;
 };
 
@@ -63,6 +71,13 @@ int rig_sweep_claim(struct rig_sweep *sw, const struct rig_config *cfg,
 		    const char *dir, int flags, struct rig_error *err);
 int rig_sweep_attach(struct rig_sweep *sw, struct rig_lab *lab,
 		     struct rig_error *err);
+/* The same for an owner (a user name, kept in plan.json and status). */
+int rig_sweep_open_as(struct rig_sweep *sw, struct rig_lab *lab,
+		      const char *dir, int flags, const char *owner,
+		      struct rig_error *err);
+int rig_sweep_claim_as(struct rig_sweep *sw, const struct rig_config *cfg,
+		       const char *dir, int flags, const char *owner,
+		       struct rig_error *err);
 
 /*
  * The plan (plan.c): the config values that shape the folder (angles,
@@ -73,6 +88,19 @@ int rig_sweep_attach(struct rig_sweep *sw, struct rig_lab *lab,
  */
 int rig_sweep_plan_check(const char *dir, const struct rig_config *cfg,
 			 int force, struct rig_error *err);
+/* The same, recording owner (and the time) in plan.json when the plan is
+ * first written; "owner" and "created_utc" are notes, never compared. */
+int rig_sweep_plan_check_as(const char *dir, const struct rig_config *cfg,
+			    int force, const char *owner,
+			    struct rig_error *err);
+/* Free space (space.c): the bytes of one frame on disk (FITS blocks and
+ * its manifest row), and RIG_EIO when dir's file system (its parent's,
+ * before it exists) has less than frames of them with 10 % and 16 MB to
+ * spare, naming both figures. */
+double rig_sweep_bytes_per_frame(const struct rig_config *cfg);
+int rig_sweep_space_check(const char *dir, const struct rig_config *cfg,
+			  long frames, struct rig_error *err);
+
 /* Take the next frame (or finish); on failure the lab is made safe. */
 int rig_sweep_step(struct rig_sweep *sw, struct rig_error *err);
 void rig_sweep_progress(const struct rig_sweep *sw, struct rig_progress *p);

@@ -9,6 +9,9 @@
 set -u
 B=${STRAY_BUILD:-build}
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+# the emulated lab's device locks, not the machine's /run/lock (another
+# worktree's test bed may run at the same time)
+export STRAYRIGD_LOCK_DIR=$tmp
 passed=0; failed=0
 
 ok() { echo "[       OK ] $1"; passed=$((passed + 1)); }

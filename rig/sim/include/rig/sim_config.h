@@ -40,6 +40,9 @@ struct rig_sim_config {
 				 * (uniform; 5e-4 by default) */
 	double stage_error_deg;	/* stage settles up to +- this off its
 				 * target, within tol_deg (0 by default) */
+	int wheel_slots;	/* slots the wheel reports; 0 = as many as
+				 * wheel.trans lists (a lab whose wheel has
+				 * fewer is refused at start) */
 	int n_faults;
 	struct rig_fault faults[RIG_FAULTS_MAX];
 };
