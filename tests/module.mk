@@ -67,14 +67,14 @@ build/fuzz/fuzz_focal_map: tests/fuzz/fuzz_focal_map.c \
 # The heads file of `stray availability` (issue 31): its parser alone.
 build/fuzz/fuzz_heads: tests/fuzz/fuzz_heads.c tools/avail_heads.c $(FUZZ_LIB_SRC)
 	@mkdir -p $(dir $@)
-	$(CLANG) $(FUZZ_CFLAGS) -Itools -o $@ $^ -lcsv -lcjson -lm
+	$(CLANG) $(FUZZ_CFLAGS) -Itools -o $@ $^ $(STRAY_LDLIBS)
 
 # The project file of `stray review` (issue 25) and the plan made from it.
 build/fuzz/fuzz_review_project: tests/fuzz/fuzz_review_project.c \
 		review/project.c review/mission.c review/plan.c $(FUZZ_LIB_SRC)
 	@mkdir -p $(dir $@)
 	$(CLANG) $(FUZZ_CFLAGS) -D_DEFAULT_SOURCE -Ireview/include -o $@ $^ \
-		-lcsv -lcjson -lm
+		$(STRAY_LDLIBS)
 
 # Scene files: the JSON, then the OBJ/STL meshes it names through assimp.
 build/fuzz/fuzz_scene_json: tests/fuzz/fuzz_scene_json.c $(wildcard tracer/*.c) \
@@ -95,7 +95,7 @@ build/fuzz/fuzz_mesh_prescan: tests/fuzz/fuzz_mesh_prescan.c \
 		tracer/mesh_prescan.c $(FUZZ_LIB_SRC)
 	@mkdir -p $(dir $@)
 	$(CLANG) $(FUZZ_CFLAGS) -D_DEFAULT_SOURCE -Itracer/include -o $@ $^ \
-		-lcsv -lcjson -lm
+		$(STRAY_LDLIBS)
 
 .PHONY: fuzz fuzz-ci fuzz-smoke fuzz-merge
 fuzz-ci:

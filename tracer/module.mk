@@ -60,7 +60,7 @@ $(TRACER_FUZZ): tests/tracer/fuzz_tracer_args.c tracer/angles.c \
 	$(CLANG) -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined \
 		$(CPPFLAGS_HOST) -D_DEFAULT_SOURCE -Itracer/include \
 		-I/usr/include/cjson -DSTRAY_DATA_DIR=\"libstray/data\" \
-		-o $@ $^ -lcsv -lcjson -lm
+		-o $@ $^ $(STRAY_LDLIBS)
 
 # The virtual photometer draws its noise from the tracer's Philox streams.
 $(B)/obj/tools/cmd_photometer.o: EXTRA_CFLAGS += -Itracer/include
