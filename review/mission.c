@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "review/review.h"
+#include "review_int.h"
 #include "stray/errfmt.h"
 
 static int bad(struct stray_error *err, const struct review_project *p,
@@ -42,27 +43,6 @@ static int number(const struct review_project *p, const cJSON *o,
 	return STRAY_OK;
 }
 
-int review_dup_key(const cJSON *obj, const char **key);	/* project.c */
-
-static int keys_in(const cJSON *o, const char *const *allowed,
-		   const char *where, const struct review_project *p,
-		   struct stray_error *err)
-{
-	const cJSON *it;
-	const char *dup;
-	int i;
-
-	if (review_dup_key(o, &dup))
-		return bad(err, p, where, dup, "key given twice");
-	cJSON_ArrayForEach(it, o) {
-		for (i = 0; allowed[i] && strcmp(allowed[i], it->string); i++)
-			;
-		if (!allowed[i])
-			return bad(err, p, where, it->string, "unknown key (docs/review.md)");
-	}
-	return STRAY_OK;
-}
-
 static int string(const struct review_project *p, const cJSON *o,
 		  const char *key, char *dst, size_t size,
 		  struct stray_error *err)
@@ -86,7 +66,7 @@ static int take_orbit(struct review_project *p, const cJSON *o,
 
 	if (!cJSON_IsObject(o))
 		return bad(err, p, "mission.orbit", NULL, "must be an object");
-	if ((rc = keys_in(o, keys, "mission.orbit", p, err)) != STRAY_OK)
+	if ((rc = review_only_keys(o, keys, "mission.orbit", p, err)) != STRAY_OK)
 		return rc;
 	if (!cJSON_GetObjectItemCaseSensitive(o, "altitude_km"))
 		return bad(err, p, "mission.orbit.altitude_km", NULL, "is required");
@@ -138,7 +118,7 @@ int review_take_mission(struct review_project *p, const cJSON *m,
 
 	if (!cJSON_IsObject(m))
 		return bad(err, p, "mission", NULL, "must be an object");
-	if ((rc = keys_in(m, keys, "mission", p, err)) != STRAY_OK)
+	if ((rc = review_only_keys(m, keys, "mission", p, err)) != STRAY_OK)
 		return rc;
 	oem = cJSON_GetObjectItemCaseSensitive(m, "oem");
 	aem = cJSON_GetObjectItemCaseSensitive(m, "aem");
@@ -202,7 +182,7 @@ int review_take_heads(struct review_project *p, const cJSON *h,
 
 		if (!cJSON_IsObject(it))
 			return bad(err, p, "heads", NULL, "each head is an object");
-		if ((rc = keys_in(it, keys, "heads", p, err)) != STRAY_OK)
+		if ((rc = review_only_keys(it, keys, "heads", p, err)) != STRAY_OK)
 			return rc;
 		name = cJSON_GetObjectItemCaseSensitive(it, "name");
 		if (!cJSON_IsString(name) || !name->valuestring[0] ||

@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "review/review.h"
+#include "review_int.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"
 
@@ -51,7 +52,7 @@ int review_dup_key(const cJSON *obj, const char **key)
 }
 
 /* Keys of obj outside allowed[] are an error, as is a key given twice. */
-static int only_keys(const cJSON *obj, const char *const *allowed,
+int review_only_keys(const cJSON *obj, const char *const *allowed,
 		     const char *where, const struct review_project *p,
 		     struct stray_error *err)
 {
@@ -173,7 +174,7 @@ static int take_lens(struct review_project *p, const cJSON *v,
 	    (x = cJSON_GetObjectItemCaseSensitive(v, "ideal"))) {
 		p->lens = REVIEW_LENS_IDEAL;
 		if (!cJSON_IsObject(x) ||
-		    only_keys(x, ideal_keys, "lens.ideal", p, err) != STRAY_OK)
+		    review_only_keys(x, ideal_keys, "lens.ideal", p, err) != STRAY_OK)
 			return bad(err, p, "lens.ideal", NULL,
 				   "must be {\"fov_half_deg\": DEG}");
 		x = cJSON_GetObjectItemCaseSensitive(x, "fov_half_deg");
@@ -224,7 +225,7 @@ static int take_measured(struct review_project *p, const cJSON *m,
 
 	if (!cJSON_IsObject(m))
 		return bad(err, p, "measured", NULL, "must be {\"curve\": F, \"kind\": \"baffle\"|\"system\"}");
-	if ((rc = only_keys(m, keys, "measured", p, err)) != STRAY_OK)
+	if ((rc = review_only_keys(m, keys, "measured", p, err)) != STRAY_OK)
 		return rc;
 	rc = take_path(p, cJSON_GetObjectItemCaseSensitive(m, "curve"),
 		       "measured.curve", 0, p->measured, err);
@@ -255,7 +256,7 @@ static int take_all(struct review_project *p, const cJSON *root,
 	const cJSON *v;
 	int i, rc;
 
-	if ((rc = only_keys(root, keys, "project", p, err)) != STRAY_OK)
+	if ((rc = review_only_keys(root, keys, "project", p, err)) != STRAY_OK)
 		return rc;
 	for (i = 0; i < 3; i++)
 		if (!cJSON_GetObjectItemCaseSensitive(root, need[i]))

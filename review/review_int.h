@@ -33,6 +33,13 @@ static inline int exists_file(const char *dir, const char *name)
 	return stat(path, &st) == 0 && S_ISREG(st.st_mode);
 }
 
+/* project.c: a key given twice in obj (*key); keys of obj outside
+ * allowed[] (NULL-ended) or given twice refused, naming where. */
+int review_dup_key(const cJSON *obj, const char **key);
+int review_only_keys(const cJSON *obj, const char *const *allowed,
+		     const char *where, const struct review_project *p,
+		     struct stray_error *err);
+
 /* dir/name parsed, or NULL when absent or not JSON. */
 cJSON *review_read_json(const char *dir, const char *name);
 const struct review_step *review_step_named(const struct review_plan *plan,

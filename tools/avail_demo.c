@@ -18,24 +18,9 @@
 #include "stray/ccsds.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"
+#include "vec3d.h"
 
 #define OMEGA_EARTH 7.2921159e-5	/* rad/s, IERS */
-
-static void unit(double a[3])
-{
-	double n = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-
-	a[0] /= n;
-	a[1] /= n;
-	a[2] /= n;
-}
-
-static void cross(const double a[3], const double b[3], double c[3])
-{
-	c[0] = a[1] * b[2] - a[2] * b[1];
-	c[1] = a[2] * b[0] - a[0] * b[2];
-	c[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 /*
  * Nadir pointing with yaw steering: body +z to nadir, +x along the ground

@@ -10,25 +10,10 @@
 
 #include "avail_heads.h"
 #include "stray/errfmt.h"
+#include "vec3d.h"
 
 static const char name_chars[] =
 	"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-";
-
-static void unit(double a[3])
-{
-	double n = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-
-	a[0] /= n;
-	a[1] /= n;
-	a[2] /= n;
-}
-
-static void cross(const double a[3], const double b[3], double c[3])
-{
-	c[0] = a[1] * b[2] - a[2] * b[1];
-	c[1] = a[2] * b[0] - a[0] * b[2];
-	c[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 static int vec3(const cJSON *o, const char *key, double out[3])
 {

@@ -4,6 +4,7 @@
 #include <math.h>
 
 #include "orbit.h"
+#include "vec3d.h"
 
 #define TWO_PI 6.28318530717958647692
 /* The mean Sun's right-ascension rate: one turn per tropical year. */
@@ -53,15 +54,6 @@ void orbit_state(const struct orbit *o, double t_s, double r[3],
 	v[0] = speed * (-cO * su - sO * cu * ci);
 	v[1] = speed * (-sO * su + cO * cu * ci);
 	v[2] = speed * (cu * si);
-}
-
-static void unit(double a[3])
-{
-	double n = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-
-	a[0] /= n;
-	a[1] /= n;
-	a[2] /= n;
 }
 
 /* Quaternion of a rotation matrix (rows = sensor axes in inertial

@@ -381,24 +381,11 @@ void stray_aem_free(struct stray_aem *aem)
 static int aem_cover(struct aem_parse *p)
 {
 	struct stray_aem *a = p->aem;
-	size_t bad = 0;
-	int rc = stray_ccsds_cover_build(&a->cover, a->t, 2, &bad);
+	int rc = stray_ccsds_cover_finish(&a->cover, a->t, 2, p->file, p->err);
 
-	if (rc == -2)
-		return stray_error_set(p->err, STRAY_ENOMEM, "records", NULL);
-	if (rc != 0) {
-		char at[48];
-
-		snprintf(at, sizeof(at), "segment of META_START at line %ld",
-			 a->cover.seg[bad].line);
-		p->line = a->cover.seg[bad].line;
-		return fail(p, a->cover.seg[bad].n ? "USEABLE_START_TIME" : "data",
-			    a->cover.seg[bad].n ?
-			    "useable span outside the segment's records, or empty" :
-			    "a segment without records", at);
-	}
-	a->gap_s = a->cover.seg[0].gap_s;
-	return STRAY_OK;
+	if (rc == STRAY_OK)
+		a->gap_s = a->cover.seg[0].gap_s;
+	return rc;
 }
 
 int stray_aem_parse(const char *buf, size_t len, const char *file,

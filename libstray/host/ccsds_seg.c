@@ -5,6 +5,7 @@
  * reads it), and time no segment covers is a hole interpolation never
  * crosses (an 18-day gap between two segments is not flown across).
  */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -190,4 +191,25 @@ void stray_ccsds_cover_free(struct stray_ccsds_cover *c)
 	free(c->seg);
 	free(c->piece);
 	memset(c, 0, sizeof(*c));
+}
+
+int stray_ccsds_cover_finish(struct stray_ccsds_cover *c, const double *t,
+			     size_t nodes, const char *file,
+			     struct stray_error *err)
+{
+	size_t bad = 0;
+	int rc = stray_ccsds_cover_build(c, t, nodes, &bad);
+	char at[48];
+
+	if (rc == -2)
+		return stray_error_set(err, STRAY_ENOMEM, "records", NULL);
+	if (rc == 0)
+		return STRAY_OK;
+	snprintf(at, sizeof(at), "segment of META_START at line %ld",
+		 c->seg[bad].line);
+	return stray_kvn_fail(err, file, c->seg[bad].line,
+			      c->seg[bad].n ? "USEABLE_START_TIME" : "data",
+			      c->seg[bad].n ? "useable span outside the "
+			      "segment's records, or empty"
+			      : "a segment without records", at);
 }

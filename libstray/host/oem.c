@@ -342,26 +342,14 @@ static size_t nodes(const struct stray_ccsds_seg *s)
 static int oem_cover(struct oem_parse *p)
 {
 	struct stray_oem *o = p->oem;
-	size_t bad = 0, i;
+	size_t i;
 	int rc;
 
 	for (i = 0; i < o->cover.n_seg; i++)
 		o->cover.seg[i].nodes = nodes(&o->cover.seg[i]);
-	rc = stray_ccsds_cover_build(&o->cover, o->t, 2, &bad);
-
-	if (rc == -2)
-		return stray_error_set(p->err, STRAY_ENOMEM, "records", NULL);
-	if (rc != 0) {
-		char at[48];
-
-		snprintf(at, sizeof(at), "segment of META_START at line %ld",
-			 o->cover.seg[bad].line);
-		p->line = o->cover.seg[bad].line;
-		return fail(p, o->cover.seg[bad].n ? "USEABLE_START_TIME" : "data",
-			    o->cover.seg[bad].n ?
-			    "useable span outside the segment's records, or empty" :
-			    "a segment without records", at);
-	}
+	rc = stray_ccsds_cover_finish(&o->cover, o->t, 2, p->file, p->err);
+	if (rc != STRAY_OK)
+		return rc;
 	o->gap_s = o->cover.seg[0].gap_s;
 	o->interp = o->cover.seg[0].interp;
 	o->degree = o->cover.seg[0].degree;

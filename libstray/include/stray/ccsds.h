@@ -207,6 +207,13 @@ struct stray_ccsds_seg *stray_ccsds_cover_add(struct stray_ccsds_cover *c);
 int stray_ccsds_cover_build(struct stray_ccsds_cover *c, const double *t,
 			    size_t nodes, size_t *bad);
 
+/* stray_ccsds_cover_build with its refusal said as the readers say it:
+ * a KVN error of file at the bad segment's META_START line (bad input),
+ * or out of memory. */
+int stray_ccsds_cover_finish(struct stray_ccsds_cover *c, const double *t,
+			     size_t nodes, const char *file,
+			     struct stray_error *err);
+
 /* The segment that owns epoch `at`, or -1 where none does. */
 long stray_ccsds_cover_find(const struct stray_ccsds_cover *c, double at);
 
