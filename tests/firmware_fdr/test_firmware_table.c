@@ -257,7 +257,19 @@ static void test_bad_input(void **state)
 	expect_error(no_curve, 2, "--curve is required");
 	expect_error(missing, 2, "/nonexistent/c.csv");
 	expect_error(nan_run, 2, "nan.csv");
-	expect_error(long_run, 2, "128");
+	/* more rows than the table holds: thinned to them, the error said */
+	{
+		static struct cli_run lr;
+		cJSON *o;
+
+		assert_int_equal(run_stray(&lr, long_run), 0);
+		o = cJSON_Parse(lr.out);
+		assert_non_null(o);
+		assert_near(json_num(o, "curve_rows"), 200, 0);
+		assert_near(json_num(o, "n_curve"), 128, 0);
+		assert_true(json_num(o, "thinned_max_log10_error") < 0.05);
+		cJSON_Delete(o);
+	}
 	expect_error(hyst, 2, "hysteresis_deg");
 	expect_error(unwritable, 1, "t.bin");
 	expect_error(norm, 2, "'pixel' is not consistent or thesis");
