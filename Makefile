@@ -48,7 +48,7 @@ deps:
 	@scripts/install-deps.sh
 
 # The README's test command.  Installs what is missing, fuzzes each
-# parser's target for 30 s (two at a time), runs the demo small and
+# parser's target for 15 s (two at a time), runs the demo small and
 # checks its report, runs every test binary, then repeats the suite under
 # AddressSanitizer and UBSan.
 test: deps
