@@ -5,7 +5,8 @@
 # load on both sides, and the median of >= 3 such pairs with its min-max
 # tells a 20 % change from noise.  BENCH_PAIRS (default 3) sets the pairs.
 pairs=${BENCH_PAIRS:-3}
-[ "$pairs" -ge 1 ] 2>/dev/null || { echo "BENCH_PAIRS: give a count >= 1, not '$pairs'" >&2; exit 2; }
+{ [ "$pairs" -ge 1 ] && [ "$pairs" -le 32 ]; } 2>/dev/null ||
+	{ echo "BENCH_PAIRS: give a count from 1 to 32, not '$pairs'" >&2; exit 2; }
 
 # spread V...: "median min max" of the values (median of an even count:
 # the mean of the middle two).

@@ -22,13 +22,20 @@ static inline double bench_now(void)
 	return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
-/* BENCH_PAIRS, 1..BENCH_MAX_PAIRS; anything else: the default 3. */
+/* BENCH_PAIRS, 1..BENCH_MAX_PAIRS (default 3); anything else ends the
+ * bench with one line and status 2, as alt.sh does. */
 static inline int bench_pairs(void)
 {
 	const char *s = getenv("BENCH_PAIRS");
-	long n = s ? strtol(s, NULL, 10) : 3;
+	char *end = NULL;
+	long n = s ? strtol(s, &end, 10) : 3;
 
-	return n >= 1 && n <= BENCH_MAX_PAIRS ? (int)n : 3;
+	if (s && (end == s || *end || n < 1 || n > BENCH_MAX_PAIRS)) {
+		fprintf(stderr, "BENCH_PAIRS: give a count from 1 to %d, not "
+			"'%s'\n", BENCH_MAX_PAIRS, s);
+		exit(2);
+	}
+	return (int)n;
 }
 
 static inline int bench_cmp(const void *a, const void *b)
