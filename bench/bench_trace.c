@@ -196,7 +196,8 @@ static int trace(const struct tracer_scene *s, const double *th, size_t n,
 
 /* The default curve to 1 %: a pilot run sizes the final one, then the
  * raw cast rate and the curve alternate, pairs times. */
-static int bench_curve(const struct tracer_scene *s, int threads)
+static int bench_curve(const struct tracer_scene *s, int threads,
+		       uint64_t *need_out)
 {
 	struct tracer_result r;
 	double *th, worst = 0.0, at = 0.0, cpu0, lo, hi;
@@ -214,6 +215,7 @@ static int bench_curve(const struct tracer_scene *s, int threads)
 	worst = worst_rel_sigma(&r, &at);
 	/* sigma falls as 1/sqrt(N); aim a little under 1 % */
 	need = (uint64_t)(500000 * pow(worst / 0.0098, 2.0));
+	*need_out = need;
 	tracer_result_free(&r);
 	for (i = 0; i < pairs; i++) {
 		raw[i] = raw_casts_per_s(s, 1000000) * threads;
@@ -231,9 +233,10 @@ static int bench_curve(const struct tracer_scene *s, int threads)
 	       "worst sigma/alpha %.2f %% (at %.1f deg);\n  median (min-max) "
 	       "of %d alternating pairs (raw casts, curve):\n", n, threads,
 	       (unsigned long long)need, 100 * worst, at, pairs);
+	/* one median per statement: lo and hi are shared */
 	printf("  wall %.2f s", bench_median(wall, pairs, &lo, &hi));
-	printf(" (%.2f-%.2f), cpu %.2f s", lo, hi,
-	       bench_median(cpu, pairs, &lo, &hi));
+	printf(" (%.2f-%.2f)", lo, hi);
+	printf(", cpu %.2f s", bench_median(cpu, pairs, &lo, &hi));
 	printf(", %.3g paths/s\n", bench_median(paths, pairs, &lo, &hi));
 	bench_ratio("  casts/s against the raw incoherent rate x threads:",
 		    rate, raw, pairs, 6, 3);
@@ -362,11 +365,15 @@ static double mitsuba_time(double theta, double rel_err)
 }
 
 /* Time to 1 % at 30/45/60/80 deg: Mitsuba per angle vs ours at once,
- * alternating (theirs, ours, theirs, ...), pairs times. */
-static int race_mitsuba(const struct tracer_scene *s, int threads)
+ * and Mitsuba's time scaled to 127 angles vs our 127-angle curve to
+ * 1 % (need paths), alternating (theirs, ours, theirs, ...). */
+static int race_mitsuba(const struct tracer_scene *s, int threads,
+			uint64_t need127)
 {
-	double th[] = { 0, 30, 45, 60, 80 }, worst, at = 0.0, lo, hi;
+	double th[] = { 0, 30, 45, 60, 80 }, worst, at = 0.0, lo, hi, *t127;
 	double mi[BENCH_MAX_PAIRS], ours[BENCH_MAX_PAIRS];
+	double mi127[BENCH_MAX_PAIRS], curve[BENCH_MAX_PAIRS];
+	size_t n127;
 	struct tracer_result r;
 	uint64_t need;
 	int i, k, pairs = bench_pairs();
@@ -377,6 +384,8 @@ static int race_mitsuba(const struct tracer_scene *s, int threads)
 		       "install libllvm19): race skipped\n");
 		return 0;
 	}
+	if (tracer_angles_parse(TRACER_ANGLES_DEFAULT, &t127, &n127, NULL))
+		return 1;
 	if (trace(s, th, 5, 200000, threads, &r))
 		return 1;
 	worst = worst_rel_sigma(&r, &at);
@@ -390,6 +399,7 @@ static int race_mitsuba(const struct tracer_scene *s, int threads)
 			if (t < 0.0) {
 				printf("Mitsuba run failed at %g deg: race "
 				       "skipped\n", th[k]);
+				free(t127);
 				return 0;
 			}
 			printf("  pair %d: Mitsuba 3 reciprocal, %4.0f deg: "
@@ -401,13 +411,22 @@ static int race_mitsuba(const struct tracer_scene *s, int threads)
 		ours[i] = r.seconds;
 		worst = worst_rel_sigma(&r, &at);
 		tracer_result_free(&r);
+		if (trace(s, t127, n127, need127, threads, &r))
+			return 1;
+		curve[i] = r.seconds;
+		mi127[i] = mi[i] / 4.0 * (double)n127;
+		tracer_result_free(&r);
 		printf("  pair %d: Mitsuba %.2f s, stray trace %.2f s (worst "
-		       "%.2f %%)\n", i + 1, mi[i], ours[i], 100.0 * worst);
+		       "%.2f %%); 127-angle curve %.2f s\n", i + 1, mi[i],
+		       ours[i], 100.0 * worst, curve[i]);
 	}
 	bench_ratio("race to 1 % at 30/45/60/80 deg on the exported mesh, "
 		    "Mitsuba / stray trace:", mi, ours, pairs, 6, 1);
 	printf("  Mitsuba for the 127-angle curve at its mean rate: %.0f s "
-	       "(median)\n", bench_median(mi, pairs, &lo, &hi) / 4.0 * 127.0);
+	       "(median)\n", bench_median(mi127, pairs, &lo, &hi));
+	bench_ratio("127-angle curve to 1 %, Mitsuba (4 angles x 127/4) / "
+		    "stray trace (target >= 50):", mi127, curve, pairs, 6, 1);
+	free(t127);
 	return 0;
 }
 
@@ -416,6 +435,7 @@ int main(int argc, char **argv)
 	struct tracer_scene s;
 	struct stray_error err;
 	double raw1;
+	uint64_t need = 0;
 	int peer_only = argc > 1 && strcmp(argv[1], "--peer") == 0, rc;
 
 	stray_error_clear(&err);
@@ -454,9 +474,9 @@ int main(int argc, char **argv)
 		       "(medians)\n", bench_median(occ, pairs, &lo, &hi),
 		       bench_median(fan, pairs, &lo, &hi));
 	}
-	rc = bench_curve(&s, 2);
+	rc = bench_curve(&s, 2, &need);
 	if (!rc)
-		rc = race_mitsuba(&s, 2);
+		rc = race_mitsuba(&s, 2, need);
 	if (!rc)
 		rc = peer_check(&s, 2, 2000000);
 	tracer_scene_free(&s);
