@@ -4,7 +4,8 @@
  * background, plate solution on the catalogue, star calibration.  Frames
  * are rendered in memory first (not timed); the step runs on 2 OpenMP
  * threads.  Printed as frames per second and as a ratio against one
- * memcpy of the frame in the same run.
+ * memcpy of the frame timed right before, in alternating rounds (memcpy,
+ * step, memcpy, ...; BENCH_PAIRS, bench_alt.h): median and min-max.
  */
 #include <math.h>
 #include <omp.h>
@@ -13,6 +14,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "bench_alt.h"
 #include "flightcheck.h"
 #include "stray/aem.h"
 #include "stray/photometry_io.h"
@@ -42,8 +44,10 @@ int main(void)
 	size_t n = (size_t)COLS * ROWS, nc, ns;
 	float *e = malloc(n * sizeof(float));
 	uint16_t *dn = malloc(NF * n * sizeof(uint16_t)), *cp = malloc(n * 2);
-	double q[NF][4], base, t0, t, t_tt = 835300000.0;
-	int i, matched = 0;
+	double q[NF][4], base[BENCH_MAX_PAIRS], t[BENCH_MAX_PAIRS], t0, lo, hi;
+	double fps[BENCH_MAX_PAIRS], t_tt = 835300000.0;
+	char label[256];
+	int i, p, matched = 0, pairs = bench_pairs();
 
 	if (!e || !dn || !cp || stray_reference_fluxes(sn, &fl, NULL))
 		return 1;
@@ -70,34 +74,44 @@ int main(void)
 		stray_frame_expect(&c, st, ns, e);
 		stray_frame_sample(&c, e, (uint64_t)i + 7, dn + i * n);
 	}
-	t0 = now_s();
-	for (i = 0; i < 20; i++) {
-		memcpy(cp, dn + (i % NF) * n, n * 2);
-		cp[i] ^= 1;
-	}
-	base = (now_s() - t0) / 20;
-	t0 = now_s();
-#pragma omp parallel num_threads(2) reduction(+:matched)
-	{
-		struct fc_work w;
-		struct fc_frame o;
-		int k;
-
-		if (fc_work_alloc(&w, &cfg) == 0) {
-#pragma omp for schedule(dynamic)
-			for (k = 0; k < REPS; k++) {
-				fc_frame_analyse(&cfg, &w, dn + (k % NF) * n,
-						 q[k % NF], t_tt, &o);
-				matched += o.n_match;
-			}
-			fc_work_free(&w);
+	for (p = 0; p < pairs; p++) {
+		t0 = now_s();
+		for (i = 0; i < 20; i++) {
+			memcpy(cp, dn + (i % NF) * n, n * 2);
+			cp[i] ^= 1;
 		}
+		base[p] = (now_s() - t0) / 20;
+		matched = 0;
+		t0 = now_s();
+#pragma omp parallel num_threads(2) reduction(+:matched)
+		{
+			struct fc_work w;
+			struct fc_frame o;
+			int k;
+
+			if (fc_work_alloc(&w, &cfg) == 0) {
+#pragma omp for schedule(dynamic)
+				for (k = 0; k < REPS; k++) {
+					fc_frame_analyse(&cfg, &w,
+						dn + (k % NF) * n, q[k % NF],
+						t_tt, &o);
+					matched += o.n_match;
+				}
+				fc_work_free(&w);
+			}
+		}
+		t[p] = (now_s() - t0) / REPS;
+		fps[p] = 1.0 / t[p];
 	}
-	t = (now_s() - t0) / REPS;
-	printf("flightcheck per-frame step, full frame, 2 threads: %.1f frames/s (%.4f s/frame = %.0f memcpy; target >= 10 frames/s), %.0f stars matched per frame\n",
-	       1.0 / t, t, t / base, (double)matched / REPS);
-	printf("(baseline: memcpy of the 10 MB frame = %.2f ms, this run)\n",
-	       base * 1e3);
+	snprintf(label, sizeof(label), "flightcheck per-frame step, full "
+		 "frame, 2 threads: %.1f frames/s (target >= 10 frames/s), "
+		 "%.0f stars matched per frame;\n  median (min-max) of %d "
+		 "alternating pairs, s/frame in memcpy:",
+		 bench_median(fps, pairs, &lo, &hi),
+		 (double)matched / REPS, pairs);
+	bench_ratio(label, t, base, pairs, 6, 1);
+	printf("(baseline: memcpy of the 10 MB frame = %.2f ms, this run, "
+	       "median)\n", 1e3 * bench_median(base, pairs, &lo, &hi));
 	free(e);
 	free(dn);
 	free(cp);

@@ -1,28 +1,23 @@
 /*
  * bench_frames.c - rendering and star detection of a full 2592 x 1944
  * frame (issue 13 targets: render <= 0.3 s, detect <= 0.2 s on one core),
- * printed as seconds and as ratios against memcpy of the same frame in
- * the same run, so the figures compare across loaded and idle machines.
+ * printed as seconds and as ratios against memcpy of the same frame timed
+ * right before, in alternating runs (memcpy, render, detect, memcpy, ...;
+ * bench_alt.h): median and min-max over the pairs, so the figures compare
+ * across loaded and idle machines and show their noise.
  */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "bench_alt.h"
 #include "frames_detect.h"
 #include "stray/frames.h"
 
 #define COLS 2592
 #define ROWS 1944
-#define REPS 5
 
-static double now_s(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
+#define now_s bench_now
 
 static double time_memcpy(uint16_t *a, uint16_t *b, size_t n)
 {
@@ -48,13 +43,14 @@ int main(void)
 	size_t n = (size_t)COLS * ROWS, ns;
 	float *e = malloc(n * sizeof(float));
 	uint16_t *dn = malloc(n * sizeof(uint16_t)), *cp = malloc(n * 2);
-	double base, t_r = 0, t_d[3] = { 0, 0, 0 }, t0;
+	double base[BENCH_MAX_PAIRS], t_r[BENCH_MAX_PAIRS], lo, hi;
+	double t_d[3][BENCH_MAX_PAIRS], t0, v[BENCH_MAX_PAIRS];
 	static const int which[3] = { FRAMES_DET_THESIS, FRAMES_DET_THRESHOLD,
 				      FRAMES_DET_THESIS | FRAMES_DET_THRESHOLD };
 	static const char *const name[3] = { "thesis window sum", "threshold",
 					     "both" };
-	char msg[128];
-	int i, k;
+	char msg[128], label[160];
+	int i, k, pairs = bench_pairs();
 
 	if (!e || !dn || !cp || !det)
 		return 1;
@@ -63,30 +59,42 @@ int main(void)
 	c.dark_e = 0.4;
 	c.read_noise_e = 3.0;
 	memset(dn, 1, n * 2);
-	base = time_memcpy(dn, cp, n);
-	for (i = 0; i < REPS; i++) {
+	for (i = 0; i < pairs; i++) {
+		base[i] = time_memcpy(dn, cp, n);
 		t0 = now_s();
 		stray_star_field_draw(&f, COLS, ROWS, (uint64_t)i, stars,
 				      20000, &ns);
 		stray_frame_expect(&c, stars, ns, e);
 		stray_frame_sample(&c, e, (uint64_t)i + 99, dn);
-		t_r += now_s() - t0;
+		t_r[i] = now_s() - t0;
 		for (k = 0; k < 3; k++) {
 			t0 = now_s();
 			if (frames_detect(dn, COLS, ROWS, &dc, which[k], out,
 					  NULL, msg, sizeof(msg)))
 				return 1;
-			t_d[k] += now_s() - t0;
+			t_d[k][i] = now_s() - t0;
 		}
 	}
-	t_r /= REPS;
-	printf("render full frame (%zu stars, 800 e-/px, noise): %.3f s = %6.0f memcpy (target <= 0.3 s)\n",
-	       ns, t_r, t_r / base);
-	for (k = 0; k < 3; k++)
-		printf("detect full frame (%-17s):          %.3f s = %6.0f memcpy (target <= 0.2 s)\n",
-		       name[k], t_d[k] / REPS, t_d[k] / REPS / base);
-	printf("(baseline: memcpy of the 10 MB frame = %.2f ms, this run)\n",
-	       base * 1e3);
+	printf("seconds and memcpy-times, median (min-max) of %d alternating "
+	       "pairs:\n", pairs);
+	for (i = 0; i < pairs; i++)
+		v[i] = t_r[i];
+	snprintf(label, sizeof(label), "render full frame (%zu stars, 800 "
+		 "e-/px, noise): %.3f s (target <= 0.3 s) =", ns,
+		 bench_median(v, pairs, &lo, &hi));
+	bench_ratio(label, t_r, base, pairs, 6, 0);
+	for (k = 0; k < 3; k++) {
+		for (i = 0; i < pairs; i++)
+			v[i] = t_d[k][i];
+		snprintf(label, sizeof(label), "detect full frame (%-17s): "
+			 "%.3f s (target <= 0.2 s) =", name[k],
+			 bench_median(v, pairs, &lo, &hi));
+		bench_ratio(label, t_d[k], base, pairs, 6, 0);
+	}
+	for (i = 0; i < pairs; i++)
+		v[i] = base[i];
+	printf("(baseline: memcpy of the 10 MB frame = %.2f ms, this run, "
+	       "median)\n", 1e3 * bench_median(v, pairs, &lo, &hi));
 	free(e);
 	free(dn);
 	free(cp);

@@ -1,55 +1,215 @@
 #!/usr/bin/env bash
-# make bench: strong scaling of stray-mpi from 1 to 2 ranks on this
-# machine and the per-rank efficiency, as ratios of times measured in
-# this run (best of 3 each: the machine is shared), against the
-# one-process tracer as baseline; and the communication per piece
-# (stray-mpi --stats).  Times are the traces' own ("seconds" of --json:
-# the trace, without MPI start-up and scene building), plus the whole
-# command's wall time for the start-up cost.
+# make bench: stray-mpi on this machine and its cost model.
+# 1. Strong scaling 1 -> 2 ranks of a 127-angle ref4 curve to ~1 % (the
+#    one-process tracer, 1 and 2 threads, as baseline), from ALTERNATING
+#    runs (t1, mpi1, mpi2, t2, t1, ...; BENCH_PAIRS rounds, default 3):
+#    median ratio and min-max, so load from others hits both sides.
+# 2. The cost model's inputs (bench/mpi_model.awk): fixed cost and
+#    per-path costs from 1-rank runs at R/4 (1 and 4 angle chunks), the
+#    message cost of a remote piece from a tiny many-piece trace at 1 and
+#    2 ranks, and a 64-design sweep at 1 and 2 ranks (alternated).
+# 3. The model's prediction for 2 ranks against the measurement, and its
+#    efficiency at 16, 64, 256 ranks with what limits it.
+# Times are the traces' own ("seconds" of --json / --stats: without MPI
+# start-up and scene building) unless "command" says otherwise.
 set -eu
+. bench/alt.sh
 build=${STRAY_BUILD:-build}
 stray=$build/bin/stray
 smpi=$build/bin/stray-mpi
-rays=${BENCH_MPI_RAYS:-600000}
+rays=${BENCH_MPI_RAYS:-1500000}
+srays=${BENCH_MPI_SWEEP_RAYS:-30000}
+angles=0:30:5,30:90:0.5
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-args=(trace --scene ref4 --rays "$rays" --seed 3 --json)
+tmp=${BENCH_TMP:-$(mktemp -d)}; [ -n "${BENCH_TMP:-}" ] || trap 'rm -rf "$tmp"' EXIT
+now() { date +%s.%N; }
+sub() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.6g", a - b }'; }
+div() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.6g", a / b }'; }
 
-# best_of CMD...: prints "trace_seconds wall_seconds" (minimum of 3 runs)
-best_of() {
-	local best="" wall="" i t0 t1 s w
-	for i in 1 2 3; do
-		t0=$(date +%s.%N)
-		"$@" --out "$tmp/c.csv" > "$tmp/j.json" 2> "$tmp/e.txt"
-		t1=$(date +%s.%N)
-		s=$(sed -n 's/.*"seconds":[[:space:]]*\([0-9.e+-]*\).*/\1/p' "$tmp/j.json")
-		w=$(awk -v a="$t1" -v b="$t0" 'BEGIN { print a - b }')
-		best=$(awk -v a="$s" -v b="${best:-1e99}" 'BEGIN { print (a < b ? a : b) }')
-		wall=$(awk -v a="$w" -v b="${wall:-1e99}" 'BEGIN { print (a < b ? a : b) }')
-	done
-	echo "$best $wall"
+# run TAG CMD...: one trace; appends its trace seconds to $tmp/TAG.s,
+# the command's wall time to $tmp/TAG.w and its CPU time (user + sys,
+# all its processes) to $tmp/TAG.c; the curve to $tmp/TAG.csv.
+run() {
+	local tag=$1 t0 t1; shift
+	t0=$(now)
+	/usr/bin/time -o "$tmp/cpu" -f "%U %S" "$@" --out "$tmp/$tag.csv" \
+		> "$tmp/j.json" 2> "$tmp/$tag.err"
+	t1=$(now)
+	awk '{ printf "%s ", $1 + $2 }' "$tmp/cpu" >> "$tmp/$tag.c"
+	sed -n 's/.*"seconds":[[:space:]]*\([0-9.e+-]*\).*/\1/p' "$tmp/j.json" \
+		| head -n 1 | tr '\n' ' ' >> "$tmp/$tag.s"
+	sub "$t1" "$t0" >> "$tmp/$tag.w"; echo -n " " >> "$tmp/$tag.w"
 }
+vals() { cat "$tmp/$1.${2:-s}"; }
+med() { spread $(vals "$@") | cut -d' ' -f1; }
+stat() { sed -n "s/.* $2 \([0-9.]*\).*/\1/p" "$tmp/$1.err" | tail -n 1; }
 
-read -r t_ser w_ser < <(best_of "$stray" "${args[@]}" --threads 1)
-cp "$tmp/c.csv" "$tmp/serial.csv"
-read -r t_thr w_thr < <(best_of "$stray" "${args[@]}" --threads 2)
-read -r t_1 w_1 < <(best_of mpirun -n 1 "$smpi" --stats "${args[@]}")
-read -r t_2 w_2 < <(best_of mpirun -n 2 "$smpi" --stats "${args[@]}")
-cmp -s "$tmp/c.csv" "$tmp/serial.csv" && same=yes || same=NO
-stats=$(grep 'stray-mpi: stats' "$tmp/e.txt" | tail -n 1)
-field() { echo "$stats" | sed -n "s/.* $1 \([0-9.]*\).*/\1/p"; }
+args=(trace --scene ref4 --angles "$angles" --rays "$rays" --seed 3 --json)
+for ((i = 0; i < pairs; i++)); do
+	run t1 "$stray" "${args[@]}" --threads 1
+	run n1 mpirun -n 1 "$smpi" --stats "${args[@]}"
+	run n2 mpirun -n 2 "$smpi" --stats "${args[@]}"
+	run t2 "$stray" "${args[@]}" --threads 2
+done
+# the same bytes but for the "# command:" line
+body() { grep -v '^# command:' "$1"; }
+cmp -s <(body "$tmp/n2.csv") <(body "$tmp/t1.csv") && same=yes || same=NO
+worst=$(awk -F, '!/^#/ && $2 + 0 > 0 && $1 + 0 > 0 { r = $3 / $2; if (r > w) w = r }
+	END { printf "%.2f", 100 * w }' "$tmp/t1.csv")
+echo "ref4, $rays paths, 127 angles (worst sigma/alpha $worst %), seed 3; 2 cores shared"
+echo "trace seconds, median (min-max) of $pairs alternating rounds:"
+for t in t1 t2 n1 n2; do
+	read -r m lo hi < <(spread $(vals $t))
+	printf '  %-44s %7.2f s (%.2f-%.2f)\n' "$(case $t in
+		t1) echo "stray trace --threads 1 (baseline)";;
+		t2) echo "stray trace --threads 2";;
+		n1) echo "mpirun -n 1 stray-mpi";;
+		n2) echo "mpirun -n 2 stray-mpi";; esac)" "$m" "$lo" "$hi"
+done
+show "stray-mpi 1 rank / baseline (farm overhead)" "$(vals n1)" "$(vals t1)"
+show "speedup 1 -> 2 ranks (t1/t2)" "$(vals n1)" "$(vals n2)"
+show "2 ranks vs baseline" "$(vals t1)" "$(vals n2)"
+show "2 threads vs baseline (no MPI)" "$(vals t1)" "$(vals t2)"
+show "2 ranks vs 2 threads (ranks x threads)" "$(vals t2)" "$(vals n2)"
+show "command wall, 2 ranks vs baseline (with start-up)" "$(vals t1 w)" "$(vals n2 w)"
+echo "2-rank curve identical to the 1-process curve: $same"
+echo "messages (2 ranks): $(stat n2 bytes_per_remote_piece) bytes per main piece," \
+	"$(stat n2 pieces) pieces ($(stat n2 remote_pieces) remote), pilot" \
+	"$(stat n2 pilot_bytes_per_remote_piece) bytes per piece, job + guide $(stat n2 job_bytes) bytes"
 
-r() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", a / b }'; }
-echo "ref4, $rays paths, default angles; best of 3; 2 cores shared"
-echo "baseline: stray trace --threads 1: ${t_ser} s (trace), ${w_ser} s (command)"
-echo "stray-mpi 1 rank / baseline (farm overhead):     $(r "$t_1" "$t_ser")"
-echo "strong scaling, speedup 1 -> 2 ranks (t1/t2):     $(r "$t_1" "$t_2")"
-echo "per-rank efficiency (speedup / 2):               $(r "$(r "$t_1" "$t_2")" 2)"
-echo "2 ranks vs baseline (t_baseline/t2):             $(r "$t_ser" "$t_2")"
-echo "2 threads vs baseline (same machine, no MPI):     $(r "$t_ser" "$t_thr")"
-echo "with start-up, 2 ranks vs baseline (command wall): $(r "$w_ser" "$w_2")"
-echo "2-rank curve identical to the 1-process curve:    $same"
-echo "communication (2 ranks): main pass $(field bytes_per_remote_piece) bytes per piece" \
-     "($(field pieces) pieces, $(field remote_pieces) remote);" \
-     "pilot $(field pilot_bytes_per_remote_piece) bytes per piece;" \
-     "job + guide $(field job_bytes) bytes per trace"
+# --- the model's inputs ---------------------------------------------
+# T(R, K) = Ts + 1.1 R (alpha K + beta) at 1 rank (the pilot is a tenth
+# of the paths): Ts from a tiny trace (12800 paths) against the full one,
+# alpha from 1 against 4 angle chunks at R/4.  The message cost of a
+# remote piece mm from a tiny trace of many pieces (6400 paths, no
+# pilot, 16 chunks: 1024 pieces of 6 paths x 8 angles) at 1 and 2 ranks:
+# rank 1's time per piece beyond a piece's compute.  All alternated.
+q=$((rays / 4))
+a1=(trace --scene ref4 --angles "$angles" --seed 3 --json)
+for ((i = 0; i < pairs; i++)); do
+	run ts1 mpirun -n 1 "$smpi" "${a1[@]}" --rays 12800
+	run qk1 mpirun -n 1 "$smpi" "${a1[@]}" --rays "$q"
+	run qk4 mpirun -n 1 "$smpi" --angle-chunks 4 "${a1[@]}" --rays "$q"
+	run tn1 mpirun -n 1 "$smpi" --stats --angle-chunks 16 "${a1[@]}" --rays 6400
+	run tn2 mpirun -n 2 "$smpi" --stats --angle-chunks 16 "${a1[@]}" --rays 6400
+done
+# --- the 64-design sweep --------------------------------------------
+grid=(--grid edge_radius=0,0.005,0.01,0.015,0.02,0.03,0.04,0.05
+      --grid reflectance=0.02,0.03,0.04,0.05,0.06,0.07,0.08,0.09)
+sweep() {	# sweep TAG N: one 64-design sweep on N ranks, fresh state
+	local t0 t1
+	rm -rf "$tmp/st"
+	t0=$(now)
+	/usr/bin/time -o "$tmp/cpu" -f "%U %S" \
+	mpirun -n "$2" "$smpi" --stats sweep --scene ref4 "${grid[@]}" \
+		--rays "$srays" --seed 3 --state "$tmp/st" --out "$tmp/$1.csv" \
+		> /dev/null 2> "$tmp/$1.err"
+	t1=$(now)
+	sub "$t1" "$t0" >> "$tmp/$1.w"; echo -n " " >> "$tmp/$1.w"
+	awk '{ printf "%s ", $1 + $2 }' "$tmp/cpu" >> "$tmp/$1.c"
+	awk '/stray-mpi: stats/ { s += $NF } END { printf "%.6g ", s }' \
+		"$tmp/$1.err" >> "$tmp/$1.s"
+}
+for ((i = 0; i < pairs; i++)); do sweep s1 1; sweep s2 2; done
+Ta=$(med n1); T0=$(med ts1); Tb=$(med qk1); Tc=$(med qk4)
+read -r Ts ab < <(awk -v a="$Ta" -v z="$T0" -v r="$rays" 'BEGIN {
+	ab = (a - z) / (1.1 * (r - 12800)); ts = z - 1.1 * 12800 * ab;
+	printf "%.6g %.6g\n", (ts > 0 ? ts : 0), ab }')
+alpha=$(awk -v b="$Tb" -v c="$Tc" -v q="$q" 'BEGIN {
+	a = (c - b) / (1.1 * q * 3); printf "%.6g", (a > 0 ? a : 0) }')
+beta=$(sub "$ab" "$alpha")
+# rank 1 did pr of the tiny trace's 1024 pieces in about (T2 - Ts - b):
+# per piece that, less a piece's compute (T1 - Ts) / 1024 (measured: the
+# polling naps of rank 0 and the worker, farm_nap, 1 ms, dominate it).
+# A pilot piece carries ~1 MB (the guide's cells): mp = mm + its bytes
+# at bw (1 GB/s assumed, shared memory or InfiniBand do better), which
+# rank 0 also receives and adds one at a time (the model's bound).
+bw=${BENCH_MPI_BW:-1e9}
+Tt1=$(med tn1); Tt2=$(med tn2); pr=$(stat tn2 remote_pieces)
+# mpirun and MPI_Init: the 1- and 2-rank commands' wall beyond the trace
+up1=$(sub "$(med n1 w)" "$(med n1)"); up2=$(sub "$(med n2 w)" "$(med n2)")
+# per design on rank 0 outside the traces (scene build, judging, files)
+Tser=$(awk -v w="$(med s1 w)" -v t="$(med s1)" -v u="$up1" 'BEGIN {
+	x = (w - t - u) / 64; printf "%.6g", (x > 0 ? x : 0) }')
+# a worker's start on a job: it builds the scene, as rank 0 does in Tser
+b=$Tser
+mm=$(awk -v t1="$Tt1" -v t2="$Tt2" -v s="$Ts" -v b="$b" -v pr="$pr" 'BEGIN {
+	x = (t2 - s - b) / (pr > 0 ? pr : 1) - (t1 - s) / 1024;
+	printf "%.6g", (x > 0 ? x : 0) }')
+# bytes per piece, from the full 2-rank trace
+bm=$(stat n2 bytes_per_remote_piece); bp=$(stat n2 pilot_bytes_per_remote_piece)
+mp=$(awk -v m="$mm" -v y="$bp" -v bw="$bw" 'BEGIN { printf "%.6g", m + y / bw }')
+echo "model inputs (medians; bench/mpi_model.awk, mpi/README.md):"
+printf '  fixed farm cost per trace Ts %.3f s (12800-path trace: %.3f s)\n' "$Ts" "$T0"
+printf '  per path: tracing alpha %.3g s (repeated per angle chunk), connections to 127 angles beta %.3g s\n' "$alpha" "$beta"
+printf '  message cost per remote piece: main mm %.3g s (1024-piece trace: 1 rank %.3f s, 2 ranks %.3f s, %d remote)\n' "$mm" "$Tt1" "$Tt2" "$pr"
+printf '    pilot mp %.3g s (mm + %.0f bytes at %.3g bytes/s, assumed)\n' "$mp" "$bp" "$bw"
+printf '  worker start on a job (scene build) b %.3f s (= the sweep serial part per design); command start-up (mpirun, MPI_Init) %.2f s at 1 rank, %.2f s at 2\n' "$b" "$up1" "$up2"
+
+model() { awk -f bench/mpi_model.awk -v Ts="$Ts" -v alpha="$alpha" \
+	-v beta="$beta" -v mm="$mm" -v mp="$mp" -v bm="$bm" -v bp="$bp" -v bw="$bw" -v b="$b" -v B=64 "$@"; }
+pred2=$(model -v Tser=0 -v R="$rays" -v angles=127 -v ranks=2 | awk 'NR == 2 { print $2 }')
+meas2=$(med n2)
+echo "check, trace at 2 ranks on 2 free cores: model $(printf %.2f "$pred2") s, measured $(printf %.2f "$meas2") s" \
+	"(median), error $(awk -v p="$pred2" -v m="$meas2" 'BEGIN { printf "%+.1f", 100 * (p / m - 1) }') %"
+# The machine is shared: the 1-rank run got share1 = cpu / wall of a
+# core, so others kept X = 2 / share1 - 1 cores' worth of threads
+# runnable; two ranks then get share2 = min(1, 2 / (2 + X)) each.  Per
+# pair: predicted T2 = T1 (model T2 / model T1) share1 / share2.
+pt1=$(model -v Tser=0 -v R="$rays" -v angles=127 -v ranks=1 | awk 'NR == 2 { print $2 }')
+loaded=$(awk -v t1="$(vals n1)" -v w1="$(vals n1 w)" -v c1="$(vals n1 c)" \
+	-v t2="$(vals n2)" -v g="$(div "$pred2" "$pt1")" 'BEGIN {
+	n = split(t1, a, " "); split(w1, w, " "); split(c1, c, " ");
+	split(t2, b, " ");
+	for (i = 1; i <= n; i++) {
+		s1 = c[i] / w[i]; if (s1 > 1) s1 = 1;
+		x = 2 / s1 - 1; s2 = 2 / (2 + x); if (s2 > 1) s2 = 1;
+		printf "%.4g:%.4g:%.3g ", a[i] * g * s1 / s2, b[i], x
+	} }')
+pl="" ml="" xl=""
+for v in $loaded; do
+	IFS=: read -r p2 m2 x <<< "$v"; pl+="$p2 "; ml+="$m2 "; xl+="$x "
+done
+read -r xm xlo xhi < <(spread $xl)
+printf 'check, trace at 2 ranks under the load measured in each pair (others: %.2f cores busy, %.2f-%.2f):\n' "$xm" "$xlo" "$xhi"
+show "  model / measured (target within 10 %)" "$pl" "$ml"
+echo "model, 127-angle curve at $rays paths (efficiency against the model's 1 rank):"
+model -v Tser=0 -v R="$rays" -v angles=127 -v ranks="1 2 16 64 256"
+
+cmp -s <(body "$tmp/s1.csv") <(body "$tmp/s2.csv") && same=yes || same=NO
+echo "sweep, 64 designs x $srays paths, default angles (67), seed 3:"
+printf '  1 rank: command %.1f s, traces %.1f s; 2 ranks: command %.1f s, traces %.1f s (medians)\n' \
+	"$(med s1 w)" "$(med s1)" "$(med s2 w)" "$(med s2)"
+show "  sweep speedup 1 -> 2 ranks, command" "$(vals s1 w)" "$(vals s2 w)"
+show "  sweep speedup 1 -> 2 ranks, traces only" "$(vals s1)" "$(vals s2)"
+echo "  2-rank table identical to the 1-rank table: $same"
+# the sweep's traces at 67 angles: connections scale with the angles;
+# alpha and beta then scaled to the sweep's own 1-rank trace time
+read -r salpha sbeta < <(awk -v a="$alpha" -v b="$beta" -v t="$(med s1)" \
+	-v s="$Ts" -v r="$srays" 'BEGIN { b *= 67 / 127;
+	f = (t / 64 - s) / (1.1 * r * (a + b)); if (f <= 0) f = 1;
+	printf "%.6g %.6g\n", a * f, b * f }')
+smodel() { awk -f bench/mpi_model.awk -v Ts="$Ts" -v alpha="$salpha" \
+	-v beta="$sbeta" -v mm="$mm" -v mp="$mp" -v bm="$bm" -v bp="$bp" -v bw="$bw" -v b="$b" -v B=64 -v Tser="$Tser" -v D=64 \
+	-v angles=67 "$@"; }
+pred2=$(smodel -v R="$srays" -v ranks=2 | awk 'NR == 2 { print $2 }')
+meas2=$(sub "$(med s2 w)" "$up2")
+printf '  per-design serial part on rank 0: %.3f s; per path alpha %.3g s, beta %.3g s (67 angles)\n' "$Tser" "$salpha" "$sbeta"
+echo "check, sweep at 2 ranks on 2 free cores: model $(printf %.1f "$pred2") s, measured $(printf %.1f "$meas2") s" \
+	"(command less start-up), error $(awk -v p="$pred2" -v m="$meas2" 'BEGIN { printf "%+.1f", 100 * (p / m - 1) }') %"
+pt1=$(smodel -v R="$srays" -v ranks=1 | awk 'NR == 2 { print $2 }')
+loaded=$(awk -v w1="$(vals s1 w)" -v c1="$(vals s1 c)" -v w2="$(vals s2 w)" \
+	-v u1="$up1" -v u2="$up2" -v g="$(div "$pred2" "$pt1")" 'BEGIN {
+	n = split(w1, w, " "); split(c1, c, " "); split(w2, b, " ");
+	for (i = 1; i <= n; i++) {
+		s1 = c[i] / w[i]; if (s1 > 1) s1 = 1;
+		x = 2 / s1 - 1; s2 = 2 / (2 + x); if (s2 > 1) s2 = 1;
+		printf "%.4g:%.4g ", (w[i] - u1) * g * s1 / s2, b[i] - u2
+	} }')
+pl="" ml=""
+for v in $loaded; do IFS=: read -r p2 m2 <<< "$v"; pl+="$p2 "; ml+="$m2 "; done
+show "check, sweep at 2 ranks under each pair's load, model / measured" "$pl" "$ml"
+for r in "$srays" 300000; do
+	echo "model, 64-design sweep at $r paths per design:"
+	smodel -v R="$r" -v ranks="1 2 16 64 256"
+done

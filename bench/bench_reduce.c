@@ -5,13 +5,17 @@
  * groups, eq. 3.4-3.14, ghosts) over the sweep's bytes, with and
  * without the hash check, and its two largest per-frame steps alone:
  * the accumulation (eq. 3.4-3.6) and SHA-256.  Those two bound what two
- * cores can reach with the check on.
+ * cores can reach with the check on.  Every figure is taken in
+ * alternating rounds (memcpy, steps, reduce, memcpy, ...; BENCH_PAIRS,
+ * bench_alt.h) and printed as the median and min-max of its ratio to
+ * the memcpy of the same round.
  */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
+#include "bench_alt.h"
 #include "stray/reduce_response.h"
 #include "stray/sweep_store.h"
 #include "synth_sweep.h"
@@ -19,18 +23,11 @@
 
 #define ROWS 1944
 #define COLS 2592
-#define RUNS 3
 #define ANGLES 4		/* 2 darks, then 3 FULL + 3 AMBIENT a visit */
 #define REPEATS 3		/* frames averaged per group (thesis §3.2) */
 #define STREAM_BYTES ((size_t)256 << 20)	/* 8x the L3 of this VM */
 
-static double now_s(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
+#define now_s bench_now
 
 /* Best of 5 copies of n bytes, MB/s. */
 static double memcpy_mb_s(size_t n)
@@ -107,53 +104,32 @@ static double accum_mb_s(void)
 	return (double)(n * 2) / best / 1e6;
 }
 
-struct timing {
-	double best, cpu, first, cpu_first;
-	int rc;
-};
-
-/* Best of RUNS, as the memcpy baseline is a best of 5; the first run is
- * kept too: its fresh memory is the one a single `stray reduce` pays
- * for (on a VM the host's page zeroing makes it vary most). */
-static void time_reduce(const char *dir, int verify, struct timing *t,
-			struct stray_reduce_sweep_result *r)
+/* One `stray reduce` of dir: wall and CPU seconds; 0 or its error. */
+static int time_reduce(const char *dir, int verify, double *wall,
+		       double *cpu, struct stray_reduce_sweep_result *r)
 {
 	struct stray_reduce_sweep_opts o;
 	struct stray_error err;
-	int k;
+	double t0 = now_s();
+	clock_t c0 = clock();
+	int rc;
 
 	stray_reduce_sweep_opts_default(&o);
 	o.verify_sha256 = verify;
-	t->best = t->cpu = 1e30;
-	t->rc = 0;
-	for (k = 0; k < RUNS; k++) {
-		double t0 = now_s(), wall, cpu;
-		clock_t c0 = clock();
-
-		stray_error_clear(&err);
-		if (k)
-			stray_reduce_sweep_result_free(r);
-		t->rc |= stray_reduce_sweep(dir, &o, r, &err);
-		wall = now_s() - t0;
-		cpu = (double)(clock() - c0) / CLOCKS_PER_SEC;
-		if (k == 0)
-			t->first = wall, t->cpu_first = cpu;
-		t->best = wall < t->best ? wall : t->best;
-		t->cpu = cpu < t->cpu ? cpu : t->cpu;
-	}
+	stray_error_clear(&err);
+	rc = stray_reduce_sweep(dir, &o, r, &err);
+	*wall = now_s() - t0;
+	*cpu = (double)(clock() - c0) / CLOCKS_PER_SEC;
+	return rc;
 }
 
-static void print_reduce(const char *what, const struct timing *t,
-			 double mb, double copy)
+/* MB/s of mb bytes in t[i] seconds, into out[i]. */
+static void rates(double mb, const double *t, double *out, int n)
 {
-	printf("stray reduce, full frames (%s): %.0f MB/s = %.3f x memcpy "
-	       "(best of %d; %s)\n", what, mb / t->best, mb / t->best / copy,
-	       RUNS, t->rc == 0 ? "ok" : "FAILED");
-	/* on a shared machine the wall clock counts other processes too */
-	printf("  per CPU second: %.0f MB/s = %.3f x memcpy (cpu %.2f s, "
-	       "wall %.2f s); first run %.0f MB/s = %.3f x memcpy\n",
-	       mb / t->cpu, mb / t->cpu / copy, t->cpu, t->best,
-	       mb / t->first, mb / t->first / copy);
+	int i;
+
+	for (i = 0; i < n; i++)
+		out[i] = mb / t[i];
 }
 
 int main(void)
@@ -161,9 +137,15 @@ int main(void)
 	static struct synth_truth truth;
 	struct synth_config c;
 	struct stray_reduce_sweep_result r;
-	struct timing hashed, plain;
 	char dir[] = "/tmp/stray_bench_XXXXXX", cmd[64];
-	double mb, copy, stream, acc, sha, ceiling;
+	double copy[BENCH_MAX_PAIRS], stream[BENCH_MAX_PAIRS];
+	double acc[BENCH_MAX_PAIRS], sha[BENCH_MAX_PAIRS];
+	double sha2[BENCH_MAX_PAIRS], ceiling[BENCH_MAX_PAIRS];
+	double wall[2][BENCH_MAX_PAIRS], cpu[2][BENCH_MAX_PAIRS];
+	double v[BENCH_MAX_PAIRS], mb = 0.0, lo, hi;
+	int pairs = bench_pairs(), i, k, rc = 0;
+	static const char *const what[2] = { "I/O, all passes, --no-verify",
+					     "I/O, SHA-256, all passes" };
 
 	if (!mkdtemp(dir))
 		return 1;
@@ -177,37 +159,60 @@ int main(void)
 	c.ghosts = 0;
 	if (synth_write_sweep(dir, &c, &truth) != 0)
 		return 1;
-	copy = memcpy_mb_s((size_t)ROWS * COLS * 2);
-	stream = memcpy_mb_s(STREAM_BYTES);
-	acc = accum_mb_s();
-	sha = sha256_mb_s();
-	time_reduce(dir, 1, &hashed, &r);
-	stray_reduce_sweep_result_free(&r);
-	time_reduce(dir, 0, &plain, &r);
-	/* the sweep's bytes, each frame counted once (its 16-bit pixels):
-	 * the darks pass 2 needs come from memory, not read again */
-	mb = (double)r.n_frames * ROWS * COLS * 2 / 1e6;
-	/* every frame hashed and accumulated, nothing else, the two
-	 * spread perfectly over 2 cores */
-	ceiling = 2.0 / (1.0 / sha + 1.0 / acc);
-	printf("memcpy of one frame (baseline, this run): %8.0f MB/s\n", copy);
-	printf("memcpy of %zu MB (past the caches):      %8.0f MB/s = %.2f x "
-	       "memcpy\n", STREAM_BYTES >> 20, stream, stream / copy);
-	printf("accumulate one frame (eq. 3.4-3.6):       %8.0f MB/s = %.3f x "
-	       "memcpy\n", acc, acc / copy);
-	printf("SHA-256 of one frame (OpenSSL):           %8.0f MB/s = %.3f x "
-	       "memcpy\n", sha, sha / copy);
-	printf("  the hash alone on both cores:           %8.0f MB/s = %.3f x "
-	       "memcpy (nothing else done)\n", 2.0 * sha, 2.0 * sha / copy);
-	printf("  hash + accumulate alone on 2 cores:     %8.0f MB/s = %.3f x "
-	       "memcpy (a ceiling with the check on)\n", ceiling,
-	       ceiling / copy);
-	printf("sweep: %zu frames, %.0f MB\n", r.n_frames, mb);
-	print_reduce("I/O, SHA-256, all passes", &hashed, mb, copy);
-	print_reduce("I/O, all passes, --no-verify", &plain, mb, copy);
+	for (i = 0; i < pairs; i++) {
+		copy[i] = memcpy_mb_s((size_t)ROWS * COLS * 2);
+		stream[i] = memcpy_mb_s(STREAM_BYTES);
+		acc[i] = accum_mb_s();
+		sha[i] = sha256_mb_s();
+		sha2[i] = 2.0 * sha[i];
+		/* every frame hashed and accumulated, nothing else, the
+		 * two spread perfectly over 2 cores */
+		ceiling[i] = 2.0 / (1.0 / sha[i] + 1.0 / acc[i]);
+		for (k = 1; k >= 0; k--) {
+			if (i || k == 0)
+				stray_reduce_sweep_result_free(&r);
+			rc |= time_reduce(dir, k, &wall[k][i], &cpu[k][i], &r);
+		}
+		/* the sweep's bytes, each frame counted once (its 16-bit
+		 * pixels): the darks pass 2 needs come from memory */
+		mb = (double)r.n_frames * ROWS * COLS * 2 / 1e6;
+	}
+	for (i = 0; i < pairs; i++)
+		v[i] = copy[i];
+	printf("memcpy of one frame (baseline): %.0f MB/s; the rest as x "
+	       "memcpy,\nmedian (min-max) of %d alternating rounds:\n",
+	       bench_median(v, pairs, &lo, &hi), pairs);
+	bench_ratio("memcpy of 256 MB (past the caches):       ", stream,
+		    copy, pairs, 7, 3);
+	bench_ratio("accumulate one frame (eq. 3.4-3.6):       ", acc, copy,
+		    pairs, 7, 3);
+	bench_ratio("SHA-256 of one frame (OpenSSL):           ", sha, copy,
+		    pairs, 7, 3);
+	bench_ratio("  the hash alone on both cores:           ", sha2, copy,
+		    pairs, 7, 3);
+	bench_ratio("  hash + accumulate alone on 2 cores:     ", ceiling,
+		    copy, pairs, 7, 3);
+	printf("sweep: %zu frames, %.0f MB (%s)\n", r.n_frames, mb,
+	       rc == 0 ? "ok" : "FAILED");
+	for (k = 1; k >= 0; k--) {
+		double m[BENCH_MAX_PAIRS], mc[BENCH_MAX_PAIRS];
+		char label[128];
+
+		rates(mb, wall[k], m, pairs);
+		rates(mb, cpu[k], mc, pairs);
+		for (i = 0; i < pairs; i++)
+			v[i] = m[i];
+		snprintf(label, sizeof(label), "stray reduce, full frames "
+			 "(%s): %.0f MB/s =", what[k],
+			 bench_median(v, pairs, &lo, &hi));
+		bench_ratio(label, m, copy, pairs, 6, 3);
+		/* on a shared machine the wall clock counts others too */
+		bench_ratio("  per CPU second, x memcpy:", mc, copy, pairs,
+			    6, 3);
+	}
 	printf("workspace: %.1f bytes per pixel\n",
 	       (double)r.workspace_bytes / ((double)ROWS * COLS));
 	stray_reduce_sweep_result_free(&r);
 	snprintf(cmd, sizeof(cmd), "rm -rf '%s'", dir);
-	return system(cmd) != 0 || hashed.rc != 0 || plain.rc != 0;
+	return system(cmd) != 0 || rc != 0;
 }

@@ -6,7 +6,10 @@
  * fraction of the raw rate.  With --peer, also the agreement with the
  * Mitsuba 3 reference curve (../shared/peers/ref4_mitsuba.csv) in
  * combined standard errors; Mitsuba's own timing is run by peer-check
- * when it is installed (see ../shared/peers/README.md).
+ * when it is installed (see ../shared/peers/README.md).  Every ratio
+ * comes from alternating runs (baseline, figure, baseline, ...; ours,
+ * Mitsuba, ours, ...: bench_alt.h), printed as the median and min-max of
+ * the pairs: on a shared machine one-shot ratios move by 1.5x.
  */
 #include <math.h>
 #include <stdio.h>
@@ -17,6 +20,7 @@
 #include <cJSON.h>
 #include <sys/stat.h>
 
+#include "bench_alt.h"
 #include "stray/curve_io.h"
 #include "tracer/angles.h"
 #include "tracer/obj_export.h"
@@ -33,13 +37,7 @@ static double cpu_s(void)
 	return (double)clock() / CLOCKS_PER_SEC;
 }
 
-static double now_s(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
+#define now_s bench_now
 
 /* A random ray inside the baffle: uniform over its cross-section and
  * length, isotropic direction (the raw rates' incoherent rays). */
@@ -196,15 +194,19 @@ static int trace(const struct tracer_scene *s, const double *th, size_t n,
 	return tracer_trace(s, &o, r, &err);
 }
 
-/* The default curve to 1 %: a pilot run sizes the final one; the raw
- * cast rate is measured again right after, and the two averaged. */
+/* The default curve to 1 %: a pilot run sizes the final one, then the
+ * raw cast rate and the curve alternate, pairs times. */
 static int bench_curve(const struct tracer_scene *s, int threads,
-		       double raw)
+		       uint64_t *need_out)
 {
 	struct tracer_result r;
-	double *th, worst, at = 0.0, cpu0;
+	double *th, worst = 0.0, at = 0.0, cpu0, lo, hi;
+	double raw[BENCH_MAX_PAIRS], rate[BENCH_MAX_PAIRS];
+	double wall[BENCH_MAX_PAIRS], cpu[BENCH_MAX_PAIRS];
+	double paths[BENCH_MAX_PAIRS];
 	size_t n;
 	uint64_t need;
+	int i, pairs = bench_pairs();
 
 	if (tracer_angles_parse(TRACER_ANGLES_DEFAULT, &th, &n, NULL))
 		return 1;
@@ -213,27 +215,36 @@ static int bench_curve(const struct tracer_scene *s, int threads,
 	worst = worst_rel_sigma(&r, &at);
 	/* sigma falls as 1/sqrt(N); aim a little under 1 % */
 	need = (uint64_t)(500000 * pow(worst / 0.0098, 2.0));
+	*need_out = need;
 	tracer_result_free(&r);
-	cpu0 = cpu_s();
-	if (trace(s, th, n, need, threads, &r))
-		return 1;
-	cpu0 = cpu_s() - cpu0;
-	raw = 0.5 * (raw + raw_casts_per_s(s, 2000000));
-	worst = worst_rel_sigma(&r, &at);
-	printf("ref4 default curve (%zu angles), %d threads, %llu paths:\n"
-	       "  wall %.1f s (cpu %.1f s) to worst sigma/alpha %.2f %% "
-	       "(at %.1f deg)\n"
-	       "  %.3g paths/s, %.3g casts/s = %.2f x the raw incoherent "
-	       "rate (%.3g casts/s/thread)\n",
-	       n, threads, (unsigned long long)need, r.seconds, cpu0,
-	       100 * worst,
-	       at, need / r.seconds, r.casts / r.seconds,
-	       r.casts / r.seconds / (raw * threads), raw);
+	for (i = 0; i < pairs; i++) {
+		raw[i] = raw_casts_per_s(s, 1000000) * threads;
+		cpu0 = cpu_s();
+		if (trace(s, th, n, need, threads, &r))
+			return 1;
+		cpu[i] = cpu_s() - cpu0;
+		wall[i] = r.seconds;
+		rate[i] = r.casts / r.seconds;
+		paths[i] = need / r.seconds;
+		worst = worst_rel_sigma(&r, &at);
+		tracer_result_free(&r);
+	}
+	printf("ref4 default curve (%zu angles), %d threads, %llu paths, "
+	       "worst sigma/alpha %.2f %% (at %.1f deg);\n  median (min-max) "
+	       "of %d alternating pairs (raw casts, curve):\n", n, threads,
+	       (unsigned long long)need, 100 * worst, at, pairs);
+	/* one median per statement: lo and hi are shared */
+	printf("  wall %.2f s", bench_median(wall, pairs, &lo, &hi));
+	printf(" (%.2f-%.2f)", lo, hi);
+	printf(", cpu %.2f s", bench_median(cpu, pairs, &lo, &hi));
+	printf(", %.3g paths/s\n", bench_median(paths, pairs, &lo, &hi));
+	bench_ratio("  casts/s against the raw incoherent rate x threads:",
+		    rate, raw, pairs, 6, 3);
 	printf("  Mitsuba 3 (peers/README.md, reciprocal, same machine class):"
 	       " 0.5-1.6 s per angle for 1 %%,\n  i.e. %.0f-%.0f s for this "
-	       "curve: ratio %.1f-%.1f x\n", 0.5 * n, 1.6 * n,
-	       0.5 * n / r.seconds, 1.6 * n / r.seconds);
-	tracer_result_free(&r);
+	       "curve: ratio %.1f-%.1f x (median wall)\n", 0.5 * n, 1.6 * n,
+	       0.5 * n / bench_median(wall, pairs, &lo, &hi),
+	       1.6 * n / bench_median(wall, pairs, &lo, &hi));
 	free(th);
 	return 0;
 }
@@ -353,13 +364,19 @@ static double mitsuba_time(double theta, double rel_err)
 	return t;
 }
 
-/* Time to 1 % at 30/45/60/80 deg: Mitsuba per angle vs ours at once. */
-static int race_mitsuba(const struct tracer_scene *s, int threads)
+/* Time to 1 % at 30/45/60/80 deg: Mitsuba per angle vs ours at once,
+ * and Mitsuba's time scaled to 127 angles vs our 127-angle curve to
+ * 1 % (need paths), alternating (theirs, ours, theirs, ...). */
+static int race_mitsuba(const struct tracer_scene *s, int threads,
+			uint64_t need127)
 {
-	double th[] = { 0, 30, 45, 60, 80 }, mi = 0.0, worst, at = 0.0;
+	double th[] = { 0, 30, 45, 60, 80 }, worst, at = 0.0, lo, hi, *t127;
+	double mi[BENCH_MAX_PAIRS], ours[BENCH_MAX_PAIRS];
+	double mi127[BENCH_MAX_PAIRS], curve[BENCH_MAX_PAIRS];
+	size_t n127;
 	struct tracer_result r;
 	uint64_t need;
-	int k;
+	int i, k, pairs = bench_pairs();
 
 	if (system("python3 -c 'import mitsuba' >/dev/null 2>&1") != 0 ||
 	    export_for_peer(s)) {
@@ -367,32 +384,49 @@ static int race_mitsuba(const struct tracer_scene *s, int threads)
 		       "install libllvm19): race skipped\n");
 		return 0;
 	}
-	for (k = 1; k < 5; k++) {
-		double t = mitsuba_time(th[k], 0.01);
-
-		if (t < 0.0) {
-			printf("Mitsuba run failed at %g deg: race skipped\n",
-			       th[k]);
-			return 0;
-		}
-		printf("  Mitsuba 3 reciprocal, %4.0f deg: %.2f s to 1 %%\n",
-		       th[k], t);
-		mi += t;
-	}
+	if (tracer_angles_parse(TRACER_ANGLES_DEFAULT, &t127, &n127, NULL))
+		return 1;
 	if (trace(s, th, 5, 200000, threads, &r))
 		return 1;
 	worst = worst_rel_sigma(&r, &at);
 	need = (uint64_t)(200000 * pow(worst / 0.0098, 2.0));
 	tracer_result_free(&r);
-	if (trace(s, th, 5, need, threads, &r))
-		return 1;
-	worst = worst_rel_sigma(&r, &at);
-	printf("race to 1 %% at 30/45/60/80 deg on the exported mesh: Mitsuba "
-	       "%.2f s, stray trace %.2f s (worst %.2f %%): %.1f x faster\n",
-	       mi, r.seconds, 100.0 * worst, mi / r.seconds);
-	printf("  Mitsuba for the 127-angle curve at its mean rate: %.0f s\n",
-	       mi / 4.0 * 127.0);
-	tracer_result_free(&r);
+	for (i = 0; i < pairs; i++) {
+		mi[i] = 0.0;
+		for (k = 1; k < 5; k++) {
+			double t = mitsuba_time(th[k], 0.01);
+
+			if (t < 0.0) {
+				printf("Mitsuba run failed at %g deg: race "
+				       "skipped\n", th[k]);
+				free(t127);
+				return 0;
+			}
+			printf("  pair %d: Mitsuba 3 reciprocal, %4.0f deg: "
+			       "%.2f s to 1 %%\n", i + 1, th[k], t);
+			mi[i] += t;
+		}
+		if (trace(s, th, 5, need, threads, &r))
+			return 1;
+		ours[i] = r.seconds;
+		worst = worst_rel_sigma(&r, &at);
+		tracer_result_free(&r);
+		if (trace(s, t127, n127, need127, threads, &r))
+			return 1;
+		curve[i] = r.seconds;
+		mi127[i] = mi[i] / 4.0 * (double)n127;
+		tracer_result_free(&r);
+		printf("  pair %d: Mitsuba %.2f s, stray trace %.2f s (worst "
+		       "%.2f %%); 127-angle curve %.2f s\n", i + 1, mi[i],
+		       ours[i], 100.0 * worst, curve[i]);
+	}
+	bench_ratio("race to 1 % at 30/45/60/80 deg on the exported mesh, "
+		    "Mitsuba / stray trace:", mi, ours, pairs, 6, 1);
+	printf("  Mitsuba for the 127-angle curve at its mean rate: %.0f s "
+	       "(median)\n", bench_median(mi127, pairs, &lo, &hi));
+	bench_ratio("127-angle curve to 1 %, Mitsuba (4 angles x 127/4) / "
+		    "stray trace (target >= 50):", mi127, curve, pairs, 6, 1);
+	free(t127);
 	return 0;
 }
 
@@ -401,6 +435,7 @@ int main(int argc, char **argv)
 	struct tracer_scene s;
 	struct stray_error err;
 	double raw1;
+	uint64_t need = 0;
 	int peer_only = argc > 1 && strcmp(argv[1], "--peer") == 0, rc;
 
 	stray_error_clear(&err);
@@ -418,23 +453,30 @@ int main(int argc, char **argv)
 	raw1 = raw_casts_per_s(&s, 2000000);
 	printf("raw rtcIntersect1, incoherent, 1 thread: %.3g casts/s\n", raw1);
 	{
-		double occ1 = raw_occluded_per_s(&s, 2000000), same, fan;
-		long nr;
+		double occ[BENCH_MAX_PAIRS], fan[BENCH_MAX_PAIRS];
+		double same[BENCH_MAX_PAIRS], lo, hi;
+		long nr = 0;
+		int i, pairs = bench_pairs();
 
-		fan = fan_per_s(&s, &same, &nr);
-		occ1 = 0.5 * (occ1 + raw_occluded_per_s(&s, 2000000));
-		printf("raw rtcOccluded1, incoherent, 1 thread: %.3g rays/s\n"
-		       "shadow rays (%ld connections of %d path vertices to the "
-		       "127 angles, culled), 1 thread:\n"
-		       "  packets (rtcOccluded4/8/16): %.3g rays/s = %.2f x the raw "
-		       "single-ray occlusion rate (target >= 1.5)\n"
-		       "  the same rays one by one: %.3g rays/s = %.2f x\n",
-		       occ1, nr, FAN_VERTS, fan, fan / occ1, same,
-		       same / occ1);
+		for (i = 0; i < pairs; i++) {
+			occ[i] = raw_occluded_per_s(&s, 1000000);
+			fan[i] = fan_per_s(&s, &same[i], &nr);
+		}
+		printf("shadow rays (%ld connections of %d path vertices to the "
+		       "127 angles, culled), 1 thread,\n  median (min-max) of "
+		       "%d alternating pairs (raw rtcOccluded1, fans):\n",
+		       nr, FAN_VERTS, pairs);
+		bench_ratio("  packets (rtcOccluded4/8/16) / raw single-ray "
+			    "occlusion (target >= 1.5):", fan, occ, pairs, 6, 2);
+		bench_ratio("  the same rays one by one / raw:               "
+			    "              ", same, occ, pairs, 6, 2);
+		printf("  raw rtcOccluded1 %.3g rays/s, packets %.3g rays/s "
+		       "(medians)\n", bench_median(occ, pairs, &lo, &hi),
+		       bench_median(fan, pairs, &lo, &hi));
 	}
-	rc = bench_curve(&s, 2, raw1);
+	rc = bench_curve(&s, 2, &need);
 	if (!rc)
-		rc = race_mitsuba(&s, 2);
+		rc = race_mitsuba(&s, 2, need);
 	if (!rc)
 		rc = peer_check(&s, 2, 2000000);
 	tracer_scene_free(&s);
