@@ -14,16 +14,6 @@
 #include "review_int.h"
 #include "stray/errfmt.h"
 
-static int bad(struct stray_error *err, const struct review_project *p,
-	       const char *key, const char *value, const char *reason)
-{
-	stray_error_at(err, STRAY_EINVAL, p->path, 0, NULL, reason);
-	stray_error_column(err, key);
-	if (value)
-		stray_error_text(err, value);
-	return STRAY_EINVAL;
-}
-
 static int number(const struct review_project *p, const cJSON *o,
 		  const char *key, double lo, double hi, double *out,
 		  struct stray_error *err)
@@ -34,10 +24,10 @@ static int number(const struct review_project *p, const cJSON *o,
 	if (!v)
 		return STRAY_OK;	/* keeps the default */
 	if (!cJSON_IsNumber(v))
-		return bad(err, p, key, NULL, "must be a number");
+		return review_bad(err, p, key, NULL, "must be a number");
 	if (!(v->valuedouble >= lo && v->valuedouble <= hi)) {
 		snprintf(text, sizeof(text), "%g", v->valuedouble);
-		return bad(err, p, key, text, "out of range (docs/review.md)");
+		return review_bad(err, p, key, text, "out of range (docs/review.md)");
 	}
 	*out = v->valuedouble;
 	return STRAY_OK;
@@ -52,7 +42,7 @@ static int string(const struct review_project *p, const cJSON *o,
 	if (!v)
 		return STRAY_OK;
 	if (!cJSON_IsString(v) || strlen(v->valuestring) >= size)
-		return bad(err, p, key, NULL, "must be a short string");
+		return review_bad(err, p, key, NULL, "must be a short string");
 	snprintf(dst, size, "%s", v->valuestring);
 	return STRAY_OK;
 }
@@ -65,14 +55,14 @@ static int take_orbit(struct review_project *p, const cJSON *o,
 	int hh, mm, n = 0, rc;
 
 	if (!cJSON_IsObject(o))
-		return bad(err, p, "mission.orbit", NULL, "must be an object");
+		return review_bad(err, p, "mission.orbit", NULL, "must be an object");
 	if ((rc = review_only_keys(o, keys, "mission.orbit", p, err)) != STRAY_OK)
 		return rc;
 	if (!cJSON_GetObjectItemCaseSensitive(o, "altitude_km"))
-		return bad(err, p, "mission.orbit.altitude_km", NULL, "is required");
+		return review_bad(err, p, "mission.orbit.altitude_km", NULL, "is required");
 	if (!!cJSON_GetObjectItemCaseSensitive(o, "ltan") ==
 	    !!cJSON_GetObjectItemCaseSensitive(o, "inclination_deg"))
-		return bad(err, p, "mission.orbit", NULL,
+		return review_bad(err, p, "mission.orbit", NULL,
 			   "give one of ltan (sun-synchronous) and inclination_deg");
 	p->altitude_km = 550;
 	p->hours = 24;
@@ -92,7 +82,7 @@ static int take_orbit(struct review_project *p, const cJSON *o,
 	if (rc == STRAY_OK && p->ltan[0] &&
 	    (sscanf(p->ltan, "%2d:%2d%n", &hh, &mm, &n) != 2 ||
 	     p->ltan[n] || hh > 23 || mm > 59 || hh < 0 || mm < 0))
-		return bad(err, p, "mission.orbit.ltan", p->ltan, "must be HH:MM");
+		return review_bad(err, p, "mission.orbit.ltan", p->ltan, "must be HH:MM");
 	return rc;
 }
 
@@ -117,32 +107,32 @@ int review_take_mission(struct review_project *p, const cJSON *m,
 	int rc;
 
 	if (!cJSON_IsObject(m))
-		return bad(err, p, "mission", NULL, "must be an object");
+		return review_bad(err, p, "mission", NULL, "must be an object");
 	if ((rc = review_only_keys(m, keys, "mission", p, err)) != STRAY_OK)
 		return rc;
 	oem = cJSON_GetObjectItemCaseSensitive(m, "oem");
 	aem = cJSON_GetObjectItemCaseSensitive(m, "aem");
 	orbit = cJSON_GetObjectItemCaseSensitive(m, "orbit");
 	if (orbit && (oem || aem))
-		return bad(err, p, "mission", NULL, "give the OEM/AEM files or an orbit, not both");
+		return review_bad(err, p, "mission", NULL, "give the OEM/AEM files or an orbit, not both");
 	if (orbit) {
 		p->mission = REVIEW_MISSION_ORBIT;
 		snprintf(p->attitude, sizeof(p->attitude), "nadir");
 		rc = string(p, m, "attitude", p->attitude, sizeof(p->attitude), err);
 		if (rc == STRAY_OK && strcmp(p->attitude, "nadir") &&
 		    strcmp(p->attitude, "inertial") && strcmp(p->attitude, "sun"))
-			return bad(err, p, "mission.attitude", p->attitude,
+			return review_bad(err, p, "mission.attitude", p->attitude,
 				   "must be nadir, inertial or sun");
 		return rc == STRAY_OK ? take_orbit(p, orbit, err) : rc;
 	}
 	if (!oem || !aem || cJSON_GetObjectItemCaseSensitive(m, "attitude"))
-		return bad(err, p, "mission", NULL,
+		return review_bad(err, p, "mission", NULL,
 			   "must be {\"oem\": F, \"aem\": F} or {\"orbit\": {...}, \"attitude\": A}");
 	if (!cJSON_IsString(oem) || !cJSON_IsString(aem))
-		return bad(err, p, "mission", NULL, "oem and aem must be file names");
+		return review_bad(err, p, "mission", NULL, "oem and aem must be file names");
 	p->mission = REVIEW_MISSION_FILES;
 	if (!join(p, oem->valuestring, p->oem) || !join(p, aem->valuestring, p->aem))
-		return bad(err, p, "mission", NULL, "path too long");
+		return review_bad(err, p, "mission", NULL, "path too long");
 	return STRAY_OK;
 }
 
@@ -153,14 +143,14 @@ static int vec3(const struct review_project *p, const cJSON *h,
 	int i = 0;
 
 	if (!cJSON_IsArray(a) || cJSON_GetArraySize(a) != 3)
-		return bad(err, p, key, NULL, "must be [x, y, z]");
+		return review_bad(err, p, key, NULL, "must be [x, y, z]");
 	cJSON_ArrayForEach(x, a) {
 		if (!cJSON_IsNumber(x) || !isfinite(x->valuedouble))
-			return bad(err, p, key, NULL, "must be 3 numbers");
+			return review_bad(err, p, key, NULL, "must be 3 numbers");
 		v[i++] = x->valuedouble;
 	}
 	if (fabs(v[0]) + fabs(v[1]) + fabs(v[2]) == 0.0)
-		return bad(err, p, key, NULL, "must not be zero");
+		return review_bad(err, p, key, NULL, "must not be zero");
 	return STRAY_OK;
 }
 
@@ -176,25 +166,25 @@ int review_take_heads(struct review_project *p, const cJSON *h,
 
 	if (!cJSON_IsArray(h) || cJSON_GetArraySize(h) < 1 ||
 	    cJSON_GetArraySize(h) > REVIEW_HEADS_MAX)
-		return bad(err, p, "heads", NULL, "must be a list of 1..8 heads");
+		return review_bad(err, p, "heads", NULL, "must be a list of 1..8 heads");
 	cJSON_ArrayForEach(it, h) {
 		struct review_head *hd = &p->head[p->n_heads];
 
 		if (!cJSON_IsObject(it))
-			return bad(err, p, "heads", NULL, "each head is an object");
+			return review_bad(err, p, "heads", NULL, "each head is an object");
 		if ((rc = review_only_keys(it, keys, "heads", p, err)) != STRAY_OK)
 			return rc;
 		name = cJSON_GetObjectItemCaseSensitive(it, "name");
 		if (!cJSON_IsString(name) || !name->valuestring[0] ||
 		    strlen(name->valuestring) >= sizeof(hd->name) ||
 		    strpbrk(name->valuestring, "/\\\"<>&' "))
-			return bad(err, p, "heads.name", cJSON_IsString(name) ?
+			return review_bad(err, p, "heads.name", cJSON_IsString(name) ?
 				   name->valuestring : NULL,
 				   "must be 1..31 characters, no / \\ \" < > & ' or space");
 		snprintf(hd->name, sizeof(hd->name), "%s", name->valuestring);
 		for (i = 0; i < p->n_heads; i++)
 			if (strcmp(p->head[i].name, hd->name) == 0)
-				return bad(err, p, "heads.name", hd->name, "named twice");
+				return review_bad(err, p, "heads.name", hd->name, "named twice");
 		if ((rc = vec3(p, it, "boresight_body", hd->boresight, err)) ||
 		    (rc = vec3(p, it, "up_body", hd->up, err)))
 			return rc;

@@ -24,8 +24,7 @@ static const char *const req_keys[REVIEW_REQ_MAX] = {
 	"availability_min"
 };
 
-/* An error on key (a run-time name) of the project file. */
-static int bad(struct stray_error *err, const struct review_project *p,
+int review_bad(struct stray_error *err, const struct review_project *p,
 	       const char *key, const char *value, const char *reason)
 {
 	stray_error_at(err, STRAY_EINVAL, p->path, 0, NULL, reason);
@@ -61,13 +60,13 @@ int review_only_keys(const cJSON *obj, const char *const *allowed,
 	int i;
 
 	if (review_dup_key(obj, &dup))
-		return bad(err, p, where, dup, "key given twice");
+		return review_bad(err, p, where, dup, "key given twice");
 	cJSON_ArrayForEach(it, obj) {
 		for (i = 0; allowed[i]; i++)
 			if (strcmp(it->string, allowed[i]) == 0)
 				break;
 		if (!allowed[i])
-			return bad(err, p, where, it->string,
+			return review_bad(err, p, where, it->string,
 				   "unknown key (docs/review.md)");
 	}
 	return STRAY_OK;
@@ -83,7 +82,7 @@ static int take_path(const struct review_project *p, const cJSON *v,
 	const char *s;
 
 	if (!cJSON_IsString(v) || !v->valuestring[0])
-		return bad(err, p, key, NULL, "must be a non-empty string");
+		return review_bad(err, p, key, NULL, "must be a non-empty string");
 	s = v->valuestring;
 	if (s[0] == '/')
 		snprintf(joined, sizeof(joined), "%s", s);
@@ -91,7 +90,7 @@ static int take_path(const struct review_project *p, const cJSON *v,
 		snprintf(joined, sizeof(joined), "%s/%s", p->dir, s);
 	if (access(joined, F_OK) == 0) {
 		if (!realpath(joined, dst))
-			return bad(err, p, key, s, "path cannot be resolved");
+			return review_bad(err, p, key, s, "path cannot be resolved");
 		return STRAY_OK;
 	}
 	if (builtin_ok && !strchr(s, '/') && !strchr(s, '.') &&
@@ -99,7 +98,7 @@ static int take_path(const struct review_project *p, const cJSON *v,
 		snprintf(dst, REVIEW_PATH_MAX, "%s", s);
 		return STRAY_OK;
 	}
-	return bad(err, p, key, s, "no such file (paths are relative to the project file)");
+	return review_bad(err, p, key, s, "no such file (paths are relative to the project file)");
 }
 
 static int take_number(const struct review_project *p, const cJSON *v,
@@ -109,12 +108,12 @@ static int take_number(const struct review_project *p, const cJSON *v,
 	char text[64];
 
 	if (!cJSON_IsNumber(v))
-		return bad(err, p, key, NULL, "must be a number");
+		return review_bad(err, p, key, NULL, "must be a number");
 	if (!(v->valuedouble >= lo && v->valuedouble <= hi)) {
 		snprintf(text, sizeof(text), "%g", v->valuedouble);
 		snprintf(text + strlen(text), sizeof(text) - strlen(text),
 			 " (allowed %g..%g)", lo, hi);
-		return bad(err, p, key, text, "out of range");
+		return review_bad(err, p, key, text, "out of range");
 	}
 	*out = v->valuedouble;
 	return STRAY_OK;
@@ -128,12 +127,12 @@ static int take_set(struct review_project *p, const cJSON *set,
 	int n;
 
 	if (!cJSON_IsObject(set))
-		return bad(err, p, "set", NULL, "must be an object of scene keys");
+		return review_bad(err, p, "set", NULL, "must be an object of scene keys");
 	if (review_dup_key(set, &dup))
-		return bad(err, p, "set", dup, "key given twice");
+		return review_bad(err, p, "set", dup, "key given twice");
 	cJSON_ArrayForEach(it, set) {
 		if (p->n_set >= REVIEW_SET_MAX)
-			return bad(err, p, "set", it->string, "more than 24 overrides");
+			return review_bad(err, p, "set", it->string, "more than 24 overrides");
 		if (cJSON_IsNumber(it))
 			n = snprintf(p->set[p->n_set], sizeof(p->set[0]),
 				     "%s=%.10g", it->string, it->valuedouble);
@@ -141,11 +140,11 @@ static int take_set(struct review_project *p, const cJSON *set,
 			n = snprintf(p->set[p->n_set], sizeof(p->set[0]),
 				     "%s=%s", it->string, it->valuestring);
 		else
-			return bad(err, p, "set", it->string,
+			return review_bad(err, p, "set", it->string,
 				   "value must be a number or a string");
 		if (n < 0 || (size_t)n >= sizeof(p->set[0]) ||
 		    strchr(it->string, '='))
-			return bad(err, p, "set", it->string, "bad override");
+			return review_bad(err, p, "set", it->string, "bad override");
 		p->n_set++;
 	}
 	return STRAY_OK;
@@ -175,13 +174,13 @@ static int take_lens(struct review_project *p, const cJSON *v,
 		p->lens = REVIEW_LENS_IDEAL;
 		if (!cJSON_IsObject(x) ||
 		    review_only_keys(x, ideal_keys, "lens.ideal", p, err) != STRAY_OK)
-			return bad(err, p, "lens.ideal", NULL,
+			return review_bad(err, p, "lens.ideal", NULL,
 				   "must be {\"fov_half_deg\": DEG}");
 		x = cJSON_GetObjectItemCaseSensitive(x, "fov_half_deg");
 		return x ? take_number(p, x, "lens.ideal.fov_half_deg", 0.1,
 				       60, &p->lens_fov_deg, err) : STRAY_OK;
 	}
-	return bad(err, p, "lens", NULL,
+	return review_bad(err, p, "lens", NULL,
 		   "must be \"ideal\", {\"ideal\": {...}}, a CSV or {\"sweep\": DIR}");
 }
 
@@ -194,17 +193,17 @@ static int take_requirements(struct review_project *p, const cJSON *r,
 	int i, rc;
 
 	if (!cJSON_IsObject(r) || !r->child)
-		return bad(err, p, "requirements", NULL,
+		return review_bad(err, p, "requirements", NULL,
 			   "must be an object with at least one requirement");
 	/* each known at most once: at most REVIEW_REQ_MAX of them */
 	if (review_dup_key(r, &dup))
-		return bad(err, p, "requirements", dup, "given twice");
+		return review_bad(err, p, "requirements", dup, "given twice");
 	cJSON_ArrayForEach(it, r) {
 		for (i = 0; i < REVIEW_REQ_MAX; i++)
 			if (strcmp(it->string, req_keys[i]) == 0)
 				break;
 		if (i == REVIEW_REQ_MAX)
-			return bad(err, p, "requirements", it->string,
+			return review_bad(err, p, "requirements", it->string,
 				   "unknown requirement (docs/review.md)");
 		p->req[p->n_req].key = req_keys[i];
 		rc = take_number(p, it, req_keys[i], i == 0 ? 1e-6 : 0,
@@ -224,7 +223,7 @@ static int take_measured(struct review_project *p, const cJSON *m,
 	int rc;
 
 	if (!cJSON_IsObject(m))
-		return bad(err, p, "measured", NULL, "must be {\"curve\": F, \"kind\": \"baffle\"|\"system\"}");
+		return review_bad(err, p, "measured", NULL, "must be {\"curve\": F, \"kind\": \"baffle\"|\"system\"}");
 	if ((rc = review_only_keys(m, keys, "measured", p, err)) != STRAY_OK)
 		return rc;
 	rc = take_path(p, cJSON_GetObjectItemCaseSensitive(m, "curve"),
@@ -233,7 +232,7 @@ static int take_measured(struct review_project *p, const cJSON *m,
 	if (rc == STRAY_OK && k) {
 		if (!cJSON_IsString(k) || (strcmp(k->valuestring, "baffle") &&
 					   strcmp(k->valuestring, "system")))
-			return bad(err, p, "measured.kind",
+			return review_bad(err, p, "measured.kind",
 				   cJSON_IsString(k) ? k->valuestring : NULL,
 				   "must be \"baffle\" or \"system\"");
 		p->measured_system = strcmp(k->valuestring, "system") == 0;
@@ -260,11 +259,11 @@ static int take_all(struct review_project *p, const cJSON *root,
 		return rc;
 	for (i = 0; i < 3; i++)
 		if (!cJSON_GetObjectItemCaseSensitive(root, need[i]))
-			return bad(err, p, need[i], NULL, "is required");
+			return review_bad(err, p, need[i], NULL, "is required");
 	v = cJSON_GetObjectItemCaseSensitive(root, "name");
 	if (v && (!cJSON_IsString(v) || !v->valuestring[0] ||
 		  strlen(v->valuestring) >= sizeof(p->name)))
-		return bad(err, p, "name", NULL, "must be a string of 1..127 characters");
+		return review_bad(err, p, "name", NULL, "must be a string of 1..127 characters");
 	if (v)
 		snprintf(p->name, sizeof(p->name), "%s", v->valuestring);
 	rc = take_path(p, cJSON_GetObjectItemCaseSensitive(root, "sensor"),
@@ -285,7 +284,7 @@ static int take_all(struct review_project *p, const cJSON *root,
 	if (rc == STRAY_OK && (v = cJSON_GetObjectItemCaseSensitive(root, "heads")))
 		rc = review_take_heads(p, v, err);
 	if (rc == STRAY_OK && p->n_heads && p->mission == REVIEW_MISSION_NONE)
-		return bad(err, p, "heads", NULL, "need a mission to fly along");
+		return review_bad(err, p, "heads", NULL, "need a mission to fly along");
 	return rc;
 }
 

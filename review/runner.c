@@ -21,6 +21,7 @@
 #include <unistd.h>
 
 #include "review/review.h"
+#include "review_int.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"
 #include "stray/sweep_store.h"
@@ -232,25 +233,19 @@ static cJSON *manifest_json(const struct review_project *p,
 	cJSON_AddItemToObject(root, "steps", steps);
 	for (i = 0; i < plan->n; i++) {
 		const struct review_step *s = &plan->step[i];
-		cJSON *j = cJSON_CreateObject(), *a = cJSON_CreateArray();
+		cJSON *j, *a = cJSON_CreateArray();
 
-		cJSON_AddStringToObject(j, "name", s->name);
-		cJSON_AddStringToObject(j, "status", s->status ? s->status : "not run");
-		cJSON_AddNumberToObject(j, "seconds", s->seconds);
-		cJSON_AddStringToObject(j, "hash", s->hash);
-		for (k = 0; k < s->argc; k++)
-			cJSON_AddItemToArray(a, cJSON_CreateString(s->argv[k]));
-		cJSON_AddItemToObject(j, "command", a);
-		a = cJSON_CreateArray();
 		for (k = 0; k < s->n_outs; k++)
 			if (s->status && strcmp(s->status, "done") == 0 &&
 			    exists_in(dir, s->outs[k]))
 				cJSON_AddItemToArray(a, cJSON_CreateString(s->outs[k]));
-		cJSON_AddItemToObject(j, "outputs", a);
-		if (s->why)
-			cJSON_AddStringToObject(j, "why", s->why);
-		else
-			cJSON_AddNullToObject(j, "why");
+		/* review.json's step, with what --resume compares */
+		j = review_step_json(s, a);
+		cJSON_AddStringToObject(j, "hash", s->hash);
+		a = cJSON_CreateArray();
+		for (k = 0; k < s->argc; k++)
+			cJSON_AddItemToArray(a, cJSON_CreateString(s->argv[k]));
+		cJSON_AddItemToObject(j, "command", a);
 		cJSON_AddItemToArray(steps, j);
 	}
 	return root;

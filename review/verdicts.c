@@ -132,6 +132,21 @@ static cJSON *number_or_null(double x)
 	return isfinite(x) ? cJSON_CreateNumber(x) : cJSON_CreateNull();
 }
 
+cJSON *review_step_json(const struct review_step *s, cJSON *outputs)
+{
+	cJSON *j = cJSON_CreateObject();
+
+	cJSON_AddStringToObject(j, "name", s->name);
+	cJSON_AddStringToObject(j, "status", s->status ? s->status : "not run");
+	cJSON_AddNumberToObject(j, "seconds", s->seconds);
+	cJSON_AddItemToObject(j, "outputs", outputs);
+	if (s->why)
+		cJSON_AddStringToObject(j, "why", s->why);
+	else
+		cJSON_AddNullToObject(j, "why");
+	return j;
+}
+
 static cJSON *steps_json(const char *dir, const struct review_plan *plan)
 {
 	cJSON *a = cJSON_CreateArray();
@@ -139,21 +154,13 @@ static cJSON *steps_json(const char *dir, const struct review_plan *plan)
 
 	for (i = 0; i < plan->n; i++) {
 		const struct review_step *s = &plan->step[i];
-		cJSON *j = cJSON_CreateObject(), *o = cJSON_CreateArray();
+		cJSON *o = cJSON_CreateArray();
 		int done = s->status && strcmp(s->status, "done") == 0;
 
-		cJSON_AddStringToObject(j, "name", s->name);
-		cJSON_AddStringToObject(j, "status", s->status ? s->status : "not run");
-		cJSON_AddNumberToObject(j, "seconds", s->seconds);
 		for (k = 0; done && k < s->n_outs; k++)
 			if (exists_file(dir, s->outs[k]))
 				cJSON_AddItemToArray(o, cJSON_CreateString(s->outs[k]));
-		cJSON_AddItemToObject(j, "outputs", o);
-		if (s->why)
-			cJSON_AddStringToObject(j, "why", s->why);
-		else
-			cJSON_AddNullToObject(j, "why");
-		cJSON_AddItemToArray(a, j);
+		cJSON_AddItemToArray(a, review_step_json(s, o));
 	}
 	return a;
 }
