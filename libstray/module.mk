@@ -1,6 +1,7 @@
 # libstray: the freestanding core (linked by firmware_fdr too) and the
 # hosted layer (CSV/JSON I/O, built-in spectra, the sweep-folder store:
-# cfitsio frames, libcsv manifest, OpenSSL SHA-256, in libstray/sweep).
+# cfitsio frames, libcsv manifest, OpenSSL SHA-256, in libstray/sweep;
+# libtiff for the TIFF frames `stray sweep import` takes).
 
 STRAY_CORE_SRC := $(wildcard libstray/core/*.c)
 STRAY_HOST_SRC := $(wildcard libstray/host/*.c) \
@@ -12,7 +13,7 @@ STRAY_SWEEP_SRC := $(wildcard libstray/sweep/*.c)
 STRAY_SWEEP_OBJ := $(STRAY_SWEEP_SRC:%.c=$(B)/obj/%.o)
 STRAY_LIB := $(B)/lib/libstray.a
 STRAY_CORE_LIB := $(B)/lib/libstray_core.a
-STRAY_LDLIBS := -lcfitsio -lcrypto -lcsv -lcjson -lerfa -lm
+STRAY_LDLIBS := -lcfitsio -ltiff -lcrypto -lcsv -lcjson -lerfa -lm
 STRAY_DATA := $(wildcard libstray/data/*.csv)
 
 # The core must build freestanding: no hosted headers, no builtins assumed.

@@ -12,6 +12,7 @@ PKGS=(
 	clang libclang-rt-14-dev	# libFuzzer targets of the parsers
 	chromium			# the report test opens it headless
 	libcfitsio-dev libssl-dev	# FITS frames, SHA-256 of the manifest
+	libtiff-dev			# 16-bit TIFF frames of `stray sweep import`
 	libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
 	libembree-dev libassimp-dev	# ray queries, OBJ/STL import
 	libopenmpi-dev openmpi-bin	# stray-mpi
