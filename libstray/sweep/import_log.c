@@ -1,0 +1,362 @@
+/*
+ * import_log.c - the lab's CSV log of a sweep taken by other software
+ * (sweep_import.h), read through libcsv as manifest.csv is: one row per
+ * frame file with its angle, frame type, exposure and ND transmission,
+ * every value checked here so the import only compares.
+ */
+#include <csv.h>
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "stray/errfmt.h"
+#include "stray/sweep_import.h"
+
+#define FIELDS_MAX 32
+#define FIELD_LEN_MAX 512
+
+enum { C_FILE, C_ANGLE, C_TYPE, C_EXP, C_ND, N_REQ,
+       C_RB = N_REQ, C_FILTER, C_DATE, C_MON, N_COLS };
+
+static const char *const names[N_COLS] = {
+	STRAY_IMPORT_COL_FILE, STRAY_IMPORT_COL_ANGLE, STRAY_IMPORT_COL_TYPE,
+	STRAY_IMPORT_COL_EXPTIME, STRAY_IMPORT_COL_NDTRANS,
+	STRAY_IMPORT_COL_READBACK, STRAY_IMPORT_COL_FILTER,
+	STRAY_IMPORT_COL_DATE, STRAY_IMPORT_COL_MONITOR
+};
+
+struct fields {
+	size_t n;
+	char f[FIELDS_MAX][FIELD_LEN_MAX];
+	int overflow;
+};
+
+static void on_field(void *data, size_t len, void *ctx)
+{
+	struct fields *r = ctx;
+
+	if (r->n >= FIELDS_MAX || len >= FIELD_LEN_MAX) {
+		r->overflow = 1;
+		return;
+	}
+	memcpy(r->f[r->n], data ? data : "", len);
+	r->f[r->n][len] = '\0';
+	r->n++;
+}
+
+static void on_row(int c, void *ctx)
+{
+	(void)c;
+	(void)ctx;
+}
+
+static int split(const char *name, long line, const char *s, size_t len,
+		 struct fields *r, struct stray_error *err)
+{
+	struct csv_parser p;
+	int bad;
+
+	r->n = 0;
+	r->overflow = 0;
+	if (csv_init(&p, CSV_STRICT | CSV_STRICT_FINI | CSV_APPEND_NULL) != 0)
+		return stray_error_at(err, STRAY_ENOMEM, name, line, 0, 0);
+	bad = csv_parse(&p, s, len, on_field, on_row, r) != len ||
+	      csv_fini(&p, on_field, on_row, r) != 0;
+	if (bad)
+		stray_error_at(err, STRAY_EPARSE, name, line, "csv",
+			       csv_strerror(csv_error(&p)));
+	csv_free(&p);
+	if (bad)
+		return STRAY_EPARSE;
+	if (r->overflow)
+		return stray_error_at(err, STRAY_EPARSE, name, line, "csv",
+				      "too many or too long fields");
+	return STRAY_OK;
+}
+
+static int bad(const char *name, long line, const char *col,
+	       const char *reason, const char *text, struct stray_error *err)
+{
+	stray_error_at(err, STRAY_EPARSE, name, line, col, reason);
+	stray_error_text(err, text);
+	return STRAY_EPARSE;
+}
+
+/* A finite number; "nan", "inf" and "1e999" are not. */
+static int number(const char *name, long line, int col, const char *s,
+		  double *v, struct stray_error *err)
+{
+	char *end;
+
+	errno = 0;
+	*v = strtod(s, &end);
+	while (*end == ' ')
+		end++;
+	if (*s == '\0' || *end != '\0' || !isfinite(*v))
+		return bad(name, line, names[col], "is not a finite number", s,
+			   err);
+	return STRAY_OK;
+}
+
+/* A plain name (the files are matched by name, never opened by it). */
+static int plain_name(const char *name, long line, const char *s,
+		      struct stray_error *err)
+{
+	const char *c;
+
+	for (c = s; *c; c++)
+		if (*c == '/' || (unsigned char)*c < 0x20 || *c == 0x7f)
+			break;
+	if (*s == '\0' || *c != '\0' || strcmp(s, ".") == 0 ||
+	    strcmp(s, "..") == 0 || strlen(s) >= STRAY_SWEEP_FILE_MAX)
+		return bad(name, line, names[C_FILE], "must be a plain file "
+			   "name (no '/'), as the file is named on disk", s,
+			   err);
+	return STRAY_OK;
+}
+
+static int frame_type(const char *name, long line, const char *s, int *type,
+		      struct stray_error *err)
+{
+	static const char *const t[] = { "DARK", "AMBIENT", "FULL" };
+	int k;
+
+	for (k = 0; k < 3; k++)
+		if (strcasecmp(s, t[k]) == 0) {
+			*type = k;	/* enum stray_sweep_frametyp */
+			return STRAY_OK;
+		}
+	return bad(name, line, names[C_TYPE], "must be DARK, AMBIENT (beam "
+		   "blocked) or FULL (beam on the aperture)", s, err);
+}
+
+/* An optional cell: "" (or no cell) is absent. */
+static const char *cell(const struct fields *r, const int *idx, int c)
+{
+	return idx[c] >= 0 && (size_t)idx[c] < r->n ? r->f[idx[c]] : "";
+}
+
+static int optional(const char *name, long line, const struct fields *r,
+		    const int *idx, struct stray_import_row *e,
+		    struct stray_error *err)
+{
+	const char *s;
+	int rc;
+
+	e->readback_deg = e->date_obs = e->monitor = NAN;
+	e->filter[0] = '\0';
+	if (*(s = cell(r, idx, C_RB))) {
+		if ((rc = number(name, line, C_RB, s, &e->readback_deg, err)))
+			return rc;
+		if (fabs(e->readback_deg) > 180.0)
+			return bad(name, line, names[C_RB],
+				   "must be within -180..180", s, err);
+	}
+	if (*(s = cell(r, idx, C_DATE)) &&
+	    stray_sweep_utc_parse(s, &e->date_obs) != STRAY_OK)
+		return bad(name, line, names[C_DATE], "must be a UTC time "
+			   "like 2026-12-02T04:50:00.123Z", s, err);
+	if (*(s = cell(r, idx, C_MON))) {
+		if ((rc = number(name, line, C_MON, s, &e->monitor, err)))
+			return rc;
+		if (!(e->monitor > 0.0))
+			return bad(name, line, names[C_MON], "must be > 0 "
+				   "(the lamp level, 1 = nominal)", s, err);
+	}
+	if (idx[C_MON] >= 0 && isnan(e->monitor))
+		return bad(name, line, names[C_MON], "is empty: a log with "
+			   "the column gives every frame's level", s, err);
+	s = cell(r, idx, C_FILTER);
+	if (strlen(s) >= sizeof(e->filter))
+		return bad(name, line, names[C_FILTER], "is longer than 71 "
+			   "characters (a FITS string)", s, err);
+	strcpy(e->filter, s);
+	return STRAY_OK;
+}
+
+static int take_row(const char *name, long line, const struct fields *r,
+		    const int *idx, struct stray_import_row *e,
+		    struct stray_error *err)
+{
+	int rc;
+
+	memset(e, 0, sizeof(*e));
+	e->line = line;
+	if ((rc = plain_name(name, line, r->f[idx[C_FILE]], err)) ||
+	    (rc = frame_type(name, line, r->f[idx[C_TYPE]], &e->type, err)) ||
+	    (rc = number(name, line, C_ANGLE, r->f[idx[C_ANGLE]],
+			 &e->angle_deg, err)) ||
+	    (rc = number(name, line, C_EXP, r->f[idx[C_EXP]], &e->exptime_s,
+			 err)) ||
+	    (rc = number(name, line, C_ND, r->f[idx[C_ND]], &e->ndtrans,
+			 err)))
+		return rc;
+	strcpy(e->file, r->f[idx[C_FILE]]);
+	if (fabs(e->angle_deg) > 180.0)
+		return bad(name, line, names[C_ANGLE],
+			   "must be within -180..180", r->f[idx[C_ANGLE]], err);
+	if (!(e->exptime_s > 0.0))
+		return bad(name, line, names[C_EXP], "must be > 0",
+			   r->f[idx[C_EXP]], err);
+	if (!(e->ndtrans > 0.0 && e->ndtrans <= 1.0))
+		return bad(name, line, names[C_ND], "must be in (0, 1] (the "
+			   "transmission: optical density d is 10^-d)",
+			   r->f[idx[C_ND]], err);
+	return optional(name, line, r, idx, e, err);
+}
+
+static int take_header(const char *name, long line, const struct fields *r,
+		       int *idx, struct stray_error *err)
+{
+	size_t k;
+	int c;
+
+	for (c = 0; c < N_COLS; c++) {
+		idx[c] = -1;
+		for (k = 0; k < r->n; k++)
+			if (strcmp(r->f[k], names[c]) == 0) {
+				if (idx[c] >= 0)
+					return bad(name, line, names[c],
+						   "column named twice",
+						   r->f[k], err);
+				idx[c] = (int)k;
+			}
+		if (c < N_REQ && idx[c] < 0)
+			return stray_error_at(err, STRAY_ENOTFOUND, name, line,
+				names[c], "column missing from the header (file,"
+				"angle_deg,frametyp,exptime_s,ndtrans)");
+	}
+	return STRAY_OK;
+}
+
+static int push(struct stray_import_log *log, const char *name, long line,
+		struct stray_error *err)
+{
+	struct stray_import_row *p;
+	size_t cap;
+
+	if (log->n < log->cap)
+		return STRAY_OK;
+	if (log->n >= STRAY_IMPORT_ROWS_MAX)
+		return stray_error_at(err, STRAY_EINVAL, name, line, "row",
+				      "more than 100000 frames in one log");
+	cap = log->cap ? 2 * log->cap : 64;
+	p = realloc(log->r, cap * sizeof(*p));
+	if (!p)
+		return stray_error_at(err, STRAY_ENOMEM, name, line, 0, 0);
+	log->r = p;
+	log->cap = cap;
+	return STRAY_OK;
+}
+
+static int take_line(const char *name, long line, const char *s, size_t len,
+		     struct stray_import_log *log, int *idx, int *have_header,
+		     struct fields *r, struct stray_error *err)
+{
+	size_t k = 0;
+	int rc;
+
+	if (len > 0 && s[len - 1] == '\r')
+		len--;
+	while (k < len && (s[k] == ' ' || s[k] == '\t'))
+		k++;
+	if (k == len || s[k] == '#')
+		return STRAY_OK;
+	if ((rc = split(name, line, s, len, r, err)) != STRAY_OK)
+		return rc;
+	if (!*have_header) {
+		*have_header = 1;
+		return take_header(name, line, r, idx, err);
+	}
+	for (k = 0; k < N_REQ; k++)
+		if ((size_t)idx[k] >= r->n)
+			return stray_error_at(err, STRAY_EPARSE, name, line,
+					      names[k], "cell missing (fewer "
+					      "cells than the header)");
+	if ((rc = push(log, name, line, err)) != STRAY_OK)
+		return rc;
+	rc = take_row(name, line, r, idx, &log->r[log->n], err);
+	if (rc == STRAY_OK)
+		log->n++;
+	return rc;
+}
+
+static int by_file(const void *a, const void *b)
+{
+	const struct stray_import_row *const *x = a, *const *y = b;
+	int c = strcmp((*x)->file, (*y)->file);
+
+	return c ? c : ((*x)->line > (*y)->line) - ((*x)->line < (*y)->line);
+}
+
+/* One row per file: a second row for it is named at its line. */
+static int no_duplicates(const char *name, const struct stray_import_log *log,
+			 struct stray_error *err)
+{
+	const struct stray_import_row **e = malloc((log->n ? log->n : 1) *
+						   sizeof(*e));
+	const struct stray_import_row *dup = NULL;
+	size_t i;
+
+	if (!e)
+		return stray_error_at(err, STRAY_ENOMEM, name, 0, 0, 0);
+	for (i = 0; i < log->n; i++)
+		e[i] = &log->r[i];
+	qsort(e, log->n, sizeof(*e), by_file);
+	for (i = 1; i < log->n; i++)
+		if (strcmp(e[i]->file, e[i - 1]->file) == 0 &&
+		    (!dup || e[i]->line < dup->line))
+			dup = e[i];
+	free(e);
+	if (dup)
+		return bad(name, dup->line, names[C_FILE], "is logged twice "
+			   "(one row per frame file)", dup->file, err);
+	return STRAY_OK;
+}
+
+int stray_import_log_parse(const char *name, const char *text, size_t len,
+			   struct stray_import_log *log,
+			   struct stray_error *err)
+{
+	struct fields *r = malloc(sizeof(*r));
+	int idx[N_COLS], have_header = 0, rc = STRAY_OK;
+	size_t pos = 0;
+	long line = 0;
+
+	memset(log, 0, sizeof(*log));
+	if (!r)
+		return stray_error_at(err, STRAY_ENOMEM, name, 0, 0, 0);
+	while (pos < len && rc == STRAY_OK) {
+		const char *nl = memchr(text + pos, '\n', len - pos);
+		size_t end = nl ? (size_t)(nl - text) : len;
+
+		rc = take_line(name, ++line, text + pos, end - pos, log, idx,
+			       &have_header, r, err);
+		pos = end + 1;
+	}
+	free(r);
+	if (rc == STRAY_OK && log->n == 0)
+		rc = stray_error_at(err, STRAY_EPARSE, name, line ? line : 1,
+				    names[C_FILE], have_header ? "the log lists "
+				    "no frames" : "the log has no header line");
+	if (rc == STRAY_OK)
+		rc = no_duplicates(name, log, err);
+	if (rc != STRAY_OK) {
+		stray_import_log_free(log);
+		return rc;
+	}
+	log->has_readback = idx[C_RB] >= 0;
+	log->has_filter = idx[C_FILTER] >= 0;
+	log->has_date = idx[C_DATE] >= 0;
+	log->has_monitor = idx[C_MON] >= 0;
+	return STRAY_OK;
+}
+
+void stray_import_log_free(struct stray_import_log *log)
+{
+	free(log->r);
+	memset(log, 0, sizeof(*log));
+}
