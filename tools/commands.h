@@ -30,5 +30,8 @@ int cmd_frames(int argc, char **argv);
 int cmd_flightcheck(int argc, char **argv);
 int cmd_lens(int argc, char **argv);
 int cmd_review(int argc, char **argv);
+/* `stray sweep import` (argv[0] "import"); `stray sweep` itself is the
+ * design sweep, tools/entry.h */
+int cmd_sweep_import(int argc, char **argv);
 
 #endif /* STRAY_TOOLS_COMMANDS_H */

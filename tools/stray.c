@@ -26,8 +26,13 @@ static int diagnose_local(int argc, char **argv)
 	return cmd_diagnose(argc, argv, &tracer_runner_local);
 }
 
+/* `stray sweep import ...` brings in frames taken by other software
+ * (cmd_sweep_import.c); any other `stray sweep` is the design sweep,
+ * whose options all start with "--", so the word is free. */
 static int sweep_local(int argc, char **argv)
 {
+	if (argc > 1 && strcmp(argv[1], "import") == 0)
+		return cmd_sweep_import(argc - 1, argv + 1);
 	return cmd_sweep(argc, argv, &tracer_runner_local);
 }
 
@@ -53,7 +58,7 @@ static const struct cmd commands[] = {
 	{ "lens", cmd_lens, "a lens curve without lab data: the ideal lens, or a PST import" },
 	{ "reduce", cmd_reduce, "lens attenuation curve, noise floor and ghosts from a lab sweep" },
 	{ "rig", cmd_rig, "control the lab sweep daemon strayrigd" },
-	{ "sweep", sweep_local, "Sun exclusion angle over a grid of baffle designs (resumable)" },
+	{ "sweep", sweep_local, "Sun exclusion angle over a grid of baffle designs (resumable); 'sweep import': frames of other software into a lab sweep folder" },
 	{ "frames", cmd_frames, "rendered frames, star detection and false stars vs the FDR model" },
 	{ "flightcheck", cmd_flightcheck, "stray-light curve from flight frames, calibrated on catalogue stars, vs the model" },
 };
