@@ -76,6 +76,18 @@ static int copy_original(struct writer *w, const struct stray_import_input *in,
 	return STRAY_OK;
 }
 
+/* text as a FITS string value: printable ASCII only (cfitsio refuses
+ * the rest), up to 68 characters; import.csv keeps the name as it is. */
+static void fits_text(char *out, size_t size, const char *text)
+{
+	size_t i;
+
+	for (i = 0; i + 1 < size && text[i]; i++)
+		out[i] = (unsigned char)text[i] < 0x20 ||
+			 (unsigned char)text[i] > 0x7e ? '?' : text[i];
+	out[i] = '\0';
+}
+
 /* Our keywords beyond the lab frame's: where the frame came from, the
  * read-back angle, and what the camera's header said of its setting. */
 static size_t extras(const struct stray_import_header *h,
@@ -83,11 +95,13 @@ static size_t extras(const struct stray_import_header *h,
 		     const struct stray_import_row *row, double rb,
 		     struct stray_sweep_key *k)
 {
-	static char orig[69];
+	static char orig[69], filter[69];
 	size_t n = 0;
 	int s;
 
-	snprintf(orig, sizeof(orig), "%s", in->base);
+	fits_text(orig, sizeof(orig), in->base);
+	fits_text(filter, sizeof(filter), h->filter[0] ? h->filter
+		  : row->filter);
 	k[n++] = (struct stray_sweep_key){ "ORIGFILE", STRAY_SWEEP_KEY_STRING,
 		0, 0, orig, "original file (original/, import.csv)" };
 	k[n++] = (struct stray_sweep_key){ "ORIGSHA", STRAY_SWEEP_KEY_STRING,
@@ -103,8 +117,8 @@ static size_t extras(const struct stray_import_header *h,
 			"[deg] stage read-back angle" };
 	if (h->filter[0] || row->filter[0])
 		k[n++] = (struct stray_sweep_key){ "FILTER",
-			STRAY_SWEEP_KEY_STRING, 0, 0, h->filter[0] ? h->filter
-			: row->filter, "filter in the beam" };
+			STRAY_SWEEP_KEY_STRING, 0, 0, filter,
+			"filter in the beam" };
 	for (s = 0; s < STRAY_IMPORT_SETTINGS; s++)
 		if (h->has_setting[s])
 			k[n++] = (struct stray_sweep_key){
