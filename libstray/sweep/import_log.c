@@ -18,14 +18,30 @@
 #define FIELDS_MAX 32
 #define FIELD_LEN_MAX 512
 
-enum { C_FILE, C_ANGLE, C_TYPE, C_EXP, C_ND, N_REQ,
-       C_RB = N_REQ, C_FILTER, C_DATE, C_MON, N_COLS };
+/* The ND is one of two columns: its transmission or its optical
+ * density. */
+enum { C_FILE, C_ANGLE, C_TYPE, C_EXP, N_REQ, C_ND = N_REQ, C_OD,
+       C_RB, C_FILTER, C_DATE, C_MON, N_COLS };
 
 static const char *const names[N_COLS] = {
 	STRAY_IMPORT_COL_FILE, STRAY_IMPORT_COL_ANGLE, STRAY_IMPORT_COL_TYPE,
 	STRAY_IMPORT_COL_EXPTIME, STRAY_IMPORT_COL_NDTRANS,
-	STRAY_IMPORT_COL_READBACK, STRAY_IMPORT_COL_FILTER,
-	STRAY_IMPORT_COL_DATE, STRAY_IMPORT_COL_MONITOR
+	STRAY_IMPORT_COL_ND_OD, STRAY_IMPORT_COL_READBACK,
+	STRAY_IMPORT_COL_FILTER, STRAY_IMPORT_COL_DATE,
+	STRAY_IMPORT_COL_MONITOR
+};
+
+/* Other names a lab's log may give a column (any case): the manifest's
+ * names are ours, these are the ones acquisition scripts write. */
+static const char *const aliases[N_COLS][4] = {
+	{ "filename", NULL },
+	{ "angle", "theta_deg", "theta", NULL },
+	{ "frame_type", "type", "imagetyp", NULL },
+	{ "exptime", "exposure", "exposure_s", NULL },
+	{ "nd_trans", "nd_transmission", NULL },
+	{ "nd_density", NULL },
+	{ "readback", "angle_readback_deg", NULL },
+	{ NULL }, { "date", "date-obs", NULL }, { NULL }
 };
 
 struct fields {
@@ -191,9 +207,18 @@ static int take_row(const char *name, long line, const struct fields *r,
 			 &e->angle_deg, err)) ||
 	    (rc = number(name, line, C_EXP, r->f[idx[C_EXP]], &e->exptime_s,
 			 err)) ||
-	    (rc = number(name, line, C_ND, r->f[idx[C_ND]], &e->ndtrans,
-			 err)))
+	    (rc = idx[C_ND] >= 0 ? number(name, line, C_ND, r->f[idx[C_ND]],
+					   &e->ndtrans, err)
+		 : number(name, line, C_OD, r->f[idx[C_OD]], &e->ndtrans,
+			  err)))
 		return rc;
+	if (idx[C_ND] < 0) {	/* an optical density d: 10^-d */
+		if (!(e->ndtrans >= 0.0 && e->ndtrans <= 12.0))
+			return bad(name, line, names[C_OD], "must be in 0..12 "
+				   "(an optical density)", r->f[idx[C_OD]],
+				   err);
+		e->ndtrans = pow(10.0, -e->ndtrans);
+	}
 	strcpy(e->file, r->f[idx[C_FILE]]);
 	if (fabs(e->angle_deg) > 180.0)
 		return bad(name, line, names[C_ANGLE],
@@ -203,21 +228,33 @@ static int take_row(const char *name, long line, const struct fields *r,
 			   r->f[idx[C_EXP]], err);
 	if (!(e->ndtrans > 0.0 && e->ndtrans <= 1.0))
 		return bad(name, line, names[C_ND], "must be in (0, 1] (the "
-			   "transmission: optical density d is 10^-d)",
-			   r->f[idx[C_ND]], err);
+			   "transmission; or give the optical density as "
+			   "nd_od)", r->f[idx[C_ND]], err);
 	return optional(name, line, r, idx, e, err);
+}
+
+static int is_name(const char *cell, int c)
+{
+	int a;
+
+	if (strcasecmp(cell, names[c]) == 0)
+		return 1;
+	for (a = 0; a < 4 && aliases[c][a]; a++)
+		if (strcasecmp(cell, aliases[c][a]) == 0)
+			return 1;
+	return 0;
 }
 
 static int take_header(const char *name, long line, const struct fields *r,
 		       int *idx, struct stray_error *err)
 {
 	size_t k;
-	int c;
+	int c, nd = 0;
 
 	for (c = 0; c < N_COLS; c++) {
 		idx[c] = -1;
 		for (k = 0; k < r->n; k++)
-			if (strcmp(r->f[k], names[c]) == 0) {
+			if (is_name(r->f[k], c)) {
 				if (idx[c] >= 0)
 					return bad(name, line, names[c],
 						   "column named twice",
@@ -229,6 +266,18 @@ static int take_header(const char *name, long line, const struct fields *r,
 				names[c], "column missing from the header (file,"
 				"angle_deg,frametyp,exptime_s,ndtrans)");
 	}
+	for (k = 0; k < r->n; k++)
+		nd |= strcasecmp(r->f[k], "nd") == 0;
+	if (idx[C_ND] >= 0 && idx[C_OD] >= 0)
+		return bad(name, line, names[C_ND], "and nd_od both given: "
+			   "one ND column", names[C_OD], err);
+	if (idx[C_ND] < 0 && idx[C_OD] < 0)
+		return stray_error_at(err, STRAY_ENOTFOUND, name, line,
+			names[C_ND], nd ? "column 'nd' is ambiguous: name it "
+			"ndtrans (the transmission, 1 = none) or nd_od (the "
+			"optical density, 0 = none)" : "column missing from "
+			"the header (file,angle_deg,frametyp,exptime_s,"
+			"ndtrans)");
 	return STRAY_OK;
 }
 
@@ -271,8 +320,8 @@ static int take_line(const char *name, long line, const char *s, size_t len,
 		*have_header = 1;
 		return take_header(name, line, r, idx, err);
 	}
-	for (k = 0; k < N_REQ; k++)
-		if ((size_t)idx[k] >= r->n)
+	for (k = 0; k < C_RB; k++)	/* the required and the ND */
+		if (idx[k] >= 0 && (size_t)idx[k] >= r->n)
 			return stray_error_at(err, STRAY_EPARSE, name, line,
 					      names[k], "cell missing (fewer "
 					      "cells than the header)");

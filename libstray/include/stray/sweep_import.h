@@ -23,12 +23,15 @@
 
 /* ---- the log ------------------------------------------------------------ */
 
-/* Columns of the log (header line, any order; others ignored). */
+/* Columns of the log (header line, any order, any case; others ignored;
+ * import_log.c lists the other names each may have). */
 #define STRAY_IMPORT_COL_FILE "file"
 #define STRAY_IMPORT_COL_ANGLE "angle_deg"
 #define STRAY_IMPORT_COL_TYPE "frametyp"
 #define STRAY_IMPORT_COL_EXPTIME "exptime_s"
 #define STRAY_IMPORT_COL_NDTRANS "ndtrans"
+/* or, instead of ndtrans, the ND's optical density d (10^-d) */
+#define STRAY_IMPORT_COL_ND_OD "nd_od"
 /* optional */
 #define STRAY_IMPORT_COL_READBACK "readback_deg"
 #define STRAY_IMPORT_COL_FILTER "filter"
