@@ -30,7 +30,7 @@ $(B)/tests/tools/test_hardening2_fits: $(B)/tests/flightcheck/make_flight
 # Parsers under libFuzzer (clang), run by scripts/fuzz.sh two at a time
 # (FUZZ_JOBS), each on tests/fuzz/corpus/<target> and tests/fuzz/seeds/<target>:
 #   make fuzz-ci     in `make test`: each target FUZZ_CI_SECONDS (15 s for
-#                    22 targets; issue 14's double free took 7-22 s from the
+#                    23 targets; issue 14's double free took 7-22 s from the
 #                    seeds alone, 1 s from the kept corpus), fails on any
 #                    crash
 #   make fuzz        the long campaign: FUZZ_RUNS runs (10^7) per target,
@@ -64,6 +64,14 @@ build/fuzz/fuzz_sweep_manifest: tests/fuzz/fuzz_sweep_manifest.c \
 build/fuzz/fuzz_import_log: tests/fuzz/fuzz_import_log.c \
 		libstray/sweep/import_log.c libstray/sweep/format.c \
 		$(FUZZ_LIB_SRC)
+	@mkdir -p $(dir $@)
+	$(CLANG) $(FUZZ_CFLAGS) -o $@ $^ $(STRAY_LDLIBS)
+
+# A frame of other software as the import reads it: FITS (cfitsio) and
+# TIFF (libtiff), both from memory.
+build/fuzz/fuzz_import_frame: tests/fuzz/fuzz_import_frame.c \
+		libstray/sweep/import_frame.c libstray/sweep/import_tiff.c \
+		libstray/sweep/format.c $(FUZZ_LIB_SRC)
 	@mkdir -p $(dir $@)
 	$(CLANG) $(FUZZ_CFLAGS) -o $@ $^ $(STRAY_LDLIBS)
 
