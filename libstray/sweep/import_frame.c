@@ -181,6 +181,21 @@ static int key_whole(fitsfile *f, const char *path, const char *key,
 	return 1;
 }
 
+/* Decimals of the seconds past the sixth dropped: .NET's round-trip
+ * time (N.I.N.A., ASCOM programs) writes seven; a microsecond is far
+ * below any exposure. */
+static void seconds_to_micro(char *t)
+{
+	char *dot = strchr(t, '.'), *end;
+
+	if (!dot)
+		return;
+	for (end = dot + 1; *end >= '0' && *end <= '9'; end++)
+		;
+	if (end - dot > 7)
+		memmove(dot + 7, end, strlen(end) + 1);
+}
+
 static int keywords(fitsfile *f, const char *path,
 		    struct stray_import_header *h, struct stray_error *err)
 {
@@ -224,6 +239,8 @@ static int keywords(fitsfile *f, const char *path,
 	if ((got = key_str(f, path, "DATE-OBS", text, sizeof(text), err)) < 0)
 		return STRAY_EINVAL;
 	h->has_date = got > 0;
+	if (got > 0)
+		seconds_to_micro(text);
 	if (got > 0 && stray_sweep_utc_parse(text, &h->date_obs) != STRAY_OK) {
 		stray_error_at(err, STRAY_EPARSE, path, 0, "DATE-OBS",
 			       "must be a UTC time like 2026-12-02T04:50:00.123");
