@@ -114,27 +114,43 @@ struct dirent64_raw {
 	char name[];
 };
 
-/* Remove a temporary folder and the files in it (flat: a sweep folder
- * holds only files); raw system calls only, so the handler may call it. */
-static void remove_dir_flat(const char *dir)
+/* Unlink every entry of the open folder fd; a subfolder (sub set) is
+ * emptied the same way one level down and removed (`stray sweep import`
+ * keeps its originals in original/).  Raw system calls only. */
+static void unlink_entries(int fd, int sub)
 {
 	long long buf[512];	/* aligned for the entries */
+	long n, i;
+
+	while ((n = syscall(SYS_getdents64, fd, buf, sizeof(buf))) > 0)
+		for (i = 0; i < n;) {
+			struct dirent64_raw *d = (struct dirent64_raw *)
+				((char *)buf + i);
+			int cfd;
+
+			if (strcmp(d->name, ".") && strcmp(d->name, "..") &&
+			    unlinkat(fd, d->name, 0) != 0 && errno == EISDIR &&
+			    sub && (cfd = openat(fd, d->name, O_RDONLY |
+						 O_DIRECTORY | O_NOFOLLOW)) >= 0) {
+				unlink_entries(cfd, 0);
+				close(cfd);
+				unlinkat(fd, d->name, AT_REMOVEDIR);
+			}
+			i += d->reclen;
+		}
+}
+
+/* Remove a temporary folder and the files in it (a sweep folder holds
+ * files, and an imported one its original/ folder of files); raw system
+ * calls only, so the handler may call it. */
+static void remove_dir_flat(const char *dir)
+{
 	int pass, fd;
 
 	for (pass = 0; pass < 4; pass++) {
-		long n, i;
-
 		if ((fd = open(dir, O_RDONLY | O_DIRECTORY)) < 0)
 			return;
-		while ((n = syscall(SYS_getdents64, fd, buf, sizeof(buf))) > 0)
-			for (i = 0; i < n;) {
-				struct dirent64_raw *d = (struct dirent64_raw *)
-					((char *)buf + i);
-
-				if (strcmp(d->name, ".") && strcmp(d->name, ".."))
-					unlinkat(fd, d->name, 0);
-				i += d->reclen;
-			}
+		unlink_entries(fd, 1);
 		close(fd);
 		if (rmdir(dir) == 0 || errno != ENOTEMPTY)
 			return;
