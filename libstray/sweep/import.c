@@ -279,13 +279,17 @@ static int check_frame(struct state *s, size_t i, struct stray_error *err)
 {
 	struct input *in = s->of_row[i];
 	struct stray_import_header h;
+	uint16_t *px = NULL;
 	int rc;
 
 	if ((rc = stray_sweep_file_load(in->path, &s->buf, err)))
 		return rc;
 	stray_sweep_sha256_mem(s->buf.data, s->buf.len, in->sha);
-	if ((rc = stray_import_frame_read(in->path, &s->buf, &h, NULL, err)) ||
-	    (rc = settle(s, &h, in->path, err)))
+	/* the pixels decoded too: a truncated or corrupt frame is refused
+	 * here, before anything is written */
+	rc = stray_import_frame_read(in->path, &s->buf, &h, &px, err);
+	free(px);
+	if (rc || (rc = settle(s, &h, in->path, err)))
 		return rc;
 	if (!s->first_path) {
 		s->first = h;

@@ -13,7 +13,9 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <signal.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <cmocka.h>
 
 #include "../scratch.h"
@@ -275,6 +277,120 @@ static void test_duplicate_files(void **state)
 	REFUSED(1, "log.csv:3: file '" LIGHT1 "': is logged twice");
 }
 
+/* Frames cut short: refused before anything is written, and no
+ * temporary folder left beside the output. */
+static void test_truncated_frames(void **state)
+{
+	char *log, cmd[600];
+
+	(void)state;
+	snprintf(cmd, sizeof(cmd), "head -c 3000 " FOREIGN "fits/" LIGHT1
+		 " > %s && head -c 300 " FOREIGN "tiff/CCD_Simulator_Light_001"
+		 ".tif > %s", in_dir("cut.fits"), in_dir("cut.tif"));
+	assert_int_equal(system(cmd), 0);
+	log = put_text("log.csv", HEAD "\ncut.fits,0,FULL,0.024357,0.3\n");
+	STRAY("sweep", "import", "--log", log, "--out", in_dir("out"),
+	      in_dir("cut.fits"));
+	REFUSED(1, "cut.fits: NAXIS1 x NAXIS2: claims more data than the "
+		"file holds");
+	log = put_text("log.csv", HEAD "\ncut.tif,0,FULL,0.024357,0.3\n");
+	STRAY("sweep", "import", "--log", log, "--out", in_dir("out"),
+	      in_dir("cut.tif"));
+	REFUSED(1, "cut.tif: StripOffsets", "pixels cannot be read");
+	snprintf(cmd, sizeof(cmd), "ls -d %s.tmp.* 2>/dev/null | grep -q .",
+		 in_dir("out"));
+	assert_int_not_equal(system(cmd), 0);
+}
+
+/* A FITS card: key = value, padded to 80 characters. */
+static void card(char *h, int *k, const char *text)
+{
+	snprintf(h + 80 * (*k)++, 81, "%-80s", text);
+}
+
+/* dir/fNNN.fits: 64 x 4 counts of value v, as a camera writes a light
+ * frame (BITPIX 16, BZERO 32768, EXPTIME, IMAGETYP). */
+static void camera_fits(int v)
+{
+	char h[2880 + 1], name[32], *path;
+	unsigned char px[2880];
+	int k = 0, i;
+	FILE *f;
+
+	memset(h, ' ', sizeof(h));
+	card(h, &k, "SIMPLE  =                    T");
+	card(h, &k, "BITPIX  =                   16");
+	card(h, &k, "NAXIS   =                    2");
+	card(h, &k, "NAXIS1  =                   64");
+	card(h, &k, "NAXIS2  =                    4");
+	card(h, &k, "BZERO   =                32768");
+	card(h, &k, "BSCALE  =                    1");
+	card(h, &k, "EXPTIME =                  1.0");
+	card(h, &k, "IMAGETYP= 'Light Frame'");
+	card(h, &k, "END");
+	h[80 * k] = ' ';
+	memset(px, 0, sizeof(px));
+	for (i = 0; i < 64 * 4; i++) {	/* big-endian, top bit flipped */
+		px[2 * i] = (unsigned char)(((v + 32768) >> 8) & 0xff);
+		px[2 * i + 1] = (unsigned char)((v + 32768) & 0xff);
+	}
+	snprintf(name, sizeof(name), "frames/f%03d.fits", v);
+	path = in_dir(name);
+	f = fopen(path, "wb");
+	assert_non_null(f);
+	assert_int_equal(fwrite(h, 1, 2880, f), 2880);
+	assert_int_equal(fwrite(px, 1, 2880, f), 2880);
+	fclose(f);
+}
+
+/* Killed while it writes (its temporary folder and original/ there):
+ * nothing is left, neither the folder nor its temporary. */
+static void test_interrupted_leaves_nothing(void **state)
+{
+	const char *bin = getenv("STRAY_BIN") ? getenv("STRAY_BIN")
+					      : "build/bin/stray";
+	char *text = malloc(200 * 40 + 64), orig[300], tmp[256];
+	size_t len;
+	struct timespec ms = { 0, 10000000 };
+	int i, st, seen = 0;
+	pid_t pid;
+
+	(void)state;
+	assert_non_null(text);
+	mkdir(in_dir("frames"), 0700);
+	len = (size_t)sprintf(text, HEAD "\n");
+	for (i = 0; i < 200; i++) {
+		camera_fits(i);
+		len += (size_t)sprintf(text + len, "f%03d.fits,%d,FULL,1,1\n", i,
+				       i / 20);
+	}
+	put_text("log.csv", text);
+	free(text);
+	pid = fork();
+	if (pid == 0) {
+		freopen("/dev/null", "w", stdout);
+		freopen("/dev/null", "w", stderr);
+		execl(bin, "stray", "sweep", "import", "--log",
+		      in_dir("log.csv"), "--out", in_dir("out"),
+		      in_dir("frames"), (char *)NULL);
+		_exit(127);
+	}
+	snprintf(tmp, sizeof(tmp), "%s.tmp.%ld", in_dir("out"), (long)pid);
+	snprintf(orig, sizeof(orig), "%s/original", tmp);
+	for (i = 0; i < 1000 && !seen; i++) {	/* at most 10 s */
+		seen = exists(orig);
+		if (!seen && waitpid(pid, &st, WNOHANG) == pid)
+			break;
+		nanosleep(&ms, NULL);
+	}
+	if (!seen)
+		fail_msg("the import never began to write %s", orig);
+	kill(pid, SIGTERM);
+	waitpid(pid, &st, 0);
+	assert_false(exists(tmp));
+	assert_false(exists(in_dir("out")));
+}
+
 /* An output folder that exists with something in it is never touched. */
 static void test_output_not_empty(void **state)
 {
@@ -330,8 +446,12 @@ int main(void)
 						teardown),
 		cmocka_unit_test_setup_teardown(test_duplicate_files, setup,
 						teardown),
+		cmocka_unit_test_setup_teardown(test_truncated_frames, setup,
+						teardown),
 		cmocka_unit_test_setup_teardown(test_output_not_empty, setup,
 						teardown),
+		cmocka_unit_test_setup_teardown(test_interrupted_leaves_nothing,
+						setup, teardown),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
