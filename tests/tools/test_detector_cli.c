@@ -2,9 +2,9 @@
  * test_detector_cli.c - issue 28's detectors carried into the answer and
  * into flight, on the command line: firmware-table builds the named
  * detector's table (version 3) whose Sun angle is `exclusion
- * --detector`'s; availability flies it, refuses a table built for another
- * detector and names an older table's version; diagnose and the review's
- * project file take the detector; `exclusion --models` gives the Sun
+ * --detector`'s; orbit and availability fly it, availability refuses a
+ * table built for another detector and names an older table's version;
+ * diagnose and the review's project file take the detector; `exclusion --models` gives the Sun
  * angle per model with what binds it, the table README.md carries.  Every
  * case fails on the build before (no such option, key or table).
  */
@@ -156,6 +156,12 @@ static void test_availability_detector(void **state)
 	assert_int_equal(STRAY("firmware-table", "--curve", CURVE,
 			       "--detector", "window", "--out-bin",
 			       path("w.bin")), 0);
+	/* stray orbit flies it too and says which detector */
+	assert_int_equal(STRAY("orbit", "--table", path("w.bin"), "--hours",
+			       "1", "--json"), 0);
+	j = json_out();
+	assert_string_equal(str(j, "detector"), "window");
+	cJSON_Delete(j);
 	write_heads("h.json", "w.bin");
 	assert_int_equal(STRAY("availability", "--write-oem", path("o.oem"),
 			       "--write-aem", path("a.aem"), "--hours", "2"), 0);
