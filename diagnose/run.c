@@ -377,14 +377,19 @@ int diag_run(struct diag_eval *e, const struct diag_data *d,
 		memset(&none, 0, sizeof(none));
 		rc = final_curves(e, d, r, &none, err);
 	}
+	r->detector.name = e->detector;
+	r->detector.kind = STRAY_DET_THESIS;
+	r->detector.sigma = e->detector_sigma;
+	if (e->detector)
+		stray_detector_parse(e->detector, &r->detector.kind, NULL);
 	if (!rc)
-		rc = diag_sun_exclusion(e->sensor, d->theta_deg,
-					r->model_before, d->n,
+		rc = diag_sun_exclusion_det(e->sensor, &r->detector,
+					d->theta_deg, r->model_before, d->n,
 					&r->sun_deg_before, &r->sun_alpha_req,
 					r->sensor, err);
 	if (!rc)
-		rc = diag_sun_exclusion(e->sensor, d->theta_deg,
-					r->model_after, d->n,
+		rc = diag_sun_exclusion_det(e->sensor, &r->detector,
+					d->theta_deg, r->model_after, d->n,
 					&r->sun_deg_after, &r->sun_alpha_req,
 					NULL, err);
 	return rc;

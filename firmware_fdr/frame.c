@@ -102,6 +102,7 @@ static void store(struct fdrfw_output *out, enum fdrfw_body b,
 {
 	out->ln_fdr[b] = (float)r->ln_fdr;
 	out->false_stars[b] = (float)stray_exp(r->ln_fdr);
+	out->p_drs[b] = (float)r->p_drs;
 	if (r->excluded != 0)
 		out->flags |= excl_flag;
 }
@@ -154,10 +155,11 @@ static int assess(struct fdrfw_ctx *ctx, const float b[3],
 		  const struct fdrfw_earth_cap *cap, struct fdrfw_output *out)
 {
 	const struct fdrfw_table *t = ctx->table;
-	struct fdrfw_source_result r = { -STRAY_HUGE, 0 };
+	struct fdrfw_source_result r;
 	uint32_t held = ctx->latched;
 	int rc = 0;
 
+	fdrfw_source_none(ctx, &r);	/* the Sun eclipsed */
 	if (!(out->flags & FDRFW_SUN_ECLIPSED))
 		rc |= fdrfw_point_source(ctx, (stray_real)t->f_sun_ph_s_m2,
 			out->theta_deg[FDRFW_SUN],

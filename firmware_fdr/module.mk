@@ -84,6 +84,16 @@ $(B)/tests/firmware_fdr/test_float_core: \
 		$(FDRFW_GROUND_LIB) $(FDRFW_LIB) $(STRAY_LIB) $(CMOCKA_LIBS) \
 		-lerfa $(STRAY_LDLIBS)
 
+# The detector tables in the module as it flies (STRAY_REAL_FLOAT, the
+# flight sources only: no ground code), the tables from $(STRAY_BIN).
+$(B)/tests/firmware_fdr/test_detector_float: \
+		tests/firmware_fdr/test_detector_float.c $(FDRFW_SRC) \
+		$(FDRFW_STRAY_SRC) $(STRAY_BIN)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_BASE) $(CPPFLAGS_HOST) -DSTRAY_REAL_FLOAT \
+		-DSTRAY_WITH_POISSON=0 -Ifirmware_fdr -Ifirmware_fdr/include \
+		-o $@ $< $(FDRFW_SRC) $(FDRFW_STRAY_SRC) $(CMOCKA_LIBS) -lm
+
 include firmware_fdr/target/target.mk
 
 # The shared vectors (checked in): regenerate with `make fdrfw-vectors`.

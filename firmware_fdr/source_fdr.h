@@ -16,8 +16,12 @@ int fdrfw_fdr_init(struct fdrfw_ctx *ctx);
 
 /* What one source does to a frame. */
 struct fdrfw_source_result {
-	stray_real ln_fdr;	/* ln of expected false stars, eq. 2.18 */
-	int excluded;		/* FDR at the exclusion envelope >= tolerated */
+	stray_real ln_fdr;	/* ln of expected false stars, eq. 2.18 or
+				 * the detector's grid */
+	stray_real p_drs;	/* the DRS's detection (grid; NaN: thesis) */
+	int excluded;		/* FDR at the exclusion envelope >= tolerated,
+				 * or (grid) P_drs there below Pr_drs */
+	int negligible;		/* the envelope's light changes nothing */
 };
 
 /*
@@ -28,6 +32,15 @@ struct fdrfw_source_result {
  */
 int fdrfw_point_source(struct fdrfw_ctx *ctx, stray_real f_src,
 		       float theta_deg, int latched,
+		       struct fdrfw_source_result *res);
+
+/* A detector table's answer (its grid, issue 28) for the light f_src at
+ * attenuation alpha, its flag at the envelope's env. */
+void fdrfw_grid_source(struct fdrfw_ctx *ctx, stray_real f_src, float alpha,
+		       float env, struct fdrfw_source_result *res);
+
+/* No light from a source (eclipsed, the night side). */
+void fdrfw_source_none(const struct fdrfw_ctx *ctx,
 		       struct fdrfw_source_result *res);
 
 /* The sunlit Earth over the cap's quadrature, boresight b (unit), the

@@ -89,6 +89,13 @@ int fdrfw_table_parse(const uint8_t *buf, size_t len, struct fdrfw_table *t)
 {
 	size_t i;
 
+	/* A table of another version has another length: say so first. */
+	if ((len >= 8u) && (buf[0] == 0x46u) && (buf[1] == 0x46u) &&
+	    (buf[2] == 0x44u) && (buf[3] == 0x52u) &&
+	    ((buf[4] != (uint8_t)FDRFW_TABLE_VERSION) || (buf[5] != 0u) ||
+	     (buf[6] != 0u) || (buf[7] != 0u))) {
+		return FDRFW_EMAGIC;
+	}
 	if (len != FDRFW_BLOB_SIZE)
 		return FDRFW_ESIZE;
 	for (i = 0; i < FDRFW_TABLE_WORDS; i++) {
@@ -196,6 +203,41 @@ static int curve_check(const struct fdrfw_table *t)
 	return rc;
 }
 
+/* The detector (issue 28): a known kind; THESIS flies eq. 2.18 and has
+ * no grid; the others FDRFW_DET_MAX nodes a step > 0 apart, ln false
+ * stars in [floor, 1000] never falling and P_drs in [0, 1] never rising
+ * as the background grows (so an interpolated flag is monotone too). */
+static int det_check(const struct fdrfw_table *t)
+{
+	uint32_t i;
+	int rc = (int)FDRFW_OK;
+
+	if (t->detector >= FDRFW_DET_KINDS) {
+		rc = FDRFW_EFIELD_OF(detector);
+	} else if (t->n_det != ((t->detector == FDRFW_DET_THESIS) ? 0u :
+				(uint32_t)FDRFW_DET_MAX)) {
+		rc = FDRFW_EFIELD_OF(n_det);
+	} else if ((t->n_det > 0u) && !(t->det_du > 0.0f)) {
+		rc = FDRFW_EFIELD_OF(det_du);
+	} else {
+		for (i = 0; (i < t->n_det) && (rc == (int)FDRFW_OK); i++) {
+			float l = t->det_ln_false[i];
+			float p = t->det_p_drs[i];
+
+			if (!((l >= FDRFW_DET_LN_FLOOR) && (l <= 1e3f)) ||
+			    ((i > 0u) && !(l >= t->det_ln_false[i - 1u]))) {
+				rc = FDRFW_EFIELD_OF(det_ln_false);
+			} else if (!((p >= 0.0f) && (p <= 1.0f)) ||
+				   ((i > 0u) && !(p <= t->det_p_drs[i - 1u]))) {
+				rc = FDRFW_EFIELD_OF(det_p_drs);
+			} else {
+				/* in its domain */
+			}
+		}
+	}
+	return rc;
+}
+
 /* fig. 5.1: the Sun's exclusion angle is where the envelope falls to
  * alpha_req: the envelope reaches alpha_req on the boresight (so the Sun
  * there is excluded) and no further than the angle claimed (a looser
@@ -224,6 +266,9 @@ int fdrfw_table_check(const struct fdrfw_table *t)
 		rc = (int)FDRFW_ECRC;
 	} else {
 		rc = scalars_check(t);
+		if (rc == (int)FDRFW_OK) {
+			rc = det_check(t);
+		}
 		if (rc == (int)FDRFW_OK) {
 			rc = curve_check(t);
 		}

@@ -78,6 +78,19 @@ static const struct review_req *req(const struct review_project *p,
 }
 
 /* --sensor S and --rate R (the tolerated false stars of the project). */
+/* The project's detector (issue 28), when it names one. */
+static void detector(struct review_step *s, const struct review_project *p)
+{
+	if (p->detector[0]) {
+		arg(s, dupf("--detector"));
+		arg(s, dupf("%s", p->detector));
+	}
+	if (p->detector_sigma > 0.0) {
+		arg(s, dupf("--detector-sigma"));
+		arg(s, dupf("%.17g", p->detector_sigma));
+	}
+}
+
 static void sensor_rate(struct review_step *s, const struct review_project *p)
 {
 	const struct review_req *r = req(p, "false_stars_per_image");
@@ -89,6 +102,7 @@ static void sensor_rate(struct review_step *s, const struct review_project *p)
 		arg(s, dupf("--rate"));
 		arg(s, dupf("%.17g", r->value));
 	}
+	detector(s, p);
 }
 
 static void scene(struct review_step *s, const struct review_project *p)
@@ -181,6 +195,7 @@ static void mission_steps(struct review_plan *plan,
 	arg(s, dupf("--oem")); arg(s, dupf("%s", oem));
 	arg(s, dupf("--aem")); arg(s, dupf("%s", aem));
 	arg(s, dupf("--heads")); arg(s, dupf("heads.json"));
+	detector(s, p);		/* the flight table must be built for it */
 	arg(s, dupf("--plot")); arg(s, dupf("availability"));
 	arg(s, dupf("--out")); arg(s, dupf("availability.csv"));
 	arg(s, dupf("--json"));

@@ -15,6 +15,7 @@
 
 #include "review/review.h"
 #include "review_int.h"
+#include "stray/detector.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"
 
@@ -240,6 +241,26 @@ static int take_measured(struct review_project *p, const cJSON *m,
 	return rc;
 }
 
+/* "detector": thesis, window, threshold or tetra3 (stray/detector.h);
+ * "detector_sigma": tetra3's k, 0.5..20. */
+static int take_detector(struct review_project *p, const cJSON *root,
+			 struct stray_error *err)
+{
+	const cJSON *v = cJSON_GetObjectItemCaseSensitive(root, "detector");
+	enum stray_detector_kind k;
+
+	if (v && (!cJSON_IsString(v) ||
+		  stray_detector_parse(v->valuestring, &k, NULL) != STRAY_OK))
+		return review_bad(err, p, "detector", cJSON_IsString(v) ?
+			v->valuestring : NULL,
+			"must be thesis, window, threshold or tetra3");
+	if (v)
+		snprintf(p->detector, sizeof(p->detector), "%s", v->valuestring);
+	v = cJSON_GetObjectItemCaseSensitive(root, "detector_sigma");
+	return v ? take_number(p, v, "detector_sigma", 0.5, 20,
+			       &p->detector_sigma, err) : STRAY_OK;
+}
+
 /* defined in mission.c: the mission and heads keys */
 int review_take_mission(struct review_project *p, const cJSON *m,
 			struct stray_error *err);
@@ -250,7 +271,8 @@ static int take_all(struct review_project *p, const cJSON *root,
 		    struct stray_error *err)
 {
 	static const char *const keys[] = { "name", "sensor", "scene", "set",
-		"lens", "requirements", "measured", "mission", "heads", NULL };
+		"lens", "requirements", "measured", "mission", "heads",
+		"detector", "detector_sigma", NULL };
 	static const char *const need[] = { "sensor", "scene", "requirements" };
 	const cJSON *v;
 	int i, rc;
@@ -273,6 +295,8 @@ static int take_all(struct review_project *p, const cJSON *root,
 			       "scene", 1, p->scene, err);
 	if (rc == STRAY_OK && (v = cJSON_GetObjectItemCaseSensitive(root, "set")))
 		rc = take_set(p, v, err);
+	if (rc == STRAY_OK)
+		rc = take_detector(p, root, err);
 	if (rc == STRAY_OK && (v = cJSON_GetObjectItemCaseSensitive(root, "lens")))
 		rc = take_lens(p, v, err);
 	if (rc == STRAY_OK)

@@ -107,7 +107,15 @@ void review_design(struct review_doc *d, const char *dir,
 static void exclusion_lines(struct review_doc *d, const cJSON *j)
 {
 	static const char *const body[3] = { "sun", "moon", "earth" };
+	const cJSON *det = cJSON_GetObjectItemCaseSensitive(j, "detector");
 	int b;
+
+	/* the thesis's text as it was; a named detector says which failure
+	 * mode sets each angle (issue 28) */
+	if (cJSON_IsString(det) && strcmp(det->valuestring, "thesis") != 0)
+		doc_p(d, "Detector %s: alpha_required is where its false stars "
+		      "stay within the rate and the reference star stays "
+		      "detected (docs/detectors.md).", det->valuestring);
 
 	for (b = 0; b < 3; b++) {
 		const cJSON *o = cJSON_GetObjectItemCaseSensitive(j, body[b]);
@@ -119,7 +127,17 @@ static void exclusion_lines(struct review_doc *d, const cJSON *j)
 
 		if (!o)
 			continue;
-		if (cJSON_IsNumber(deg))
+		if (cJSON_IsNumber(deg) && cJSON_IsString(det) &&
+		    strcmp(det->valuestring, "thesis") != 0)
+			doc_p(d, "%s: excluded beyond %.2f deg [%.2f, %.2f] deg, where alpha falls under alpha_required = %.3g (%s bind).",
+			      body[b], deg->valuedouble,
+			      cJSON_IsNumber(lo) ? lo->valuedouble : NAN,
+			      cJSON_IsNumber(hi) ? hi->valuedouble : NAN,
+			      cJSON_IsNumber(ar) ? ar->valuedouble : NAN,
+			      cJSON_IsString(cJSON_GetObjectItemCaseSensitive(
+				o, "binding")) ? cJSON_GetObjectItemCaseSensitive(
+				o, "binding")->valuestring : "?");
+		else if (cJSON_IsNumber(deg))
 			doc_p(d, "%s: excluded beyond %.2f deg [%.2f, %.2f] deg, where alpha falls under alpha_required = %.3g.",
 			      body[b], deg->valuedouble,
 			      cJSON_IsNumber(lo) ? lo->valuedouble : NAN,

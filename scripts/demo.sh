@@ -159,6 +159,13 @@ for c in system system_corrected system_variant; do
 			--json > "$out/pixels_${c}_${n}_mapped.json" 2>/dev/null
 	done
 done
+# Every demo system's Sun exclusion angle under every model (issue 28):
+# the thesis (k_px = 1), consistent, and each validated detector with the
+# failure mode that sets it (stray exclusion --models).
+for c in system system_corrected system_variant; do
+	"$stray" exclusion --curve "$out/$c.csv" --models \
+		--json > "$out/models_${c}.json" 2>/dev/null
+done
 # Where the variant's stray light lands at 40 deg: out of the field, so
 # spread by the lens's own measured region map.
 "$stray" trace --scene ref4 $corrections --set bevel_face=upper \

@@ -43,6 +43,16 @@ for key, label in SYSTEMS:
         row[col] = deg(load("pixels_%s_%s_uniform.json" % (key, n)).get("moon_deg"))
     rows.append(row)
 
+# Every system's Sun angle per model and what sets it (exclusion --models).
+by_model = []
+for key, label in SYSTEMS:
+    for m in load("models_%s.json" % key)["models"]:
+        by_model.append({
+            "system": label, "model": m["model"],
+            "alpha_required": m["alpha_required"],
+            "Sun deg": deg(m.get("sun_deg")),
+            "set by": m["binding"].replace("_", " ")})
+
 fm = load("focal_map.json").get("focal_map", {})
 points, size = [], "-"
 for path in glob.glob(os.path.join(out, "frames", "*-*.json")):
@@ -76,6 +86,7 @@ doc = {
     "focal_map.in_field_fraction": fm.get("in_field_fraction"),
     "focal_map.spread": fm.get("spread"),
     "exclusion": rows,
+    "exclusion_by_model": by_model,
     "validation": points,
 }
 with open(os.path.join(out, "pixels.json"), "w") as f:
@@ -91,6 +102,12 @@ for r in rows:
     print("%-22s %10s %10s %10s %10s %8s %8s" % ((r["system"],) + tuple(
         show(r[c]) for c in [c for _, _, c in COLS] +
         ["Moon k_px=1", "Moon consistent"])))
+print()
+print("Sun exclusion angle per model, deg, and the failure mode that sets it")
+for r in by_model:
+    print("%-22s %-28s %10.3g %8s  %s" % (
+        r["system"], r["model"], r["alpha_required"], show(r["Sun deg"]),
+        r["set by"]))
 print()
 print("Focal map of the variant at %s deg: mean %.3g per pixel (= k_px alpha), "
       "%.1f %% imaged in the field, out-of-field light spread by the %s"

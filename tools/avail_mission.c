@@ -22,8 +22,23 @@
 
 #define RAD2DEG 57.2957795130823209
 
-static int load_heads(const char *path, struct mission *m,
-		      struct stray_error *err)
+/* The detector asked for (--detector), checked against the table
+ * (issue 28: a table read as another detector is refused). */
+static int head_detector(const struct mission_args *a,
+			 const struct fdrfw_table *t, const char *path,
+			 struct stray_error *err)
+{
+	enum stray_detector_kind k;
+
+	if (!a->detector)
+		return STRAY_OK;
+	if (stray_detector_parse(a->detector, &k, err) != STRAY_OK)
+		return STRAY_EINVAL;
+	return fdrfw_table_detector_check(t, k, a->detector_sigma, path, err);
+}
+
+static int load_heads(const struct mission_args *a, const char *path,
+		      struct mission *m, struct stray_error *err)
 {
 	struct avail_head_spec spec[AVAIL_HEADS_MAX];
 	char *buf;
@@ -40,6 +55,8 @@ static int load_heads(const char *path, struct mission *m,
 		memcpy(hd->name, spec[i].name, sizeof(hd->name));
 		memcpy(hd->m_bs, spec[i].m_bs, sizeof(hd->m_bs));
 		if ((rc = flight_table_load(spec[i].table, &hd->table, err)) ==
+		    STRAY_OK &&
+		    (rc = head_detector(a, &hd->table, spec[i].table, err)) ==
 		    STRAY_OK)
 			m->n_heads = i + 1;
 	}
@@ -67,7 +84,7 @@ int mission_load(const struct mission_args *a, struct mission *m,
 		rc = stray_aem_parse(m->aem_text, m->aem_len, a->aem, &m->aem, err);
 	else
 		rc = stray_aem_read(a->aem, &m->aem, err);
-	if (rc != STRAY_OK || (rc = load_heads(a->heads, m, err)) != STRAY_OK)
+	if (rc != STRAY_OK || (rc = load_heads(a, a->heads, m, err)) != STRAY_OK)
 		return rc;
 	/* the span the segments cover (a hole inside is reported, not flown) */
 	m->t0 = fmax(m->oem.cover.t0, m->aem.cover.t0);

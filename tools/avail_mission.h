@@ -31,6 +31,10 @@ struct mission_args {
 	double altitude_km, ltan_h, incl_deg;	/* incl_deg < 0: sun-synchronous */
 	int attitude;				/* enum mission_attitude */
 	int orbit_given, incl_given;
+	/* --detector, --detector-sigma: every head's table must be built for
+	 * it (NULL: each flies the detector its table carries) */
+	const char *detector;
+	double detector_sigma;
 };
 
 enum mission_attitude { MISSION_NADIR, MISSION_INERTIAL, MISSION_SUN };

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "avail_mission.h"
+#include "fdrfw/table_build.h"
 #include "cli.h"
 #include "plot.h"
 #include "stray/ccsds.h"
@@ -65,6 +66,11 @@ int mission_summary(const struct mission_args *a, const struct mission *m)
 
 		cJSON_AddNumberToObject(j, "false_stars_mean", hd->stars_mean);
 		cJSON_AddNumberToObject(j, "false_stars_max", hd->stars_max);
+		/* the detector its table flies and what binds its Sun angle */
+		cJSON_AddStringToObject(j, "detector",
+					fdrfw_table_detector_name(&hd->table));
+		cJSON_AddStringToObject(j, "binding", stray_failure_mode_name(
+					fdrfw_table_binding(&hd->table)));
 		cJSON_AddBoolToObject(j, "sun_excluded_by_baffle",
 				      hd->sun_excluded);
 		if (!hd->sun_excluded)
@@ -98,6 +104,15 @@ int mission_summary(const struct mission_args *a, const struct mission *m)
 	}
 	printf("  %-8s %8.2f%% %31zu %10.0f\n", "any", 100.0 * m->any.available_frac,
 	       m->any.outages, m->any.longest_outage_s);
+	for (h = 0; h < m->n_heads; h++)	/* the thesis's text as it was */
+		if (m->head[h].table.detector != FDRFW_DET_THESIS)
+			printf("  %s: detector %s (its table's grid; %s bind "
+			       "the Sun's angle, %.2f deg)\n", m->head[h].name,
+			       fdrfw_table_detector_name(&m->head[h].table),
+			       fdrfw_table_binding(&m->head[h].table) ==
+			       STRAY_FAIL_LOST_STARS ? "lost stars" :
+			       "false stars",
+			       (double)m->head[h].table.exclusion_sun_deg);
 	for (h = 0; h < m->n_heads; h++)
 		if (!m->head[h].sun_excluded)
 			printf("  %s: the Sun is not excluded by its baffle (%s): "

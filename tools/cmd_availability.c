@@ -16,6 +16,7 @@
 #include "avail_mission.h"
 #include "cli.h"
 #include "commands.h"
+#include "stray/detector.h"
 #include "stray/errfmt.h"
 
 static const char usage[] =
@@ -48,6 +49,11 @@ static const char usage[] =
 	"                       (finals2000A.all) for an OEM or AEM in an\n"
 	"                       Earth-fixed frame; zero without one\n"
 	"  --json               machine-readable summary\n"
+	"  --detector D         the tracker's detector (thesis, window, threshold,\n"
+	"                       tetra3): every head's table must be built for it\n"
+	"                       (stray firmware-table --detector D), else exit 2;\n"
+	"                       default: each table's own (thesis unless built so)\n"
+	"  --detector-sigma K   tetra3's k sigma the tables must carry (3)\n"
 	"  --write-oem F, --write-aem F\n"
 	"                       write a mission: a circular orbit at --altitude-km\n"
 	"                       (550), sun-synchronous with its node at --ltan\n"
@@ -135,10 +141,13 @@ static int parse_args(int argc, char **argv, struct mission_args *a)
 		{ "attitude", required_argument, NULL, 't' },
 		{ "json", no_argument, &cli.json, 1 },
 		{ "help", no_argument, NULL, 'h' },
+		{ "detector", required_argument, NULL, 'd' + 256 },
+		{ "detector-sigma", required_argument, NULL, 'D' + 256 },
 		{ NULL, 0, NULL, 0 }
 	};
 	int opt, rc = CLI_OK;
 	const char *cmd = "availability";
+	enum stray_detector_kind kind;
 
 	while (rc == CLI_OK &&
 	       (opt = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
@@ -176,6 +185,18 @@ static int parse_args(int argc, char **argv, struct mission_args *a)
 				a->attitude = MISSION_SUN;
 			else
 				return cli_usage_error(cmd, "option '--attitude': '%s' is not nadir, inertial or sun", optarg);
+			break;
+		case 'd' + 256:
+			if (stray_detector_parse(optarg, &kind, NULL) != STRAY_OK)
+				return cli_usage_error(cmd, "option '--detector': '%s' is not thesis, window, threshold or tetra3", optarg);
+			a->detector = optarg;
+			break;
+		case 'D' + 256:
+			rc = cli_parse_double(cmd, "detector-sigma", optarg,
+					      &a->detector_sigma);
+			if (rc == CLI_OK && !(a->detector_sigma >= 0.5 &&
+					      a->detector_sigma <= 20.0))
+				return cli_usage_error(cmd, "option '--detector-sigma': %g is outside 0.5..20", a->detector_sigma);
 			break;
 		case 'e':
 			if (!parse_date(optarg, a))
@@ -235,6 +256,7 @@ int cmd_availability(int argc, char **argv)
 	a.ltan_h = 22.5;
 	a.incl_deg = -1.0;
 	a.attitude = MISSION_NADIR;
+	a.detector_sigma = 3.0;
 	rc = parse_args(argc, argv, &a);
 	if (rc != CLI_OK)
 		return rc < 0 ? CLI_OK : rc;

@@ -16,6 +16,7 @@
 #include "diag_report.h"
 #include "diagnose/diag_spectral.h"
 #include "stray/errfmt.h"
+#include "stray/detector.h"
 #include "stray/sensor_io.h"
 
 static const char usage[] =
@@ -61,11 +62,17 @@ static const char usage[] =
 	"  (a theta 0 row of alpha 1 and sigma 0, as `stray trace` writes it,\n"
 	"  normalises the curve and is kept out of the fit; each cause's\n"
 	"  range and nominal value are the scene's own)\n"
+	"  --detector D      the tracker's detector of that angle: thesis (eq.\n"
+	"                    2.18, default), window, threshold or tetra3, whose\n"
+	"                    false stars and lost stars both bind; default: the\n"
+	"                    sensor file's (docs/detectors.md)\n"
+	"  --detector-sigma K  tetra3's threshold in frame sigmas (3)\n"
 	"  --json            machine-readable output\n";
 
 struct diag_args {
 	const char *measured, *scene, *plot, *spectrum, *response, *lens;
-	const char *model, *only, *without, *sensor;
+	const char *model, *only, *without, *sensor, *detector;
+	double detector_sigma;
 	const char *sets[DIAG_SETS_MAX];
 	int n_sets, list, surfaces;
 	double rays, seed, threads;
@@ -88,6 +95,8 @@ static int parse_args(int argc, char **argv, struct diag_args *a)
 		{ "lens", required_argument, NULL, 'L' },
 		{ "surfaces", no_argument, NULL, 'G' },
 		{ "write-model", required_argument, NULL, 'W' },
+		{ "detector", required_argument, NULL, 'd' + 256 },
+		{ "detector-sigma", required_argument, NULL, 'D' + 256 },
 		{ "json", no_argument, NULL, 'j' },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 }
@@ -124,6 +133,25 @@ static int parse_args(int argc, char **argv, struct diag_args *a)
 			a->without = optarg;
 			break;
 		case 'X': a->sensor = optarg; break;
+		case 'd' + 256: {
+			enum stray_detector_kind k;
+
+			if (stray_detector_parse(optarg, &k, NULL) != STRAY_OK)
+				return cli_usage_error("diagnose", "option "
+					"'--detector': '%s' is not thesis, "
+					"window, threshold or tetra3", optarg);
+			a->detector = optarg;
+			break;
+		}
+		case 'D' + 256:
+			rc = cli_parse_double("diagnose", "detector-sigma",
+					      optarg, &a->detector_sigma);
+			if (!rc && !(a->detector_sigma >= 0.5 &&
+				     a->detector_sigma <= 20.0))
+				return cli_usage_error("diagnose", "option "
+					"'--detector-sigma': %g is outside "
+					"0.5..20", a->detector_sigma);
+			break;
 		case 'L': a->lens = optarg; break;
 		case 'G': a->surfaces = 1; break;
 		case 'W': a->model = optarg; break;
@@ -267,6 +295,8 @@ int cmd_diagnose(int argc, char **argv, const struct tracer_runner *runner)
 	e.only = a.only;
 	e.without = a.without;
 	e.sensor = a.sensor;
+	e.detector = a.detector;
+	e.detector_sigma = a.detector_sigma;
 	e.normalised = d.normalised;
 	for (i = 0; i < a.n_sets; i++)
 		e.sets[e.n_sets++] = a.sets[i];

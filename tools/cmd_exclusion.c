@@ -17,6 +17,7 @@
 #include "plot.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"
+#include "stray/exclusion_models.h"
 #include "stray/photometry.h"
 
 static const char usage[] =
@@ -31,6 +32,11 @@ static const char usage[] =
 	"  --k-sigma K         width of the interval in sigmas (default 1)\n"
 	"  (--earth-albedo adds the sunlit Earth limb)\n"
 	"  --plot F.png        the curve with alpha_required and the angles\n"
+	"  --models            the Sun's angle under every model instead: the\n"
+	"                      thesis (eq. 2.18, k_px = 1), consistent k_px, and\n"
+	"                      the window, threshold and tetra3 (k = 3, 5)\n"
+	"                      detectors, with the failure mode that binds each\n"
+	"                      (a Markdown table; with --json a \"models\" list)\n"
 	"  --json              machine-readable output\n"
 	FDR_SETUP_USAGE;
 
@@ -46,6 +52,7 @@ struct body {
 struct excl_args {
 	const char *curve, *plot;
 	double k_sigma;
+	int models;		/* --models: stray/exclusion_models.h */
 };
 
 static int solve_body(const struct fdr_setup *s, const struct excl_args *a,
@@ -166,6 +173,62 @@ static int plot_exclusion(const struct fdr_setup *s, const struct excl_args *a,
 			  const struct stray_curve *c, const struct body *b,
 			  int nb, struct stray_error *err);
 
+/* --models: the Sun's angle under every model, side by side (issue 28). */
+static int print_models(const struct fdr_setup *s, const struct excl_args *a,
+			const struct stray_curve_view *v,
+			struct stray_error *err)
+{
+	struct stray_excl_model m[STRAY_EXCL_MODELS];
+	int i, rc = stray_exclusion_models(v, &s->sensor, s->flux.sun,
+					   s->flux.drs, s->rate, m, err);
+
+	if (rc != STRAY_OK)
+		return rc;
+	if (cli.json) {
+		cJSON *o = cJSON_CreateObject(), *l = cJSON_CreateArray();
+
+		cJSON_AddStringToObject(o, "curve", a->curve);
+		cJSON_AddStringToObject(o, "sensor", s->sensor.name);
+		cJSON_AddItemToObject(o, "rate", cli_json_number(s->rate));
+		for (i = 0; i < STRAY_EXCL_MODELS; i++) {
+			cJSON *r = cJSON_CreateObject();
+
+			cJSON_AddStringToObject(r, "model", m[i].model);
+			cJSON_AddStringToObject(r, "detector",
+				stray_detector_name(m[i].detector));
+			cJSON_AddItemToObject(r, "k_px", cli_json_number(m[i].k_px));
+			cJSON_AddItemToObject(r, "alpha_false_stars",
+				cli_json_number(m[i].alpha_false));
+			cJSON_AddItemToObject(r, "alpha_lost_stars",
+				cli_json_number(m[i].alpha_lost));
+			cJSON_AddItemToObject(r, "alpha_required",
+				cli_json_number(m[i].alpha_req));
+			cJSON_AddStringToObject(r, "binding",
+				stray_failure_mode_name(m[i].binding));
+			cJSON_AddItemToObject(r, "sun_deg",
+				cli_json_number(m[i].sun_deg));
+			if (!m[i].excluded)
+				cJSON_AddStringToObject(r, "reason", m[i].reason);
+			cJSON_AddItemToArray(l, r);
+		}
+		cJSON_AddItemToObject(o, "models", l);
+		return cli_json_emit(o) == CLI_OK ? STRAY_OK : CLI_OK + 100;
+	}
+	printf("Sun exclusion of %s for %s at %g false stars per image\n\n"
+	       "| model | alpha_required | Sun exclusion, deg | set by |\n"
+	       "| --- | --- | --- | --- |\n", a->curve, s->sensor.name, s->rate);
+	for (i = 0; i < STRAY_EXCL_MODELS; i++) {
+		printf("| %s | %.3g | ", m[i].model, m[i].alpha_req);
+		if (m[i].excluded)
+			printf("%.2f", m[i].sun_deg);
+		else
+			printf("not excluded: %s", m[i].reason);
+		printf(" | %s |\n", m[i].binding == STRAY_FAIL_LOST_STARS ?
+		       "lost stars (P(DRS) < Pr_drs)" : "false stars");
+	}
+	return STRAY_OK;
+}
+
 static int parse_args(int argc, char **argv, struct fdr_setup *s,
 		      struct excl_args *a)
 {
@@ -174,6 +237,7 @@ static int parse_args(int argc, char **argv, struct fdr_setup *s,
 		{ "curve", required_argument, NULL, 'c' },
 		{ "k-sigma", required_argument, NULL, 'K' },
 		{ "plot", required_argument, NULL, 'p' },
+		{ "models", no_argument, NULL, 'M' },
 		{ "json", no_argument, &cli.json, 1 },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 }
@@ -186,6 +250,7 @@ static int parse_args(int argc, char **argv, struct fdr_setup *s,
 		case 'h': fputs(usage, stdout); return -1;
 		case 'c': a->curve = optarg; break;
 		case 'p': a->plot = optarg; break;
+		case 'M': a->models = 1; break;
 		case 'K': rc = cli_parse_double("exclusion", "k-sigma", optarg, &a->k_sigma); break;
 		case '?':
 			return cli_usage_error("exclusion", "unknown option '%s'",
@@ -204,13 +269,18 @@ static int parse_args(int argc, char **argv, struct fdr_setup *s,
 		return cli_usage_error("exclusion", "--curve is required");
 	if (!(a->k_sigma >= 0.0))
 		return cli_usage_error("exclusion", "option '--k-sigma': must be >= 0");
+	if (a->models && (s->detector_name || a->plot || s->map_path ||
+			  s->poisson || s->detector_noise))
+		return cli_usage_error("exclusion", "--models gives every "
+			"normalisation and detector itself: not with --detector, "
+			"--map, --noise, --detector-noise or --plot");
 	return CLI_OK;
 }
 
 int cmd_exclusion(int argc, char **argv)
 {
 	struct fdr_setup s;
-	struct excl_args a = { NULL, NULL, 1.0 };
+	struct excl_args a = { NULL, NULL, 1.0, 0 };
 	struct body b[3] = { { .name = "sun" }, { .name = "moon" },
 			     { .name = "earth" } };
 	struct stray_curve c;
@@ -233,6 +303,12 @@ int cmd_exclusion(int argc, char **argv)
 	if (stray_curve_load(a.curve, &c, &err) != STRAY_OK)
 		return cli_fail("exclusion", &err);
 	v = stray_curve_view_of(&c);
+	if (a.models) {
+		rc = print_models(&s, &a, &v, &err);
+		stray_curve_free(&c);
+		return rc == STRAY_OK ? CLI_OK : rc == CLI_OK + 100 ?
+			CLI_OK : cli_fail("exclusion", &err);
+	}
 	for (i = 0, rc = STRAY_OK; i < nb && rc == STRAY_OK; i++)
 		rc = solve_body(&s, &a, &v, &b[i], &err);
 	if (rc == STRAY_OK) {	/* §5.1: the Moon saturates in the field */

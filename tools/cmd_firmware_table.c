@@ -33,9 +33,10 @@ static const char usage[] =
 	"  --hysteresis-deg H  flags clear H deg past the edge (default 0.5)\n"
 	"  --earth-albedo A    Lambertian albedo of the Earth (default 0.3)\n"
 	"  --json              machine-readable summary\n"
-	SENSOR_USAGE NORMALISATION_USAGE
-	"  --detector thesis   the only detector the flight module computes\n"
-	"                      (eq. 2.18 on board); the others are refused\n";
+	SENSOR_USAGE NORMALISATION_USAGE DETECTOR_USAGE
+	"                      thesis flies eq. 2.18 on board; the others fly\n"
+	"                      their validated models as a grid over the\n"
+	"                      background (table version 3, nominal exposure)\n";
 
 struct ft_args {
 	const char *curve, *out_c, *out_bin, *name;
@@ -216,6 +217,17 @@ static int print_summary(const struct ft_args *a, const struct fdrfw_table *t,
 		cJSON_AddStringToObject(o, "normalisation",
 			fdrfw_table_is_thesis(t) ? "thesis" : "consistent");
 		cJSON_AddItemToObject(o, "k_px", cli_json_number((double)t->k_px));
+		cJSON_AddItemToObject(o, "table_version",
+				      cJSON_CreateNumber(t->version));
+		cJSON_AddStringToObject(o, "detector",
+					fdrfw_table_detector_name(t));
+		if (t->detector == STRAY_DET_TETRA3)
+			cJSON_AddItemToObject(o, "detector_sigma",
+				cli_json_number((double)t->detector_sigma));
+		cJSON_AddStringToObject(o, "binding", stray_failure_mode_name(
+					fdrfw_table_binding(t)));
+		cJSON_AddItemToObject(o, "detector_grid_nodes",
+				      cJSON_CreateNumber(t->n_det));
 		cJSON_AddItemToObject(o, "threshold_e",
 				      cli_json_number((double)t->i_sdt_e));
 		cJSON_AddItemToObject(o, "alpha_required_sun",
@@ -235,12 +247,15 @@ static int print_summary(const struct ft_args *a, const struct fdrfw_table *t,
 	}
 	printf("flight table from %s: %lu angles, %lu bytes, CRC-32 0x%08lX\n"
 	       "  normalisation %s, k_px %.4g (eq. 2.3)\n"
+	       "  detector %s (%s bind the Sun's angle)\n"
 	       "  threshold I_sdt %.6g e-, Sun alpha_required %.4g, "
 	       "exclusion %.3f deg (hysteresis %.2f deg)\n",
 	       a->curve, (unsigned long)t->n_curve,
 	       (unsigned long)FDRFW_BLOB_SIZE, (unsigned long)t->crc32,
 	       fdrfw_table_is_thesis(t) ? "thesis" : "consistent",
-	       (double)t->k_px,
+	       (double)t->k_px, fdrfw_table_detector_name(t),
+	       fdrfw_table_binding(t) == STRAY_FAIL_LOST_STARS ?
+	       "lost stars" : "false stars",
 	       (double)t->i_sdt_e, (double)t->alpha_req_sun,
 	       (double)t->exclusion_sun_deg, (double)t->hysteresis_deg);
 	if (!sun->excluded)
@@ -272,18 +287,6 @@ int cmd_firmware_table(int argc, char **argv)
 		return rc < 0 ? CLI_OK : rc;
 	if (fdr_setup_load(&s, &err) != STRAY_OK)
 		return cli_fail("firmware-table", &err);
-	/* The module recomputes eq. 2.18 from the table and checks the
-	 * Sun's alpha_req against it: a table for another detector would
-	 * be refused on board, or fly the wrong angle (issue 28 item 5). */
-	if (s.detector != STRAY_DET_THESIS) {
-		stray_error_set(&err, STRAY_EINVAL, "detector",
-			"the flight module computes only the thesis detector "
-			"(eq. 2.18) on board; give --detector thesis");
-		stray_error_text(&err, stray_detector_name(s.detector));
-		if (!s.detector_name)
-			stray_error_locate(&err, s.sensor_spec, 0);
-		return cli_fail("firmware-table", &err);
-	}
 	if (stray_curve_load(a.curve, &c, &err) != STRAY_OK)
 		return cli_fail("firmware-table", &err);
 	p.f_sun_ph_s_m2 = s.flux.sun;
@@ -293,6 +296,9 @@ int cmd_firmware_table(int argc, char **argv)
 	p.hysteresis_deg = a.hysteresis_deg;
 	p.earth_albedo = a.albedo;
 	p.normalisation = s.normalisation;
+	/* the named detector's models go into the table (issue 28) */
+	p.detector = s.detector;
+	p.detector_sigma = s.detector_sigma;
 	v = stray_curve_view_of(&c);
 	rc = build_thinned(&v, &s.sensor, &p, &t, &sun, &thin, &err);
 	stray_curve_free(&c);

@@ -14,6 +14,7 @@
 #include "commands.h"
 #include "fdrfw/ephem.h"
 #include "fdrfw/fdrfw.h"
+#include "fdrfw/table_build.h"
 #include "flight_table.h"
 #include "orbit.h"
 #include "plot.h"
@@ -227,6 +228,8 @@ static int summary(const struct orbit_args *a, const struct fdrfw_table *t,
 	cJSON_AddNumberToObject(o, "altitude_km", a->altitude_km);
 	cJSON_AddStringToObject(o, "normalisation", table_normalisation(t));
 	cJSON_AddItemToObject(o, "k_px", cli_json_number((double)t->k_px));
+	/* the detector the table flies (issue 28) */
+	cJSON_AddStringToObject(o, "detector", fdrfw_table_detector_name(t));
 	cJSON_AddNumberToObject(o, "sun_exclusion_toggles", (double)toggles);
 	cJSON_AddNumberToObject(o, "max_false_stars", max_stars);
 	for (k = 0; k < N_FLAGS; k++)
@@ -238,6 +241,9 @@ static int summary(const struct orbit_args *a, const struct fdrfw_table *t,
 	       a->hours, a->altitude_km);
 	printf("  normalisation %s, k_px %.4g (eq. 2.3, from the table)\n",
 	       table_normalisation(t), (double)t->k_px);
+	if (t->detector != FDRFW_DET_THESIS)	/* the thesis's text as it was */
+		printf("  detector %s (the table's grid of its models)\n",
+		       fdrfw_table_detector_name(t));
 	for (k = 0; k < N_FLAGS; k++) {
 		frac = (double)count[k] / r->n;
 		printf("  %-16s %6.2f %% of frames\n", flag_names[k], 100.0 * frac);

@@ -184,6 +184,11 @@ int diag_report_json_surf(const struct diag_data *d,
 			      cli_json_number(r->sun_deg_before));
 	cJSON_AddItemToObject(o, "sun_deg_after",
 			      cli_json_number(r->sun_deg_after));
+	/* the detector of that angle and the failure mode that sets it */
+	cJSON_AddStringToObject(o, "detector",
+				stray_detector_name(r->detector.kind));
+	cJSON_AddStringToObject(o, "sun_binding",
+				stray_failure_mode_name(r->detector.binding));
 	for (i = 0; i < r->n_single; i++) {
 		cJSON *s = cJSON_CreateObject();
 

@@ -149,6 +149,11 @@ void diag_report_text(const struct diag_data *d, const struct diag_eval *e,
 	print_angle(r->sun_deg_before);
 	printf(" -> ");
 	print_angle(r->sun_deg_after);
+	if (r->detector.kind != STRAY_DET_THESIS)	/* thesis: as it was */
+		printf(" (detector %s: %s bind)",
+		       stray_detector_name(r->detector.kind),
+		       r->detector.binding == STRAY_FAIL_LOST_STARS ?
+		       "lost stars" : "false stars");
 	putchar('\n');
 	printf("Approximations: geometry interpolated in log alpha between "
 	       "traced nodes; angle offset and beam average from the nominal "

@@ -16,6 +16,7 @@
 #include "fdrfw/table_build.h"
 #include "stray/config.h"
 #include "stray/fdr.h"
+#include "stray/tail.h"
 
 static int params_check(const struct fdrfw_build_params *p,
 			struct stray_error *err)
@@ -40,6 +41,15 @@ static int params_check(const struct fdrfw_build_params *p,
 		return stray_error_set_value(err, STRAY_EINVAL,
 			"normalisation", "must be consistent or thesis",
 			(double)p->normalisation);
+	if ((unsigned)p->detector >= STRAY_DET_COUNT)
+		return stray_error_set_value(err, STRAY_EINVAL, "detector",
+			"must be thesis, window, threshold or tetra3",
+			(double)p->detector);
+	if (p->detector == STRAY_DET_TETRA3 && p->detector_sigma > 0.0 &&
+	    !(p->detector_sigma >= 0.5 && p->detector_sigma <= 20.0))
+		return stray_error_set_value(err, STRAY_EINVAL,
+			"detector_sigma", "must lie in 0.5..20",
+			p->detector_sigma);
 	if (!isfinite(p->rate))
 		return stray_error_set_value(err, STRAY_EINVAL, "rate",
 			"must be finite", p->rate);
@@ -106,15 +116,29 @@ static int model_fill(const struct stray_curve_view *c,
 		      const struct fdrfw_build_params *p, struct fdrfw_table *t,
 		      struct stray_exclusion *ex, struct stray_error *err)
 {
-	struct stray_fdr_model m;
-	double i_sdt, alpha_req, theta_x;
+	struct stray_fdr_model m, g;
+	struct stray_detector d;
+	struct stray_detector_req req;
+	double i_sdt, alpha_req, theta_x, z;
 	double rate = p->rate > 0.0 ? p->rate : s->fdr_tolerated;
 	int rc;
 
 	stray_sensor_fdr_model(s, p->f_sun_ph_s_m2, p->f_drs_ph_s_m2, &m);
 	m.k_px = stray_sensor_k_px(s, p->normalisation);
 	if ((rc = stray_fdr_threshold(&m, &i_sdt, err)) != STRAY_OK ||
-	    (rc = stray_fdr_alpha_required(&m, rate, &alpha_req, err)) ||
+	    (rc = stray_gauss_q_inv(m.pr_drs, &z, err)) != STRAY_OK)
+		return rc;
+	/* The Sun's alpha_req: eq. 2.18 (thesis), or where the named
+	 * detector's first failure mode binds (`stray exclusion`'s). */
+	if (p->detector == STRAY_DET_THESIS)
+		rc = stray_fdr_alpha_required(&m, rate, &alpha_req, err);
+	else if ((rc = fdrfw_det_setup(s, p, &m, &d, &g, err)) == STRAY_OK &&
+		 (rc = stray_detector_alpha_required(&d, &g, rate, s->pr_drs,
+						     &req, err)) == STRAY_OK) {
+		alpha_req = req.alpha_req;
+		rc = fdrfw_det_grid_fill(&d, &g, alpha_req, t, err);
+	}
+	if (rc != STRAY_OK ||
 	    (rc = stray_exclusion_interval(c, alpha_req, 0.0, ex, err)))
 		return rc;
 	theta_x = ex->excluded ? ex->theta_deg : sun_not_excluded(c, ex);
@@ -135,6 +159,7 @@ static int model_fill(const struct stray_curve_view *c,
 	t->hysteresis_deg = (float)p->hysteresis_deg;
 	t->alpha_req_sun = (float)alpha_req;
 	t->exclusion_sun_deg = (float)theta_x;
+	t->z_drs = (float)z;
 	return STRAY_OK;
 }
 
@@ -167,6 +192,14 @@ static const struct {
 	  "must lie in [-40, 6] with some alpha > 0" },
 	{ offsetof(struct fdrfw_table, log10_alpha_tail) / 4,
 	  "log10_alpha_tail", "must be the envelope of log10_alpha" },
+	{ offsetof(struct fdrfw_table, detector) / 4, "detector",
+	  "must be 0..3 (thesis, window, threshold, tetra3)" },
+	{ offsetof(struct fdrfw_table, n_det) / 4, "n_det",
+	  "must be 0 for thesis, 72 for a detector's grid" },
+	{ offsetof(struct fdrfw_table, det_ln_false) / 4, "det_ln_false",
+	  "must lie in [-69.08, 1000] and never fall" },
+	{ offsetof(struct fdrfw_table, det_p_drs) / 4, "det_p_drs",
+	  "must lie in [0, 1] and never rise" },
 };
 
 const char *fdrfw_field_name(int word)
@@ -306,10 +339,18 @@ int fdrfw_table_write_c(FILE *out, const struct fdrfw_table *t,
 	F(f_sun_ph_s_m2); F(f_moon_full_ph_s_m2); F(moon_full_mag);
 	F(earth_albedo); F(fov_half_deg); F(hysteresis_deg);
 	F(alpha_req_sun); F(exclusion_sun_deg);
+	F(z_drs); F(detector_sigma); F(det_u0); F(det_du);
 #undef F
+	fprintf(out, "\t.detector = %luu, /* %s */\n\t.n_det = %luu,\n",
+		(unsigned long)t->detector, fdrfw_table_detector_name(t),
+		(unsigned long)t->n_det);
 	write_floats(out, "theta_deg", t->theta_deg, t->n_curve);
 	write_floats(out, "log10_alpha", t->log10_alpha, t->n_curve);
 	write_floats(out, "log10_alpha_tail", t->log10_alpha_tail, t->n_curve);
+	if (t->n_det > 0u) {
+		write_floats(out, "det_ln_false", t->det_ln_false, t->n_det);
+		write_floats(out, "det_p_drs", t->det_p_drs, t->n_det);
+	}
 	fprintf(out, "\t.crc32 = 0x%08lXu,\n};\n", (unsigned long)t->crc32);
 	return ferror(out) ? STRAY_EIO : STRAY_OK;
 }

@@ -71,9 +71,11 @@ static void test_every_bit_flip_rejected(void **state)
 			int rc;
 
 			blob[i] ^= (uint8_t)(1u << b);
-			assert_int_equal(fdrfw_table_parse(blob, sizeof(blob),
-							   &u), FDRFW_OK);
-			rc = fdrfw_table_check(&u);
+			/* a flipped version word is refused by the parser
+			 * already (issue 28: another version, another size) */
+			rc = fdrfw_table_parse(blob, sizeof(blob), &u);
+			if (rc == FDRFW_OK)
+				rc = fdrfw_table_check(&u);
 			if (i >= 8)
 				assert_int_equal(rc, FDRFW_ECRC);
 			else

@@ -64,7 +64,7 @@ static void test_lists_cover_every_scalar(void **state)
 {
 	(void)state;
 	assert_int_equal(N_SCALARS, FDRFW_SCALARS);
-	assert_int_equal(offsetof(struct fdrfw_table, exclusion_sun_deg),
+	assert_int_equal(offsetof(struct fdrfw_table, det_du),
 			 offsetof(struct fdrfw_table, t_exp_nominal_s) +
 			 4u * (N_SCALARS - 1u));
 	assert_string_equal(fdrfw_field_name(FDRFW_FIELD_OF(

@@ -52,6 +52,10 @@ struct diag_eval {
 	 * lists, NULL: all); NULL-terminated; what the run fits */
 	const char *only, *without;
 	const char *sensor;	/* for the Sun exclusion; NULL: st16-like */
+	/* its detector (--detector, --detector-sigma; NULL / 0: the sensor
+	 * file's, else thesis / 3) */
+	const char *detector;
+	double detector_sigma;
 	int normalised;		/* the curve has its theta = 0 row */
 	const struct diag_cause *causes[DIAG_CAUSES_MAX + 1];
 	struct diag_cause cause_own[DIAG_CAUSES_MAX];

@@ -12,7 +12,19 @@
 #include "diagnose/diag_data.h"
 #include "diagnose/diag_eval.h"
 #include "diagnose/diag_fit.h"
+#include "stray/detector.h"
 #include "stray/error.h"
+
+/* The detector of the Sun exclusion angle (issue 28): name as given
+ * (--detector; NULL: the sensor file's, else thesis), its kind and
+ * tetra3's k (<= 0: the sensor file's, else 3) once resolved, and the
+ * failure mode that sets alpha_required. */
+struct diag_detector {
+	const char *name;
+	enum stray_detector_kind kind;
+	double sigma;
+	enum stray_failure_mode binding;
+};
 
 #define DIAG_BIC_MARGIN 10.0	/* Kass & Raftery 1995: "very strong" */
 #define DIAG_P_ACCEPT 0.01
@@ -34,6 +46,7 @@ struct diag_result {
 	double worst_theta_deg, worst_pull;	/* largest final residual */
 	double sun_deg_before, sun_deg_after, sun_alpha_req;
 	char sensor[64];	/* whose FDR model gives sun_alpha_req */
+	struct diag_detector detector;	/* and with which detector */
 	/* the surface at fault explains what the registry left (one
 	 * verdict: diag_result_surfaces): its groups are named causes */
 	int by_surface;
@@ -65,5 +78,13 @@ int diag_sun_exclusion(const char *sensor, const double *theta_deg,
 		       const double *alpha, size_t n, double *theta_excl,
 		       double *alpha_req, char *name,
 		       struct stray_error *err);
+
+/* The same for a named detector (issue 28): name NULL takes the sensor
+ * file's (else thesis, eq. 2.18 as above); binding gets the failure mode
+ * that sets alpha_required.  dd NULL: diag_sun_exclusion. */
+int diag_sun_exclusion_det(const char *sensor, struct diag_detector *dd,
+			   const double *theta_deg, const double *alpha,
+			   size_t n, double *theta_excl, double *alpha_req,
+			   char *name, struct stray_error *err);
 
 #endif /* DIAGNOSE_DIAG_RESULT_H */

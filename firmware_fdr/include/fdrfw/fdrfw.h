@@ -52,6 +52,10 @@ struct fdrfw_output {
 	float ln_fdr[FDRFW_BODIES];	/* ln of expected false stars */
 	float false_stars[FDRFW_BODIES];
 	float false_stars_total;
+	/* The designed reference star's detection probability under each
+	 * body's light (a detector table's model; NaN for THESIS, whose
+	 * eq. 2.18 has no lost-star model on board). */
+	float p_drs[FDRFW_BODIES];
 	float moon_phase_deg;		/* 0 = full */
 };
 
@@ -60,7 +64,7 @@ struct fdrfw_ctx {
 	uint32_t latched;	/* exclusion flags held by hysteresis */
 	float i_sdt_t_exp_s;	/* exposure the cached threshold is for */
 	stray_real i_sdt_e;	/* eq. 2.16 threshold for that exposure */
-	stray_real z_drs;	/* Q^-1(Pr_drs), solved once at init */
+	stray_real z_drs;	/* Q^-1(Pr_drs), the ground's, checked */
 	stray_real ln_fdr_tolerated;	/* ln of the table's tolerated FDR */
 	/* The FDR model (eq. 2.3-2.18) from the table, kept here rather than
 	 * rebuilt on the stack of every call; a source sets its flux. */
@@ -68,10 +72,9 @@ struct fdrfw_ctx {
 };
 
 /*
- * Check the table (magic, CRC, ranges) and bind it, and solve
- * z = Q^-1(Pr_drs) (eq. 2.16) once by libstray's bounded root search; on
- * failure the context stays unbound and every frame reports
- * FDRFW_INPUT_INVALID.
+ * Check the table (magic, CRC, ranges) and bind it; z = Q^-1(Pr_drs)
+ * (eq. 2.16) is the ground's, checked here by Q(z).  On failure the
+ * context stays unbound and every frame reports FDRFW_INPUT_INVALID.
  */
 int fdrfw_init(struct fdrfw_ctx *ctx, const struct fdrfw_table *table);
 
@@ -80,7 +83,8 @@ int fdrfw_init(struct fdrfw_ctx *ctx, const struct fdrfw_table *table);
  * context.  z = Q^-1(Pr_drs) does not depend on the exposure and is solved
  * once at init, so this is the closed form I_drs + z sqrt(I_drs): no root
  * search in the frame loop.  fdrfw_frame calls it when a frame's exposure
- * differs from the cached one.
+ * differs from the cached one.  A detector table's grid is for its
+ * nominal exposure: another one is FDRFW_EINPUT (one table per exposure).
  */
 int fdrfw_set_exposure(struct fdrfw_ctx *ctx, float t_exp_s);
 

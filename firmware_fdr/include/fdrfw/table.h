@@ -19,8 +19,23 @@
 #include "fdrfw/model_map.h"
 
 #define FDRFW_TABLE_MAGIC 0x52444646u	/* "FFDR" little-endian */
-#define FDRFW_TABLE_VERSION 2u	/* 2: k_px (docs/normalisation.md) */
+/* 2: k_px (docs/normalisation.md); 3: the named detector's grid and
+ * z_drs (issue 28).  Another version is refused (FDRFW_EMAGIC). */
+#define FDRFW_TABLE_VERSION 3u
 #define FDRFW_CURVE_MAX 128		/* samples of the attenuation curve */
+
+/*
+ * The named detector (stray/detector.h's enum, as a table word): THESIS
+ * flies eq. 2.18 by libstray's core on board, as before; the others fly
+ * their validated models tabulated on the ground over the background
+ * I_px, FDRFW_DET_MAX nodes (table_build.h: where they lie).
+ */
+#define FDRFW_DET_THESIS 0u
+#define FDRFW_DET_KINDS 4u
+#define FDRFW_DET_MAX 72
+/* ln of false stars per image stored for "none" (1e-30, the vectors'
+ * floor): a rate at or below it is reported as none. */
+#define FDRFW_DET_LN_FLOOR (-69.0775528f)
 
 /* alpha = 0 in a curve is stored as this log10 (a floor, not -inf). */
 #define FDRFW_LOG10_ALPHA_FLOOR (-40.0f)
@@ -36,7 +51,11 @@
  * 2e15) and its magnitude -15 .. -10 (V: -12.7); a field 0.01 .. 89 deg;
  * the Sun's alpha_req 1e-30 .. 1e6 (the curve's own range) and its
  * exclusion angle > 0: a table whose Sun never blinds the tracker is no
- * flight table (an all-zero curve gives 0 deg).
+ * flight table (an all-zero curve gives 0 deg).  z_drs = Q^-1(Pr_drs) of
+ * eq. 2.16, solved on the ground (Pr_drs in [1e-6, 1 - 1e-6]: |z| < 4.8)
+ * and checked on board by Q(z); tetra3's k sigma (0 for the others);
+ * the detector grid's ln I_px at node 0 (I_px from e^-60 to e^60 e-) and
+ * its step (0 for THESIS, else ln 10 / FDRFW_DET_PER_DECADE).
  */
 #define FDRFW_TABLE_SCALARS(X) \
 	X(i_sdt_e, 1.0f, 1e9f) \
@@ -48,7 +67,11 @@
 	X(fov_half_deg, 0.01f, 89.0f) \
 	X(hysteresis_deg, 0.0f, 10.0f) \
 	X(alpha_req_sun, 1e-30f, 1e6f) \
-	X(exclusion_sun_deg, 1e-3f, 180.0f)
+	X(exclusion_sun_deg, 1e-3f, 180.0f) \
+	X(z_drs, -5.0f, 5.0f) \
+	X(detector_sigma, 0.0f, 20.0f) \
+	X(det_u0, -60.0f, 60.0f) \
+	X(det_du, 0.0f, 2.0f)
 
 struct fdrfw_table {
 	uint32_t magic;
@@ -74,11 +97,25 @@ struct fdrfw_table {
 	/* Ground results kept for telemetry and checks (not used per frame). */
 	float alpha_req_sun;		/* fig. 2.7 at nominal exposure */
 	float exclusion_sun_deg;	/* fig. 5.1 */
+	/* Version 3 (issue 28). */
+	float z_drs;			/* Q^-1(Pr_drs), eq. 2.16 */
+	float detector_sigma;		/* TETRA3's k; 0 for the others */
+	float det_u0;			/* ln I_px [e-] of the grid's node 0 */
+	float det_du;			/* the grid's step in ln I_px */
+	uint32_t detector;		/* FDRFW_DET_THESIS, or the kind */
+	uint32_t n_det;			/* grid nodes: 0 (THESIS), else
+					 * FDRFW_DET_MAX */
 	/* The system attenuation curve alpha_sys(theta). */
 	float theta_deg[FDRFW_CURVE_MAX];
 	float log10_alpha[FDRFW_CURVE_MAX];
 	/* max over j >= i of log10_alpha[j]: the exclusion envelope. */
 	float log10_alpha_tail[FDRFW_CURVE_MAX];
+	/* The detector's models at nominal exposure, node i at ln I_px =
+	 * det_u0 + i det_du (I_px of every body's light, eq. 2.3): ln of its
+	 * false stars per image (floored at FDRFW_DET_LN_FLOOR, never
+	 * falling) and the DRS's detection probability (never rising). */
+	float det_ln_false[FDRFW_DET_MAX];
+	float det_p_drs[FDRFW_DET_MAX];
 	uint32_t crc32;			/* CRC-32 of every byte before it */
 };
 
@@ -86,10 +123,10 @@ struct fdrfw_table {
 #define FDRFW_BLOB_SIZE (FDRFW_TABLE_WORDS * 4u)
 
 /* The scalars of both lists: the words from FDRFW_SCALAR_WORD (after
- * n_curve) to the curve. */
+ * n_curve) to the detector's kind. */
 #define FDRFW_SCALAR_WORD 3u
 #define FDRFW_SCALARS \
-	(((uint32_t)offsetof(struct fdrfw_table, theta_deg) / 4u) - \
+	(((uint32_t)offsetof(struct fdrfw_table, detector) / 4u) - \
 	 FDRFW_SCALAR_WORD)
 
 enum fdrfw_status {
@@ -123,7 +160,8 @@ void fdrfw_table_serialize(const struct fdrfw_table *t,
 /* Set t->crc32 from the other fields (ground side). */
 void fdrfw_table_seal(struct fdrfw_table *t);
 
-/* Decode a blob into *t (no check of its contents beyond the length). */
+/* Decode a blob into *t (no check of its contents beyond the length);
+ * FDRFW_EMAGIC for a table of another version (its length differs). */
 int fdrfw_table_parse(const uint8_t *buf, size_t len, struct fdrfw_table *t);
 
 /*

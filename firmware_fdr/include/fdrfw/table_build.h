@@ -10,6 +10,7 @@
 
 #include "fdrfw/table.h"
 #include "stray/curve.h"
+#include "stray/detector.h"
 #include "stray/error.h"
 #include "stray/sensor.h"
 
@@ -22,6 +23,10 @@ struct fdrfw_build_params {
 	double earth_albedo;
 	/* k_px of eq. 2.3 (docs/normalisation.md); zero: consistent. */
 	enum stray_normalisation normalisation;
+	/* The tracker's detector (issue 28); zero: thesis, eq. 2.18 on
+	 * board as before.  detector_sigma: tetra3's k (<= 0: 3). */
+	enum stray_detector_kind detector;
+	double detector_sigma;
 };
 
 /* Defaults: hysteresis 0.5 deg, albedo 0.3, the sensor's rate. */
@@ -89,6 +94,45 @@ int fdrfw_table_sun_verdict(const struct fdrfw_table *t,
 	(rc) < FDRFW_EFIELD_WORD(FDRFW_TABLE_WORDS)) ? \
 	(rc) - FDRFW_EFIELD : -1)
 const char *fdrfw_field_name(int word);
+
+/* The detector grid's nodes: FDRFW_DET_PER_DECADE a decade of I_px, the
+ * Sun's binding background on node FDRFW_DET_BELOW (5 decades above node
+ * 0, where the light is negligible; the last node is past every
+ * requirement). */
+#define FDRFW_DET_PER_DECADE 8
+#define FDRFW_DET_BELOW 40
+
+/*
+ * The named detector in the table (det_grid.c): its setup for the
+ * sensor's model m (the camera's read noise and dark current added, into
+ * *g), and the grid of both its failure modes over the background, the
+ * Sun's binding alpha_req on node FDRFW_DET_BELOW.
+ */
+int fdrfw_det_setup(const struct stray_sensor *s,
+		    const struct fdrfw_build_params *p,
+		    const struct stray_fdr_model *m, struct stray_detector *d,
+		    struct stray_fdr_model *g, struct stray_error *err);
+int fdrfw_det_grid_fill(const struct stray_detector *d,
+			const struct stray_fdr_model *g, double alpha_req,
+			struct fdrfw_table *t, struct stray_error *err);
+
+/* The attenuation of a source of flux f_src at grid node i. */
+double fdrfw_det_node_alpha(const struct fdrfw_table *t, double f_src,
+			    int i);
+
+/* The failure mode that sets the table's Sun angle (thesis: false
+ * stars); the table's detector by name ("unknown" outside the enum). */
+enum stray_failure_mode fdrfw_table_binding(const struct fdrfw_table *t);
+const char *fdrfw_table_detector_name(const struct fdrfw_table *t);
+
+/*
+ * A table read for detector kind (tetra3: at k = sigma) that was built
+ * for another: STRAY_EINVAL naming the file, field "detector" and the
+ * table's detector, and how to rebuild it.
+ */
+int fdrfw_table_detector_check(const struct fdrfw_table *t,
+			       enum stray_detector_kind kind, double sigma,
+			       const char *path, struct stray_error *err);
 
 /* The table as C source: `const struct fdrfw_table NAME = {...};`. */
 int fdrfw_table_write_c(FILE *out, const struct fdrfw_table *t,

@@ -61,6 +61,11 @@ struct review_project {
 	double hours, step_s;
 	struct review_head head[REVIEW_HEADS_MAX];
 	int n_heads;
+	/* "detector", "detector_sigma" (issue 28): the tracker's detector,
+	 * passed to the fdr, exclusion, flight-table and availability steps;
+	 * "" / 0: the sensor file's, else thesis */
+	char detector[16];
+	double detector_sigma;
 };
 
 /* Parse PROJECT.json; errors name the file, the key and the value. */
