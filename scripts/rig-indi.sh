@@ -15,7 +15,8 @@ log=/dev/null
 if [ "${1:-}" = "--log" ]; then log=$2; shift 2; fi
 [ $# -gt 0 ] || { sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
 for b in indiserver indi_simulator_ccd indi_simulator_wheel \
-	indi_simulator_rotator indi_simulator_lightpanel indi_getprop; do
+	indi_simulator_rotator indi_simulator_lightpanel indi_getprop \
+	indi_setprop; do
 	if ! command -v "$b" >/dev/null; then
 		echo "rig-indi: SKIP: $b not installed (Debian: indi-bin)" >&2
 		exit 77
