@@ -6,8 +6,9 @@
  * A sweep is checked frame by frame (commanded and read-back angle,
  * filter, exposure and lamp in each header); a daemon killed mid-sweep,
  * and separately indiserver killed, resume with no frame lost or taken
- * twice; a camera disconnected and its driver restarted mid-sweep cost
- * no frame.  Where indiserver cannot run, one SKIP line and no test
+ * twice; a camera disconnected mid-exposure and its driver restarted
+ * mid-sweep cost no frame.  About a minute (TESTS_SLOW: not under ASan
+ * in `make test`).  Where indiserver cannot run, one SKIP line and no test
  * counted as passed.
  */
 #include <setjmp.h>
@@ -20,17 +21,18 @@
 #include "rig_test_util.h"
 #include "rig_daemon_util.h"
 
-/* 3 angles (one below 0: the rotator's 0..360 wraps), 2 repeats, 3 ND
- * slots; a 4-row window of the simulator's 1280x1024 chip. */
+/* 3 angles (one below 0: the rotator's 0..360 wraps), 1 repeat, 3 ND
+ * slots; a 4-row window of the simulator's 1280x1024 chip.  Small, so the
+ * seven sweeps of this file take about a minute. */
 #define CFG_FMT "{\"backend\":\"indi\",\"camera\":{\"rows\":[10,11,20,21]," \
 	"\"col0\":8,\"n_cols\":64,\"sat_dn\":4095,\"timeout_s\":5}," \
 	"\"wheel\":{\"trans\":[1,0.1,0.01]}," \
 	"\"stage\":{\"tol_deg\":0.01,\"move_timeout_s\":20}," \
-	"\"sweep\":{\"theta_list_deg\":[-2,0,5],\"repeats\":2," \
+	"\"sweep\":{\"theta_list_deg\":[-2,0,5],\"repeats\":1," \
 	"\"t_min_s\":0.01,\"t_init_s\":%g,\"t_max_s\":%g,\"retries\":%d}," \
 	"\"indi\":{\"host\":\"127.0.0.1\",\"timeout_s\":10," \
 	"\"connect_timeout_s\":3}}"
-#define FRAMES 18	/* 3 angles x (2 FULL + 2 AMBIENT + 2 DARK) */
+#define FRAMES 9	/* 3 angles x (FULL + AMBIENT + DARK) */
 
 static char cfg_text[1024];
 
@@ -177,14 +179,16 @@ static void kill_and_resume(const char *kill_what)
 		snprintf(cmd, sizeof(cmd), "scripts/rig-indi.sh sh -c '"
 			 "%s --config %s/c.json --sweep %s/s 2>%s/err1 & p=$!;"
 			 " while kill -0 $p && [ $(wc -l 2>/dev/null <"
-			 " %s/s/manifest.csv || echo 0) -lt 6 ]; do sleep 0.05; done;"
+			 " %s/s/manifest.csv || echo 0) -lt 4 ]; do sleep 0.05;"
+			 " done;"
 			 " kill -9 $p; wait $p; exit 0'", rigd_bin(), dir, dir,
 			 dir, dir);
 	else
 		snprintf(cmd, sizeof(cmd), "scripts/rig-indi.sh sh -c '"
 			 "%s --config %s/c.json --sweep %s/s 2>%s/err1 & p=$!;"
 			 " while kill -0 $p && [ $(wc -l 2>/dev/null <"
-			 " %s/s/manifest.csv || echo 0) -lt 6 ]; do sleep 0.05; done;"
+			 " %s/s/manifest.csv || echo 0) -lt 4 ]; do sleep 0.05;"
+			 " done;"
 			 " kill -9 $RIG_INDI_PID; wait $p; echo $? >%s/rc1'",
 			 rigd_bin(), dir, dir, dir, dir, dir);
 	assert_int_equal(sh(cmd), 0);
@@ -192,7 +196,7 @@ static void kill_and_resume(const char *kill_what)
 	before = rows_in(path);
 	print_message("%s killed with %ld of %d frames taken\n", kill_what,
 		      before, FRAMES);
-	assert_true(before >= 5 && before < FRAMES);
+	assert_true(before >= 3 && before < FRAMES);
 	if (strcmp(kill_what, "server") == 0) {
 		char rc[16], err[2048];
 
@@ -242,18 +246,23 @@ static void test_camera_faults_lose_nothing(void **state)
 	snprintf(cmd, sizeof(cmd), "scripts/rig-indi.sh sh -c '"
 		 "%s --config %s/c.json --sweep %s/s 2>%s/err & p=$!;"
 		 " while kill -0 $p && [ $(wc -l 2>/dev/null < %s/s/manifest.csv"
-		 " || echo 0) -lt 4 ]; do sleep 0.02; done; sleep 0.15;"
+		 " || echo 0) -lt 3 ]; do sleep 0.02; done; sleep 0.15;"
 		 " indi_setprop -p $STRAYRIGD_INDI_PORT"
 		 " \"CCD Simulator.CONNECTION.DISCONNECT=On\";"
-		 " while kill -0 $p && [ $(wc -l < %s/s/manifest.csv) -lt 10 ];"
-		 " do"
-		 " sleep 0.02; done; sleep 0.15;"
+		 " while kill -0 $p && [ $(wc -l < %s/s/manifest.csv) -lt 7 ];"
+		 " do sleep 0.02; done; sleep 0.15;"
 		 " echo \"stop indi_simulator_ccd\" >$RIG_INDI_FIFO; sleep 0.3;"
+		 " kill -0 $p && [ $(wc -l < %s/s/manifest.csv) -le 9 ] &&"
+		 " touch %s/restarted_mid_sweep;"
 		 " echo \"start indi_simulator_ccd\" >$RIG_INDI_FIFO;"
 		 " indi_setprop -p $STRAYRIGD_INDI_PORT"
 		 " \"CCD Simulator.POLLING_PERIOD.PERIOD_MS=50\" 2>/dev/null;"
-		 " wait $p'", rigd_bin(), dir, dir, dir, dir, dir);
+		 " wait $p'", rigd_bin(), dir, dir, dir, dir, dir, dir, dir);
 	assert_int_equal(sh(cmd), 0);
+	/* The driver was stopped while the sweep still had frames to take
+	 * (at most 8 of 9 rows then). */
+	snprintf(cmd, sizeof(cmd), "%s/restarted_mid_sweep", dir);
+	assert_int_equal(access(cmd, F_OK), 0);
 	snprintf(cmd, sizeof(cmd), "%s/s/events.log", dir);
 	get_file(cmd, log, sizeof(log));
 	print_message("%s", log);
