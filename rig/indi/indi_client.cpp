@@ -158,6 +158,10 @@ struct rig_indi {
 	Client *cl = nullptr;
 	std::chrono::steady_clock::time_point since;	/* connected at */
 	std::vector<std::string> blob_devs;
+	/* Our messages, one per (device, property, size), reused: libindi
+	 * 1.9.9 never frees a property made by count (LeakSanitizer). */
+	std::map<std::string, INDI::PropertyNumber> out_num;
+	std::map<std::string, INDI::PropertySwitch> out_sw;
 };
 
 extern "C" {
@@ -370,7 +374,12 @@ int rig_indi_send_numbers(struct rig_indi *c, const char *dev,
 
 	if (rc != RIG_OK)
 		return rc;
-	INDI::PropertyNumber v((size_t)n);
+	std::string k = key(dev, prop) + "\n" + std::to_string(n);
+	auto it = c->out_num.find(k);
+	if (it == c->out_num.end())
+		it = c->out_num.emplace(k, INDI::PropertyNumber((size_t)n))
+			.first;
+	INDI::PropertyNumber &v = it->second;
 	v.setDeviceName(dev);
 	v.setName(prop);
 	for (int i = 0; i < n; i++) {
@@ -390,7 +399,12 @@ int rig_indi_send_switch(struct rig_indi *c, const char *dev,
 
 	if (rc != RIG_OK)
 		return rc;
-	INDI::PropertySwitch v((size_t)1);
+	std::string k = key(dev, prop);
+	auto it = c->out_sw.find(k);
+	if (it == c->out_sw.end())
+		it = c->out_sw.emplace(k, INDI::PropertySwitch((size_t)1))
+			.first;
+	INDI::PropertySwitch &v = it->second;
 	v.setDeviceName(dev);
 	v.setName(prop);
 	v[0].setName(elem);
