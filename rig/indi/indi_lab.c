@@ -9,7 +9,8 @@
  * it is an error naming the device and property, never believed.  A
  * device disconnected or restarted by indiserver, or the server lost, is
  * RIG_EDISCONNECT: lab.c's retries reconnect it (each operation first
- * connects what is not), the sweep keeps its frames and resumes.
+ * connects what is not, indi_props.c), the sweep keeps its frames and
+ * resumes.
  */
 #include <math.h>
 #include <stdarg.h>
@@ -20,205 +21,6 @@
 #include "indi_lab.h"
 #include "rig/lab.h"
 
-#define ICFG(lab) (&(lab)->cfg->indi)
-
-static int server(struct rig_lab *lab, const char *dev, struct rig_error *err)
-{
-	const struct rig_indi_cfg *c = ICFG(lab);
-
-	if (!lab->indi) {
-		lab->indi = rig_indi_new(c->host, c->port);
-		if (!lab->indi)
-			return rig_error_set(err, RIG_ENOMEM, "indi: no memory");
-		rig_indi_want_blobs(lab->indi, c->camera.device);
-	}
-	if (rig_indi_server(lab->indi, c->connect_timeout_s) != RIG_OK)
-		return rig_error_set(err, RIG_EDISCONNECT,
-			"indi: '%s': server %s:%d does not answer (is "
-			"indiserver running?)", dev, c->host, c->port);
-	return RIG_OK;
-}
-
-/* Wait on the client for up to *left s; RIG_OK when something changed. */
-static int wait_change(struct rig_lab *lab, unsigned long *gen, double t_end,
-		       const char *dev, const char *prop, struct rig_error *err)
-{
-	double left = t_end - rig_hal_now(lab->hal);
-	int rc = left > 0 ? rig_indi_wait(lab->indi, gen, left) : RIG_ETIMEOUT;
-
-	if (rc == RIG_EDISCONNECT)
-		return rig_error_set(err, rc, "indi: '%s' %s: server %s:%d "
-				     "lost", dev, prop, ICFG(lab)->host,
-				     ICFG(lab)->port);
-	return rc;
-}
-
-/* The device on the server and connected (CONNECTION.CONNECT on). */
-static int device(struct rig_lab *lab, const char *dev, struct rig_error *err)
-{
-	double t_end = rig_hal_now(lab->hal) + ICFG(lab)->connect_timeout_s;
-	struct rig_indi_prop p;
-	unsigned long gen;
-	int rc = server(lab, dev, err), on = 0, sent = 0;
-
-	/* A driver indiserver restarted (-r, or its FIFO's start) defines
-	 * its properties only when asked: a device long connected to and now
-	 * unknown is asked for again by a fresh connection (getProperties). */
-	if (rc == RIG_OK && rig_indi_age(lab->indi) > 1.0 &&
-	    rig_indi_prop(lab->indi, dev, "CONNECTION", &p) == RIG_OK &&
-	    !p.defined) {
-		rig_indi_drop(lab->indi);
-		rc = server(lab, dev, err);
-	}
-	while (rc == RIG_OK) {
-		gen = rig_indi_gen(lab->indi);
-		rc = rig_indi_switch(lab->indi, dev, "CONNECTION", "CONNECT",
-				     &on, &p);
-		if (rc == RIG_OK && on && p.state != RIG_INDI_BUSY &&
-		    p.state != RIG_INDI_ALERT)
-			return RIG_OK;
-		if (rc == RIG_OK && sent && p.state == RIG_INDI_ALERT)
-			return rig_error_set(err, RIG_EDISCONNECT,
-				"indi: '%s' CONNECTION: the driver could not "
-				"connect to its device (Alert)", dev);
-		if (rc == RIG_OK && !sent) {
-			rig_indi_send_switch(lab->indi, dev, "CONNECTION",
-					     "CONNECT");
-			sent = 1;
-			/* A driver connecting resets its chip's window. */
-			if (strcmp(dev, ICFG(lab)->camera.device) == 0)
-				lab->indi_cam_fresh = 1;
-		}
-		if (rc != RIG_OK && rc != RIG_ESTATE && rc != RIG_EINVAL)
-			break;
-		rc = wait_change(lab, &gen, t_end, dev, "CONNECTION", err);
-	}
-	if (rc == RIG_ETIMEOUT)
-		return rig_error_set(err, RIG_EDISCONNECT,
-			"indi: '%s': %s within %.1f s on %s:%d; check the "
-			"driver runs and the device name in the config", dev,
-			sent ? "not connected" : "no such device",
-			ICFG(lab)->connect_timeout_s, ICFG(lab)->host,
-			ICFG(lab)->port);
-	return rig_error_set(err, rc, "indi: '%s': %s", dev,
-			     rig_status_text(rc));
-}
-
-/* The device connected and its property defined; key names the config
- * key that named the property, for the message when it never comes. */
-static int property(struct rig_lab *lab, const char *dev, const char *prop,
-		    const char *key, struct rig_error *err)
-{
-	double t_end = rig_hal_now(lab->hal) + ICFG(lab)->connect_timeout_s;
-	struct rig_indi_prop p;
-	unsigned long gen;
-	int rc = device(lab, dev, err);
-
-	while (rc == RIG_OK) {
-		gen = rig_indi_gen(lab->indi);
-		rc = rig_indi_prop(lab->indi, dev, prop, &p);
-		if (rc == RIG_OK && p.defined)
-			return RIG_OK;
-		if (rc == RIG_OK)
-			rc = wait_change(lab, &gen, t_end, dev, prop, err);
-	}
-	if (rc == RIG_ETIMEOUT)
-		return rig_error_set(err, RIG_EINVAL,
-			"indi: '%s' has no property %s; check %s", dev, prop,
-			key);
-	return rc;
-}
-
-/* Send a number vector and wait for the device's answer (the property
- * updated, not Busy); *rb = the first element read back.  Alert is
- * RIG_EDEVICE; the property deleted (driver disconnected) EDISCONNECT. */
-static int numbers(struct rig_lab *lab, const char *dev, const char *prop,
-		   int n, const char *const *el, const double *v,
-		   double timeout_s, double *rb, struct rig_error *err)
-{
-	double t_end = rig_hal_now(lab->hal) + timeout_s;
-	struct rig_indi_prop p0, p;
-	unsigned long gen = rig_indi_gen(lab->indi);
-	int rc = rig_indi_prop(lab->indi, dev, prop, &p0);
-
-	if (rc == RIG_OK)
-		rc = rig_indi_send_numbers(lab->indi, dev, prop, n, el, v);
-	while (rc == RIG_OK) {
-		rc = rig_indi_number(lab->indi, dev, prop, el[0], rb, NULL,
-				     NULL, &p);
-		if (rc == RIG_ESTATE)
-			return rig_error_set(err, RIG_EDISCONNECT,
-				"indi: '%s' %s: gone while setting %g "
-				"(driver disconnected or restarted)", dev,
-				prop, v[0]);
-		if (rc == RIG_OK && p.gen > p0.gen &&
-		    p.state == RIG_INDI_ALERT) {
-			char said[160];
-
-			rig_indi_message(lab->indi, dev, said, sizeof(said));
-			return rig_error_set(err, RIG_EDEVICE,
-				"indi: '%s' %s: the device refused or failed "
-				"%s = %g (Alert)%s%s", dev, prop, el[0], v[0],
-				said[0] ? "; it said: " : "", said);
-		}
-		if (rc == RIG_OK && p.gen > p0.gen &&
-		    p.state != RIG_INDI_BUSY)
-			return RIG_OK;
-		if (rc == RIG_OK)
-			rc = wait_change(lab, &gen, t_end, dev, prop, err);
-	}
-	if (rc == RIG_ETIMEOUT)
-		return rig_error_set(err, rc, "indi: '%s' %s: %s = %g not "
-				     "done within %.1f s", dev, prop, el[0],
-				     v[0], timeout_s);
-	return rig_error_set(err, rc, "indi: '%s' %s: %s", dev, prop,
-			     rig_status_text(rc));
-}
-
-/* Turn a switch element on and read it back on. */
-static int switch_on(struct rig_lab *lab, const char *dev, const char *prop,
-		     const char *elem, const char *key, struct rig_error *err)
-{
-	double t_end = rig_hal_now(lab->hal) + ICFG(lab)->timeout_s;
-	struct rig_indi_prop p0, p;
-	unsigned long gen;
-	int rc = property(lab, dev, prop, key, err), on = 0, sent = 0;
-
-	while (rc == RIG_OK) {
-		gen = rig_indi_gen(lab->indi);
-		rc = rig_indi_switch(lab->indi, dev, prop, elem, &on, &p);
-		if (rc == RIG_EINVAL)
-			return rig_error_set(err, RIG_EINVAL, "indi: '%s' %s "
-				"has no element %s; check %s", dev, prop,
-				elem, key);
-		if (rc == RIG_ESTATE)
-			return rig_error_set(err, RIG_EDISCONNECT,
-				"indi: '%s' %s: gone while setting %s",
-				dev, prop, elem);
-		if (rc != RIG_OK)
-			break;
-		if (on && p.state != RIG_INDI_BUSY &&
-		    p.state != RIG_INDI_ALERT)
-			return RIG_OK;
-		if (sent && p.gen > p0.gen && p.state == RIG_INDI_ALERT)
-			return rig_error_set(err, RIG_EDEVICE,
-				"indi: '%s' %s: %s refused (Alert)", dev,
-				prop, elem);
-		if (!sent) {
-			p0 = p;
-			rc = rig_indi_send_switch(lab->indi, dev, prop, elem);
-			sent = 1;
-			continue;
-		}
-		rc = wait_change(lab, &gen, t_end, dev, prop, err);
-	}
-	if (rc == RIG_ETIMEOUT)
-		return rig_error_set(err, rc, "indi: '%s' %s: %s not on "
-				     "within %.1f s", dev, prop, elem,
-				     ICFG(lab)->timeout_s);
-	return rig_error_set(err, rc, "indi: '%s' %s: %s", dev, prop,
-			     rig_status_text(rc));
-}
 
 /* ---- stage ---- */
 
@@ -228,7 +30,7 @@ static int stage_at(struct rig_lab *lab, double theta_deg, double *rb,
 	const struct rig_indi_cfg *c = ICFG(lab);
 	const char *el[1] = { c->stage.element };
 	double v = theta_deg;
-	int rc = property(lab, c->stage.device, c->stage.property,
+	int rc = ilab_property(lab, c->stage.device, c->stage.property,
 			  "indi.stage.property", err);
 
 	if (c->stage.wrap360) {
@@ -236,7 +38,7 @@ static int stage_at(struct rig_lab *lab, double theta_deg, double *rb,
 		v += v < 0 ? 360.0 : 0;
 	}
 	if (rc == RIG_OK)
-		rc = numbers(lab, c->stage.device, c->stage.property, 1, el,
+		rc = ilab_numbers(lab, c->stage.device, c->stage.property, 1, el,
 			     &v, lab->cfg->stage.move_timeout_s, rb, err);
 	/* The device's 0..360 back next to the angle asked (-5 = 355). */
 	if (rc == RIG_OK && c->stage.wrap360)
@@ -312,10 +114,10 @@ static int indi_wheel_goto(struct rig_lab *lab, int slot,
 		return rig_error_set(err, RIG_EINVAL,
 				     "wheel: slot %d outside 0..%d", slot,
 				     lab->cfg->wheel.n_slots - 1);
-	rc = property(lab, c->wheel.device, c->wheel.property,
+	rc = ilab_property(lab, c->wheel.device, c->wheel.property,
 		      "indi.wheel.property", err);
 	if (rc == RIG_OK)
-		rc = numbers(lab, c->wheel.device, c->wheel.property, 1, el,
+		rc = ilab_numbers(lab, c->wheel.device, c->wheel.property, 1, el,
 			     &want, lab->cfg->wheel.move_timeout_s, &rb, err);
 	if (rc == RIG_OK && lround(rb) != lround(want))
 		rc = rig_error_set(err, RIG_ETIMEOUT,
@@ -331,7 +133,7 @@ static int indi_wheel_count(struct rig_lab *lab, int *n,
 {
 	const struct rig_indi_cfg *c = ICFG(lab);
 	double v, lo, hi;
-	int rc = property(lab, c->wheel.device, c->wheel.property,
+	int rc = ilab_property(lab, c->wheel.device, c->wheel.property,
 			  "indi.wheel.property", err);
 
 	if (rc == RIG_OK)
@@ -365,11 +167,11 @@ static int indi_line_set(struct rig_lab *lab, enum rig_line which, int on,
 	if (which == RIG_LINE_LAMP)
 		lab->rb.lamp_cmd = on ? 1 : 0;
 	if (which == RIG_LINE_SHUTTER)
-		rc = switch_on(lab, c->camera.device, c->camera.frame_type,
+		rc = ilab_switch_on(lab, c->camera.device, c->camera.frame_type,
 			       on ? c->camera.light : c->camera.dark,
 			       "indi.camera.frame_type", err);
 	else
-		rc = switch_on(lab, s->device, s->property,
+		rc = ilab_switch_on(lab, s->device, s->property,
 			       on ? s->on : s->off, which == RIG_LINE_LAMP
 			       ? "indi.lamp" : "indi.beam_block", err);
 	if (rc == RIG_OK)
@@ -387,7 +189,7 @@ static int camera_window(struct rig_lab *lab, struct rig_error *err)
 	const struct rig_camera_cfg *cam = &lab->cfg->camera;
 	static const char *const el[4] = { "X", "Y", "WIDTH", "HEIGHT" };
 	double v[4], rb;
-	int rc = property(lab, c->camera.device, c->camera.frame,
+	int rc = ilab_property(lab, c->camera.device, c->camera.frame,
 			  "indi.camera.frame", err), i, same = 1;
 
 	v[0] = cam->col0;
@@ -403,7 +205,7 @@ static int camera_window(struct rig_lab *lab, struct rig_error *err)
 	if (rc == RIG_OK && same && !lab->indi_cam_fresh)
 		return RIG_OK;
 	if (rc == RIG_OK)
-		rc = numbers(lab, c->camera.device, c->camera.frame, 4, el, v,
+		rc = ilab_numbers(lab, c->camera.device, c->camera.frame, 4, el, v,
 			     c->timeout_s, &rb, err);
 	/* Read back: a driver still connecting may answer with its full
 	 * chip; the next capture then sends the window again. */
@@ -424,27 +226,27 @@ static int indi_open(struct rig_lab *lab, int dev, struct rig_error *err)
 	switch (dev) {
 	case RIG_DEV_STAGE:
 		lab->stage.homed = 0;
-		return property(lab, c->stage.device, c->stage.property,
+		return ilab_property(lab, c->stage.device, c->stage.property,
 				"indi.stage.property", err);
 	case RIG_DEV_WHEEL:
 		lab->wheel.slot = -1;
-		return property(lab, c->wheel.device, c->wheel.property,
+		return ilab_property(lab, c->wheel.device, c->wheel.property,
 				"indi.wheel.property", err);
 	case RIG_DEV_CAMERA:
 		lab->indi_cam_fresh = 1;
-		rc = property(lab, c->camera.device, c->camera.exposure,
+		rc = ilab_property(lab, c->camera.device, c->camera.exposure,
 			      "indi.camera.exposure", err);
 		if (rc == RIG_OK)
-			rc = property(lab, c->camera.device, c->camera.blob,
+			rc = ilab_property(lab, c->camera.device, c->camera.blob,
 				      "indi.camera.blob", err);
 		return rc == RIG_OK ? camera_window(lab, err) : rc;
 	case RIG_DEV_GPIO:
 		for (i = 0; i < RIG_LINE_COUNT; i++)
 			lab->lines.state[i] = -1;
-		rc = device(lab, c->lamp.device, err);
+		rc = ilab_device(lab, c->lamp.device, err);
 		if (rc == RIG_OK)
-			rc = device(lab, c->beam_block.device, err);
-		return rc == RIG_OK ? device(lab, c->camera.device, err) : rc;
+			rc = ilab_device(lab, c->beam_block.device, err);
+		return rc == RIG_OK ? ilab_device(lab, c->camera.device, err) : rc;
 	default:
 		return rig_error_set(err, RIG_EINVAL, "monitor: not on the "
 				     "indi backend; set monitor.enabled false");
@@ -526,7 +328,7 @@ static int expose(struct rig_lab *lab, double t, unsigned char **data,
 				said[0] ? "; it said: " : "", said);
 		}
 		if (rc == RIG_OK)
-			rc = wait_change(lab, &gen, t_end, dev,
+			rc = ilab_wait(lab, &gen, t_end, dev,
 					 c->camera.exposure, err);
 	}
 	if (rc == RIG_ETIMEOUT)
@@ -553,7 +355,7 @@ static int indi_capture(struct rig_lab *lab, double t, struct rig_image *img,
 	if (!(t > 0 && t < 4000))
 		return rig_error_set(err, RIG_EINVAL,
 				     "camera: exposure %g s out of range", t);
-	rc = property(lab, c->camera.device, c->camera.exposure,
+	rc = ilab_property(lab, c->camera.device, c->camera.exposure,
 		      "indi.camera.exposure", err);
 	/* A frame of the wrong size right after a reconnect is the driver
 	 * resetting its window behind ours: once, the window again. */
@@ -565,7 +367,7 @@ static int indi_capture(struct rig_lab *lab, double t, struct rig_image *img,
 		/* The shutter as commanded, again: a driver restarted
 		 * since has forgotten it (an unknown shutter is closed). */
 		if (rc == RIG_OK)
-			rc = switch_on(lab, c->camera.device,
+			rc = ilab_switch_on(lab, c->camera.device,
 				       c->camera.frame_type, shut
 				       ? c->camera.light : c->camera.dark,
 				       "indi.camera.frame_type", &e1);
