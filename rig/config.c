@@ -219,7 +219,7 @@ static int parse_top(struct rig_config *cfg, const cJSON *root,
 		"backend", "socket", "socket_mode", "socket_group",
 		"lock_dir", "stage",
 		"wheel", "gpio",
-		"camera", "monitor", "sweep", "vlab", "sim", NULL
+		"camera", "monitor", "sweep", "vlab", "sim", "indi", NULL
 	};
 	static const struct rig_cfg_field tab[] = {
 		{ "socket_mode", K_INT, offsetof(struct rig_config, socket_mode),
@@ -236,9 +236,10 @@ static int parse_top(struct rig_config *cfg, const cJSON *root,
 	if (rc == RIG_OK && (v = SECTION("backend")) != NULL) {
 		const char *b = cJSON_GetStringValue(v);
 
-		if (!b || (strcmp(b, "sim") && strcmp(b, "real")))
+		if (!b || (strcmp(b, "sim") && strcmp(b, "real") &&
+			   strcmp(b, "indi")))
 			return rig_cfg_bad(err, name, "", "backend",
-					   "expected \"sim\" or \"real\"");
+				"expected \"sim\", \"real\" or \"indi\"");
 		strcpy(cfg->backend, b);
 	}
 	if (rc == RIG_OK && (v = SECTION("socket")) != NULL) {
@@ -277,6 +278,9 @@ static int parse_top(struct rig_config *cfg, const cJSON *root,
 	if (rc == RIG_OK)
 		rc = rig_sim_config_parse(&cfg->sim, SECTION("vlab"),
 					  SECTION("sim"), name, err);
+	if (rc == RIG_OK)
+		rc = rig_indi_config_parse(&cfg->indi, SECTION("indi"), name,
+					   err);
 #undef SECTION
 	return rc;
 }
@@ -292,6 +296,11 @@ static int check(const struct rig_config *c, const char *name,
 		return rig_cfg_bad(err, name, "", "socket_mode",
 				   "world-writable (o+w) refused: anyone on "
 				   "the machine could drive the lab");
+	/* INDI has no lamp monitor of ours: its photodiode is on HID. */
+	if (strcmp(c->backend, "indi") == 0 && c->monitor.enabled)
+		return rig_cfg_bad(err, name, "monitor", "enabled",
+				   "the indi backend has no lamp monitor; "
+				   "set it false");
 	if (c->stage.min_deg >= c->stage.max_deg)
 		return rig_cfg_bad(err, name, "stage", "min_deg",
 				   "not below max_deg");

@@ -74,4 +74,5 @@ void rig_config_defaults(struct rig_config *cfg)
 	cfg->sweep.peak_target = 0.8;
 	cfg->sweep.retries = 3;
 	rig_sim_config_defaults(&cfg->sim);
+	rig_indi_cfg_defaults(&cfg->indi);
 }

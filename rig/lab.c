@@ -11,74 +11,22 @@
 
 #include "rig/lab.h"
 
-/* ---- the device table: how each enum rig_device opens and closes ---- */
-static int stage_open(struct rig_lab *lab, struct rig_error *err)
+/* Lamp off, beam blocked, shutter closed (rig_lines_safe through the
+ * lab's device table): tries all three, returns the first failure. */
+static int lines_safe(struct rig_lab *lab, struct rig_error *err)
 {
-	return rig_stage_open(&lab->stage, lab->hal, &lab->cfg->stage, err);
-}
+	int rc_lamp = lab->ops->line_set(lab, RIG_LINE_LAMP, 0, err);
+	int rc_beam = lab->ops->line_set(lab, RIG_LINE_BEAM_BLOCK, 1, err);
+	int rc_shut = lab->ops->line_set(lab, RIG_LINE_SHUTTER, 0, err);
 
-static void stage_close(struct rig_lab *lab)
-{
-	rig_stage_close(&lab->stage);
+	if (rc_lamp != RIG_OK)
+		return rc_lamp;
+	return rc_beam != RIG_OK ? rc_beam : rc_shut;
 }
-
-static int wheel_open(struct rig_lab *lab, struct rig_error *err)
-{
-	return rig_wheel_open(&lab->wheel, lab->hal, &lab->cfg->wheel, err);
-}
-
-static void wheel_close(struct rig_lab *lab)
-{
-	rig_wheel_close(&lab->wheel);
-}
-
-static int camera_open(struct rig_lab *lab, struct rig_error *err)
-{
-	return rig_camera_open(&lab->camera, lab->hal, &lab->cfg->camera,
-			       err);
-}
-
-static void camera_close(struct rig_lab *lab)
-{
-	lab->crc_rereads += lab->camera.crc_rereads;
-	rig_camera_close(&lab->camera);
-}
-
-static int monitor_open(struct rig_lab *lab, struct rig_error *err)
-{
-	return rig_monitor_open(&lab->monitor, lab->hal, &lab->cfg->monitor,
-				err);
-}
-
-static void monitor_close(struct rig_lab *lab)
-{
-	rig_monitor_close(&lab->monitor);
-}
-
-static int lines_open(struct rig_lab *lab, struct rig_error *err)
-{
-	return rig_lines_open(&lab->lines, lab->hal, lab->cfg->lines, err);
-}
-
-static void lines_close(struct rig_lab *lab)
-{
-	rig_lines_close(&lab->lines);
-}
-
-static const struct {
-	int (*open)(struct rig_lab *lab, struct rig_error *err);
-	void (*close)(struct rig_lab *lab);
-} devices[RIG_DEV_COUNT] = {
-	[RIG_DEV_STAGE] = { stage_open, stage_close },
-	[RIG_DEV_WHEEL] = { wheel_open, wheel_close },
-	[RIG_DEV_CAMERA] = { camera_open, camera_close },
-	[RIG_DEV_MONITOR] = { monitor_open, monitor_close },
-	[RIG_DEV_GPIO] = { lines_open, lines_close },
-};
 
 static int open_dev(struct rig_lab *lab, int dev, struct rig_error *err)
 {
-	int rc = devices[dev].open(lab, err);
+	int rc = lab->ops->open(lab, dev, err);
 
 	if (rc == RIG_OK)
 		lab->open_mask |= 1 << dev;
@@ -90,7 +38,7 @@ static void close_dev(struct rig_lab *lab, int dev)
 	if (!(lab->open_mask & (1 << dev)))
 		return;
 	lab->open_mask &= ~(1 << dev);
-	devices[dev].close(lab);
+	lab->ops->close(lab, dev);
 }
 
 int rig_lab_open(struct rig_lab *lab, const struct rig_config *cfg,
@@ -101,11 +49,13 @@ int rig_lab_open(struct rig_lab *lab, const struct rig_config *cfg,
 	memset(lab, 0, sizeof(*lab));
 	lab->cfg = cfg;
 	lab->hal = hal;
+	lab->ops = strcmp(cfg->backend, "indi") == 0 ? &rig_lab_indi_ops
+						       : &rig_lab_native_ops;
 	lab->theta_deg = lab->theta_rb_deg = NAN;
 	/* Lines first, so the lab is made safe before anything moves. */
 	rc = open_dev(lab, RIG_DEV_GPIO, err);
 	if (rc == RIG_OK)
-		rc = rig_lines_safe(&lab->lines, err);
+		rc = lines_safe(lab, err);
 	for (dev = 0; rc == RIG_OK && dev < RIG_DEV_GPIO; dev++)
 		if (dev != RIG_DEV_MONITOR || cfg->monitor.enabled)
 			rc = open_dev(lab, dev, err);
@@ -122,6 +72,8 @@ void rig_lab_close(struct rig_lab *lab)
 
 	for (dev = 0; dev < RIG_DEV_COUNT; dev++)
 		close_dev(lab, dev);
+	rig_indi_free(lab->indi);
+	lab->indi = NULL;
 }
 
 int rig_lab_safe(struct rig_lab *lab, struct rig_error *err)
@@ -129,12 +81,12 @@ int rig_lab_safe(struct rig_lab *lab, struct rig_error *err)
 	int rc = RIG_OK, r2;
 
 	if (lab->open_mask & (1 << RIG_DEV_GPIO))
-		rc = rig_lines_safe(&lab->lines, err);
+		rc = lines_safe(lab, err);
 	else
 		rc = rig_error_set(err, RIG_EDISCONNECT,
 				   "gpio: lines not open; lab state unknown");
 	if (lab->open_mask & (1 << RIG_DEV_STAGE)) {
-		r2 = rig_stage_stop(&lab->stage, err);
+		r2 = lab->ops->stop(lab, err);
 		if (rc == RIG_OK)
 			rc = r2;
 	}
@@ -189,7 +141,7 @@ int rig_lab_reconnect(struct rig_lab *lab, int dev, struct rig_error *err)
 	rc = open_dev(lab, dev, &tmp);
 	if (rc == RIG_OK && dev == RIG_DEV_STAGE) {
 		lab->theta_deg = lab->theta_rb_deg = NAN;
-		rc = rig_stage_home(&lab->stage, &tmp);
+		rc = lab->ops->home(lab, &tmp);
 	}
 	if (rc != RIG_OK)
 		return rig_error_set(err, rc, "%s", tmp.msg);
@@ -260,7 +212,7 @@ static int with_retries(struct rig_lab *lab, int dev, lab_op op, void *arg,
 static int home_op(struct rig_lab *lab, void *arg, struct rig_error *e)
 {
 	(void)arg;
-	return rig_stage_home(&lab->stage, e);
+	return lab->ops->home(lab, e);
 }
 
 int rig_lab_home(struct rig_lab *lab, struct rig_error *err)
@@ -280,11 +232,11 @@ static int move_op(struct rig_lab *lab, void *arg, struct rig_error *e)
 	int rc;
 
 	if (!lab->stage.homed) {
-		rc = rig_stage_home(&lab->stage, e);
+		rc = lab->ops->home(lab, e);
 		if (rc != RIG_OK)
 			return rc;
 	}
-	rc = rig_stage_move(&lab->stage, theta_deg, e);
+	rc = lab->ops->move(lab, theta_deg, e);
 	if (rc == RIG_ETARGET)
 		lab->stage.homed = 0;	/* re-home before the next try */
 	return rc;
@@ -310,7 +262,7 @@ int rig_lab_move(struct rig_lab *lab, double theta_deg, struct rig_error *err)
 
 static int wheel_op(struct rig_lab *lab, void *arg, struct rig_error *e)
 {
-	return rig_wheel_goto(&lab->wheel, *(const int *)arg, e);
+	return lab->ops->wheel_goto(lab, *(const int *)arg, e);
 }
 
 int rig_lab_wheel(struct rig_lab *lab, int slot, struct rig_error *err)
@@ -323,18 +275,18 @@ int rig_lab_wheel(struct rig_lab *lab, int slot, struct rig_error *err)
 int rig_lab_illuminate(struct rig_lab *lab, int frame_type,
 		       struct rig_error *err)
 {
-	struct rig_lines *l = &lab->lines;
 	int rc;
 
 	/* Table 3.1: dark = no light (shutter shut); ambient = beam blocked
 	 * from the aperture; full = beam on the aperture.  The lamp stays on
 	 * through a sweep so its drift is not restarted. */
-	rc = rig_lines_set(l, RIG_LINE_LAMP, 1, err);
+	rc = lab->ops->line_set(lab, RIG_LINE_LAMP, 1, err);
 	if (rc == RIG_OK)
-		rc = rig_lines_set(l, RIG_LINE_BEAM_BLOCK, frame_type != 2,
-				   err);
+		rc = lab->ops->line_set(lab, RIG_LINE_BEAM_BLOCK,
+					frame_type != 2, err);
 	if (rc == RIG_OK)
-		rc = rig_lines_set(l, RIG_LINE_SHUTTER, frame_type != 0, err);
+		rc = lab->ops->line_set(lab, RIG_LINE_SHUTTER, frame_type != 0,
+					err);
 	return rc;
 }
 
@@ -346,9 +298,8 @@ struct capture_arg {
 static int capture_op(struct rig_lab *lab, void *arg, struct rig_error *e)
 {
 	struct capture_arg *a = arg;
-	int rc = rig_camera_set_exposure(&lab->camera, a->t_exp_s, e);
 
-	return rc == RIG_OK ? rig_camera_capture(&lab->camera, a->img, e) : rc;
+	return lab->ops->capture(lab, a->t_exp_s, a->img, e);
 }
 
 int rig_lab_capture(struct rig_lab *lab, double t_exp_s,
@@ -361,7 +312,7 @@ int rig_lab_capture(struct rig_lab *lab, double t_exp_s,
 
 static int monitor_op(struct rig_lab *lab, void *arg, struct rig_error *e)
 {
-	return rig_monitor_read(&lab->monitor, arg, e);
+	return lab->ops->monitor(lab, arg, e);
 }
 
 int rig_lab_monitor(struct rig_lab *lab, double *level, struct rig_error *err)

@@ -13,7 +13,7 @@
 /* The wheel's own slot count must cover every transmission listed. */
 static int check_wheel(struct rig_lab *lab, struct rig_error *err)
 {
-	int n = 0, rc = rig_wheel_count(&lab->wheel, &n, err);
+	int n = 0, rc = lab->ops->wheel_count(lab, &n, err);
 
 	if (rc != RIG_OK)
 		return rc;
@@ -34,10 +34,8 @@ static int test_frame(struct rig_lab *lab, double t_s, struct rig_image *img,
 		      const char *key, struct rig_error *err)
 {
 	const char *name = lab->cfg->path[0] ? lab->cfg->path : "config";
-	int rc = rig_camera_set_exposure(&lab->camera, t_s, err);
+	int rc = lab->ops->capture(lab, t_s, img, err);
 
-	if (rc == RIG_OK)
-		rc = rig_camera_capture(&lab->camera, img, err);
 	if (rc == RIG_EPROTO)
 		return rig_error_set(err, RIG_EINVAL,
 			"%s: camera: a %g s test frame did not come back as "

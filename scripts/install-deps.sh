@@ -18,6 +18,7 @@ PKGS=(
 	libopenmpi-dev openmpi-bin	# stray-mpi
 	libusb-1.0-0-dev libhidapi-dev libgpiod-dev zlib1g-dev	# rig
 	umockdev libumockdev-dev	# rig test bed (scripts/rig-testbed.sh)
+	libindi-dev indi-bin		# rig INDI backend, its simulators (rig-indi.sh)
 	gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm	# flight build
 	liberfa-dev cppcheck		# ephemeris reference, flight-code checks
 )

@@ -11,13 +11,25 @@
 
 #define IDLE_POLL_MS 200
 
+static void hal_fini(struct rig_daemon *d)
+{
+	if (d->is_sim)
+		rig_sim_fini(&d->sim);
+	else if (strcmp(d->cfg.backend, "real") == 0)
+		rig_hal_real_fini(&d->hal);
+}
+
 int rig_daemon_start(struct rig_daemon *d, struct rig_error *err)
 {
 	int rc;
 
 	d->is_sim = strcmp(d->cfg.backend, "sim") == 0;
-	rc = d->is_sim ? rig_sim_init(&d->sim, &d->cfg, &d->hal)
-		       : rig_hal_real_init(&d->hal);
+	rc = RIG_OK;
+	if (strcmp(d->cfg.backend, "indi") == 0)
+		rig_hal_indi_init(&d->hal);	/* a clock; no fini */
+	else
+		rc = d->is_sim ? rig_sim_init(&d->sim, &d->cfg, &d->hal)
+			       : rig_hal_real_init(&d->hal);
 	if (rc != RIG_OK)
 		return rig_error_set(err, rc, "backend '%s': cannot start",
 				     d->cfg.backend);
@@ -32,12 +44,8 @@ int rig_daemon_start(struct rig_daemon *d, struct rig_error *err)
 			       d->listen_fd >= 0 ? "socket " : "one sweep",
 			       d->listen_fd >= 0 ? d->cfg.socket_path : "");
 	}
-	if (rc != RIG_OK) {
-		if (d->is_sim)
-			rig_sim_fini(&d->sim);
-		else
-			rig_hal_real_fini(&d->hal);
-	}
+	if (rc != RIG_OK)
+		hal_fini(d);
 	return rc;
 }
 
@@ -71,10 +79,7 @@ void rig_daemon_stop(struct rig_daemon *d)
 		rig_sweep_close(&d->sweep);
 	d->sweep_open = 0;
 	rig_lab_close(&d->lab);
-	if (d->is_sim)
-		rig_sim_fini(&d->sim);
-	else
-		rig_hal_real_fini(&d->hal);
+	hal_fini(d);
 }
 
 int rig_daemon_serve(struct rig_daemon *d, volatile int *stop,

@@ -259,7 +259,7 @@ static int take(struct rig_sweep *sw, int type, int seq, double t_exp_s,
 	struct rig_lab *lab = sw->lab;
 	struct stray_sweep_frame f;
 	struct stray_sweep_image im;
-	struct stray_sweep_key rb;
+	struct stray_sweep_key rb[RIG_SWEEP_RB_KEYS];
 	struct stray_error se;
 	int slot = lab->wheel.slot, rc;
 	double t0 = 0;
@@ -287,15 +287,8 @@ static int take(struct rig_sweep *sw, int type, int seq, double t_exp_s,
 	f.seqnum = seq;
 	f.sat_dn = lab->cfg->camera.sat_dn;
 	f.full_frame = sw->img.n_rows == RIG_FL_SENSOR_ROWS;
-	if (isfinite(lab->theta_rb_deg)) {
-		memset(&rb, 0, sizeof(rb));
-		rb.key = STRAY_SWEEP_KEY_ANGLERB;
-		rb.kind = STRAY_SWEEP_KEY_DOUBLE;
-		rb.d = lab->theta_rb_deg;
-		rb.comment = "[deg] stage read-back angle";
-		f.extra = &rb;
-		f.n_extra = 1;
-	}
+	f.extra = rb;
+	f.n_extra = rig_sweep_readback_keys(lab, rb);
 	im.n_rows = (size_t)sw->img.n_rows;
 	im.n_cols = (size_t)sw->img.n_cols;
 	im.col0 = sw->img.col0;

@@ -10,6 +10,7 @@
 #define RIG_CONFIG_H
 
 #include "rig/devices.h"
+#include "rig/indi.h"
 #include "rig/sim_config.h"
 #include "rig/status.h"
 
@@ -40,7 +41,7 @@ struct rig_sweep_cfg {
 
 struct rig_config {
 	char path[RIG_PATH_MAX];	/* file it came from, for messages */
-	char backend[16];		/* "sim" or "real" */
+	char backend[16];		/* "sim", "real" or "indi" */
 	char socket_path[RIG_PATH_MAX];
 	int socket_mode;		/* octal permission, default 0600 */
 	char socket_group[RIG_NAME_MAX];	/* group owning it, "" = ours */
@@ -53,6 +54,7 @@ struct rig_config {
 	struct rig_monitor_cfg monitor;
 	struct rig_sweep_cfg sweep;
 	struct rig_sim_config sim;	/* "vlab" and "sim": rig/sim's own */
+	struct rig_indi_cfg indi;	/* "indi": rig/indi's (indi.h) */
 };
 
 void rig_config_defaults(struct rig_config *cfg);

@@ -9,10 +9,53 @@
 
 #include "rig/config.h"
 #include "rig/devices.h"
+#include "rig/indi.h"
 #include <stddef.h>
+
+struct rig_lab;
+
+/* The lab's devices by backend: the native drivers (lab_native.c) or an
+ * indiserver's (rig/indi/indi_lab.c).  lab.c keeps the retries,
+ * interlocks and safe state above them.  dev is an enum rig_device; the
+ * INDI lab's RIG_DEV_GPIO is its lamp, beam block and shutter switches. */
+struct rig_lab_ops {
+	int (*open)(struct rig_lab *lab, int dev, struct rig_error *err);
+	void (*close)(struct rig_lab *lab, int dev);
+	int (*home)(struct rig_lab *lab, struct rig_error *err);
+	/* Move and read back (lab->stage.readback_deg); RIG_ETARGET when
+	 * the read-back misses by more than stage.tol_deg. */
+	int (*move)(struct rig_lab *lab, double theta_deg,
+		    struct rig_error *err);
+	int (*stop)(struct rig_lab *lab, struct rig_error *err);
+	int (*wheel_goto)(struct rig_lab *lab, int slot, struct rig_error *err);
+	int (*wheel_count)(struct rig_lab *lab, int *n, struct rig_error *err);
+	/* Set a line and read it back into lab->lines.state[which]. */
+	int (*line_set)(struct rig_lab *lab, enum rig_line which, int on,
+			struct rig_error *err);
+	int (*capture)(struct rig_lab *lab, double t_exp_s,
+		       struct rig_image *img, struct rig_error *err);
+	int (*monitor)(struct rig_lab *lab, double *level,
+		       struct rig_error *err);
+};
+
+extern const struct rig_lab_ops rig_lab_native_ops;
+extern const struct rig_lab_ops rig_lab_indi_ops;
+
+/* What the INDI lab read back for the last frame, beside the commanded
+ * values (the frame's FILTER/FILTERRB, EXPTIMRB, LAMP/LAMPRB keywords). */
+struct rig_lab_readback {
+	int valid;		/* 0: a native lab, no such keywords */
+	double exptime_s;	/* the BLOB's own EXPTIME */
+	int filter_cmd, filter_rb;	/* the device's slot numbers */
+	int lamp_cmd, lamp_rb;	/* 1 on, 0 off */
+};
 
 struct rig_lab {
 	const struct rig_config *cfg;
+	const struct rig_lab_ops *ops;
+	struct rig_indi *indi;	/* the INDI lab's client, else NULL */
+	int indi_cam_fresh;	/* INDI camera (re)connected: window unsent */
+	struct rig_lab_readback rb;
 	const struct rig_hal *hal;
 	struct rig_stage stage;
 	struct rig_wheel wheel;

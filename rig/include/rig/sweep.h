@@ -123,6 +123,14 @@ int rig_expo_search(struct rig_lab *lab, struct rig_image *img,
 int rig_expo_step(struct rig_lab *lab, struct rig_image *img,
 		  double *t_exp_s, int *slot, int *done, struct rig_error *err);
 
+/* The read-back keywords of a frame (readback.c): ANGLERB, the stage's
+ * read-back, and on an INDI lab FILTER/FILTERRB (slot commanded and read
+ * back, the device's numbering), EXPTIMRB (the camera's own EXPTIME) and
+ * LAMP/LAMPRB (lamp commanded and read back, 1 on); returns how many. */
+#define RIG_SWEEP_RB_KEYS 6
+size_t rig_sweep_readback_keys(const struct rig_lab *lab,
+			       struct stray_sweep_key k[RIG_SWEEP_RB_KEYS]);
+
 /* Peak of the 3-pixel row-neighbourhood mean of an image, DN. */
 double rig_image_peak3(const struct rig_image *img);
 
