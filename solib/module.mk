@@ -57,6 +57,10 @@ $(SO_CMD): $(SO_CMD_OBJ) $(SO_DIAG) $(SO_REVIEW) $(FDRFW_GROUND_LIB) \
 		-lstray $(FDRFW_GROUND_LIB) $(FDRFW_LIB) -lplplot -lcjson \
 		$(OPENCV_LDLIBS) -lstdc++ -fopenmp $(STRAY_LDLIBS) -lpthread)
 
+# What python/setup.py asks for (pip install ./python).
+.PHONY: shared-libs
+shared-libs: $(SO_LIBS)
+
 ifneq ($(SAN),1)
 all: $(SO_LIBS)
 
