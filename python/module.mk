@@ -41,3 +41,16 @@ python-check: $(PY_VENV)/.installed $(STRAY_BIN) $(RIG_BIN)
 ifneq ($(SAN),1)
 check: python-check
 endif
+
+# The flat C calls themselves (tests/api): linked from the objects `stray`
+# is, so both passes run it (ASan+UBSan too).
+API_TEST := $(B)/tests/api/test_api
+TESTS += $(API_TEST)
+$(B)/obj/tests/api/%.o: EXTRA_CFLAGS += -Itools/include -D_DEFAULT_SOURCE
+$(API_TEST): $(B)/obj/tests/api/test_api.o $(filter-out \
+		$(B)/obj/tools/stray.o,$(TOOLS_OBJ)) $(STRAY_LIB) $(TRACER_LIB) \
+		$(DIAG_LIB) $(REVIEW_LIB) $(FDRFW_GROUND_LIB) $(FDRFW_LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_BASE) -o $@ $< $(filter-out $(B)/obj/tools/stray.o,\
+		$(TOOLS_OBJ)) $(TOOLS_LDLIBS) $(STRAY_LDLIBS) $(CMOCKA_LIBS) \
+		-lpthread
