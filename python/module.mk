@@ -49,7 +49,8 @@ TESTS += $(API_TEST)
 $(B)/obj/tests/api/%.o: EXTRA_CFLAGS += -Itools/include -D_DEFAULT_SOURCE
 $(API_TEST): $(B)/obj/tests/api/test_api.o $(filter-out \
 		$(B)/obj/tools/stray.o,$(TOOLS_OBJ)) $(STRAY_LIB) $(TRACER_LIB) \
-		$(DIAG_LIB) $(REVIEW_LIB) $(FDRFW_GROUND_LIB) $(FDRFW_LIB)
+		$(DIAG_LIB) $(REVIEW_LIB) $(FDRFW_GROUND_LIB) $(FDRFW_LIB) \
+		$(STRAY_CORE_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_BASE) -o $@ $< $(filter-out $(B)/obj/tools/stray.o,\
 		$(TOOLS_OBJ)) $(TOOLS_LDLIBS) $(STRAY_LDLIBS) $(CMOCKA_LIBS) \
