@@ -168,8 +168,11 @@ static int run_locked(struct stray_api_result *r, const struct cmd *c,
 	char **full = malloc((size_t)(a->n + 3) * sizeof(char *));
 	int rc;
 
-	if (!full)
+	if (!full) {
+		snprintf(r->cap.err, sizeof(r->cap.err), "stray %s: out of "
+			 "memory", a->v[0]);
 		return CLI_FAIL;
+	}
 	full[0] = "stray";
 	full[1] = "--json";
 	memcpy(full + 2, a->v, (size_t)(a->n + 1) * sizeof(char *));
@@ -206,6 +209,9 @@ int stray_api_run(const char *cmd, const char *opts_json,
 		return CLI_USAGE;
 	}
 	rc = build_args(r, cmd, opts_json, &a);
+	if (rc == CLI_FAIL)	/* building the argument list: memory */
+		snprintf(r->cap.err, sizeof(r->cap.err),
+			 "stray %s: out of memory", cmd);
 	if (rc == CLI_OK) {
 		pthread_mutex_lock(&api_lock);
 		tracer_cancel_set(0);
@@ -213,9 +219,10 @@ int stray_api_run(const char *cmd, const char *opts_json,
 		pthread_mutex_unlock(&api_lock);
 	}
 	args_free(&a);
+	/* a failure that said why on stderr only (a warning-style line) */
 	if (rc != CLI_OK && !r->cap.err[0])
-		snprintf(r->cap.err, sizeof(r->cap.err),
-			 "stray %s: out of memory", cmd);
+		snprintf(r->cap.err, sizeof(r->cap.err), "stray %s: failed "
+			 "(exit %d; the reason is on standard error)", cmd, rc);
 	if (r->cap.json) {
 		r->json = cJSON_PrintUnformatted(r->cap.json);
 		cJSON_Delete(r->cap.json);
