@@ -14,7 +14,7 @@ CC ?= cc
 CLANG ?= clang
 PYTHON ?= python3
 
-MODULES := libstray tools libstray/reduce tests tracer diagnose review rig firmware_fdr mpi tests/flightcheck
+MODULES := libstray tools libstray/reduce tests tracer diagnose review rig firmware_fdr mpi tests/flightcheck solib python
 
 WARN := -Wall -Wextra -Werror
 OPT ?= -O2 -g
@@ -24,7 +24,11 @@ SANFLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all
 endif
 
 # Host code: C99 plus POSIX; the freestanding core adds -ffreestanding.
-CFLAGS_BASE := -std=c99 $(WARN) $(OPT) $(SANFLAGS) -MMD -MP
+# Position-independent, so the same objects make the static libraries and
+# the shared ones (issue 32: Python loads them); no semantic
+# interposition, so calls inside a library are still inlined as before.
+CFLAGS_BASE := -std=c99 $(WARN) $(OPT) $(SANFLAGS) -MMD -MP -fPIC \
+	-fno-semantic-interposition
 CPPFLAGS_HOST := -D_POSIX_C_SOURCE=200809L -Ilibstray/include
 LDLIBS_BASE := -lm
 

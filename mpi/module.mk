@@ -12,7 +12,7 @@ MPI_LDLIBS = $(shell pkg-config --libs ompi-c 2>/dev/null)
 STRAY_MPI_BIN := $(B)/bin/stray-mpi
 MPI_PIECE_OBJ := $(B)/obj/mpi/piece.o
 MPI_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard mpi/*.c))
-MPI_TOOLS_OBJ := $(patsubst %,$(B)/obj/tools/%.o,cli cli_outputs cmd_trace cmd_sweep \
+MPI_TOOLS_OBJ := $(patsubst %,$(B)/obj/tools/%.o,cli cli_capture cli_outputs cmd_trace cmd_sweep \
 	design_grid design_report fdr_setup plot trace_run focal_map_io \
 	image_cv) $(DIAG_TOOLS_OBJ)
 

@@ -247,10 +247,16 @@ static void sky_sample(struct mission_head *hd, size_t j, const double mis[3][3]
 	sky_point(mis, e, &hd->sky[2][0][j], &hd->sky[2][1][j]);
 }
 
+/* The flight module's flag bits 0-7 (fdrfw/fdrfw.h), as named columns. */
+static const char *const flag_name[8] = {
+	"sun_excluded", "moon_excluded", "earth_excluded", "sun_in_fov",
+	"moon_in_fov", "earth_in_fov", "sun_eclipsed", "input_invalid" };
+
 static FILE *csv_open(const struct mission_args *a, const struct mission *m,
 		      struct stray_file_out *out, struct stray_error *err)
 {
 	size_t h;
+	int k;
 
 	if (!a->csv)
 		return NULL;
@@ -261,7 +267,13 @@ static FILE *csv_open(const struct mission_args *a, const struct mission *m,
 	for (h = 0; h < m->n_heads; h++)
 		fprintf(out->f, ",%s_flags,%s_sun_deg,%s_false_stars",
 			m->head[h].name, m->head[h].name, m->head[h].name);
-	fputs(",any_available\n", out->f);
+	/* issue 32: a notebook reads the time and the flags by name */
+	fputs(",any_available,utc", out->f);
+	for (h = 0; h < m->n_heads; h++)
+		for (k = 0; k < 8; k++)
+			fprintf(out->f, ",%s_%s", m->head[h].name,
+				flag_name[k]);
+	fputc('\n', out->f);
 	return out->f;
 }
 
@@ -396,6 +408,24 @@ static void fly_head(struct mission *m, struct block *b, size_t h,
 	}
 }
 
+/* The end of a row: any-head availability, the epoch in UTC (ISO 8601)
+ * and each head's flag bits by name (flag_name), 0 or 1. */
+static void csv_named(FILE *csv, const struct mission *m,
+		      const struct block *b, size_t i0, size_t j, int any)
+{
+	char utc[64];
+	size_t h;
+	int k;
+
+	stray_ccsds_format_epoch(m->t0 + (double)(i0 + j) * m->step_s,
+				 STRAY_TS_UTC, utc, sizeof(utc));
+	fprintf(csv, ",%d,%sZ", any, utc);
+	for (h = 0; h < m->n_heads; h++)
+		for (k = 0; k < 8; k++)
+			fprintf(csv, ",%u", (unsigned)(b->flags[h][j] >> k) & 1u);
+	fputc('\n', csv);
+}
+
 int mission_fly(const struct mission_args *a, struct mission *m,
 		struct stray_error *err)
 {
@@ -460,7 +490,7 @@ int mission_fly(const struct mission_args *a, struct mission *m,
 				fprintf(csv, ",%u,%.3f,%.4g", (unsigned)b->flags[h][j],
 					(double)b->sun_deg[h][j],
 					(double)m->head[h].stars[i0 + j]);
-			fprintf(csv, ",%d\n", all == 0);
+			csv_named(csv, m, b, i0, j, all == 0);
 		}
 	}
 done:

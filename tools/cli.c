@@ -8,6 +8,7 @@
 #include <stdlib.h>
 
 #include "cli.h"
+#include "cli_capture.h"
 #include "stray/errfmt.h"
 #include "stray/provenance.h"
 
@@ -18,29 +19,51 @@ void cli_set_prog(const char *prog)
 	cli.prog = prog;
 }
 
+/* The one error line: on stderr, or kept for the library call that runs
+ * the command (cli_capture.h). */
+static void error_line(const char *line)
+{
+	if (cli_capture)
+		snprintf(cli_capture->err, sizeof(cli_capture->err), "%s",
+			 line);
+	else
+		fprintf(stderr, "%s\n", line);
+}
+
 int cli_fail(const char *cmd, const struct stray_error *err)
 {
-	char line[1024];
+	char line[1024], full[1400];
 
 	if (err->code == STRAY_OK) {	/* a failure that recorded no reason */
-		fprintf(stderr, "%s %s: failed without a recorded reason "
-			"(please report this)\n", cli.prog, cmd);
+		snprintf(full, sizeof(full), "%s %s: failed without a "
+			 "recorded reason (please report this)", cli.prog, cmd);
+		error_line(full);
 		return CLI_FAIL;
 	}
-	fprintf(stderr, "%s %s: %s\n", cli.prog, cmd,
-		stray_error_format(err, line, sizeof(line)));
+	snprintf(full, sizeof(full), "%s %s: %s", cli.prog, cmd,
+		 stray_error_format(err, line, sizeof(line)));
+	error_line(full);
 	return stray_status_is_bad_input(err->code) ? CLI_USAGE : CLI_FAIL;
 }
 
 int cli_usage_error(const char *cmd, const char *fmt, ...)
 {
+	char msg[1024], full[1400];
 	va_list ap;
 
-	fprintf(stderr, "%s %s: ", cli.prog, cmd);
 	va_start(ap, fmt);
-	vfprintf(stderr, fmt, ap);
+	if (!cli_capture) {	/* `stray`: as long as it is */
+		fprintf(stderr, "%s %s: ", cli.prog, cmd);
+		vfprintf(stderr, fmt, ap);
+		fprintf(stderr, " (see '%s %s --help')\n", cli.prog, cmd);
+		va_end(ap);
+		return CLI_USAGE;
+	}
+	vsnprintf(msg, sizeof(msg), fmt, ap);
 	va_end(ap);
-	fprintf(stderr, " (see '%s %s --help')\n", cli.prog, cmd);
+	snprintf(full, sizeof(full), "%s %s: %s (see '%s %s --help')",
+		 cli.prog, cmd, msg, cli.prog, cmd);
+	error_line(full);
 	return CLI_USAGE;
 }
 
@@ -80,6 +103,11 @@ int cli_json_emit(cJSON *obj)
 		cJSON_AddItemToObject(obj, "provenance", p);
 	else
 		cJSON_Delete(p);
+	if (cli_capture) {	/* a library call: the object itself */
+		cJSON_Delete(cli_capture->json);
+		cli_capture->json = obj;
+		return CLI_OK;
+	}
 	text = cJSON_Print(obj);
 	int rc = CLI_OK;
 

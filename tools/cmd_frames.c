@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "cli_capture.h"
 #include "commands.h"
 #include "fdr_setup.h"
 #include "focal_map_io.h"
@@ -558,6 +559,10 @@ static int run_frames(struct frames_state *st, struct stray_error *err)
 		st->stars_sum += (double)n_stars;
 		stray_frame_expect(&c, st->stars, n_stars, st->expect);
 		stray_frame_sample(&c, st->expect, seed + 1, st->dn);
+		/* a library call keeps every frame (cli_capture.h) */
+		if ((rc = cli_capture_frame(st->dn, st->cols, st->rows,
+				(size_t)i, (size_t)st->a.frames, err)))
+			return rc;
 		if (frames_detect(st->dn, st->cols, st->rows, &st->dc,
 				  FRAMES_DET_THESIS | FRAMES_DET_THRESHOLD,
 				  st->out, st->tiles, msg, sizeof(msg))) {

@@ -15,6 +15,7 @@
 #include <sys/stat.h>
 
 #include "cli.h"
+#include "cli_capture.h"
 #include "commands.h"
 #include "reduce_report.h"
 #include "stray/curve_io.h"
@@ -193,6 +194,8 @@ static int save_curve(const struct reduce_args *a,
 		rc = stray_curve_add_meta(&c, "source", a->dir, err);
 	if (rc == STRAY_OK)
 		rc = stray_curve_add_meta(&c, "reduction", text, err);
+	if (rc == STRAY_OK)	/* a library call's curve (cli_capture.h) */
+		rc = cli_capture_curve(&c, err);
 	if (rc == STRAY_OK)
 		rc = stray_curve_save(a->out, &c, err);
 	stray_curve_free(&c);

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "cli_capture.h"
 #include "commands.h"
 #include "focal_map_io.h"
 #include "plot.h"
@@ -323,7 +324,9 @@ static int write_curve(const struct trace_args *a,
 	}
 	if (!rc)
 		rc = add_meta(&c, a, err);
-	if (!rc)
+	if (!rc)	/* a library call's curve: the bits, not the text */
+		rc = cli_capture_curve(&c, err);
+	if (!rc && a->out)
 		rc = stray_curve_save(a->out, &c, err);
 out_free:
 	free(col);
@@ -484,7 +487,7 @@ static int run_trace(struct trace_args *a, struct tracer_scene *s,
 		if (rc)
 			goto out_free;
 	}
-	if (isatty(STDERR_FILENO)) {
+	if (isatty(STDERR_FILENO) && !cli_capturing()) {
 		a->o.progress = progress;
 		a->o.progress_user = &last;
 	}
@@ -502,7 +505,7 @@ static int run_trace(struct trace_args *a, struct tracer_scene *s,
 	if (rc)
 		goto out_free;
 	rc = check_on_axis(a, &r, err);
-	if (!rc && a->out)
+	if (!rc && (a->out || cli_capturing()))
 		rc = write_curve(a, &r, first, err);
 	if (!rc && (a->plot || a->plot_orders))
 		rc = plot_curve(a, &r, first, err);

@@ -94,6 +94,29 @@ static cJSON *regions_json(const double *rms, const int *count)
 	return o;
 }
 
+/* The curves of the plot (issue 32: a notebook redraws it from --json):
+ * the measured points and the model before and after, one value each. */
+static cJSON *curves_json(const struct diag_data *d,
+			  const struct diag_result *r)
+{
+	const double *col[5] = { d->theta_deg, d->alpha, d->sigma,
+				 r->model_before, r->model_after };
+	static const char *const key[5] = { "theta_deg", "measured", "sigma",
+					    "model_before", "model_after" };
+	cJSON *o = cJSON_CreateObject();
+	size_t i;
+	int k;
+
+	for (k = 0; k < 5; k++) {
+		cJSON *a = cJSON_CreateArray();
+
+		for (i = 0; col[k] && i < d->n; i++)
+			cJSON_AddItemToArray(a, cli_json_number(col[k][i]));
+		cJSON_AddItemToObject(o, key[k], a);
+	}
+	return o;
+}
+
 static cJSON *surfaces_json(const struct diag_surfaces *s, const char *model)
 {
 	cJSON *o = cJSON_CreateObject(), *list = cJSON_CreateArray();
@@ -201,6 +224,7 @@ int diag_report_json_surf(const struct diag_data *d,
 		cJSON_AddStringToObject(o, "lens", e->lens);
 	if (sf)
 		cJSON_AddItemToObject(o, "surfaces", surfaces_json(sf, model));
+	cJSON_AddItemToObject(o, "curves", curves_json(d, r));
 	cJSON_AddNumberToObject(o, "traces", (double)e->n_traces);
 	cJSON_AddItemToObject(o, "trace_seconds",
 			      cli_json_number(e->trace_seconds));

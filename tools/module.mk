@@ -26,7 +26,7 @@ install: install-tools
 # (tools/frames_detect.cpp), behind C headers.
 OPENCV_CFLAGS := -I/usr/include/opencv4
 OPENCV_LDLIBS := -lopencv_imgcodecs -lopencv_imgproc -lopencv_core
-CV_CXX = $(CXX) -std=c++17 -Wall -Wextra -Werror $(OPT) $(SANFLAGS) -MMD -MP \
+CV_CXX = $(CXX) -std=c++17 -Wall -Wextra -Werror $(OPT) $(SANFLAGS) -MMD -MP -fPIC \
 	-Itools -Ilibstray/include $(OPENCV_CFLAGS)
 
 IMAGE_CV_OBJ := $(B)/obj/tools/image_cv.o

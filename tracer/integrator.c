@@ -8,6 +8,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "tracer/cancel.h"
 #include "tracer/guide.h"
 #include "tracer/integrator.h"
 #include "tracer/rng.h"
@@ -530,6 +531,9 @@ static void run_batch(struct worker_ctx *w, int b, uint64_t *casts,
 			w->failed = 1;
 	}
 	for (i = tracer_batch_start(r, b); i < end; i++) {
+		/* a cancelled trace (tracer/cancel.h) fails: stop soon */
+		if ((i & 1023) == 0 && tracer_cancelled())
+			break;
 		trace_path(w, &ps, i, r->energy + (size_t)b * TRACER_ENERGY_N);
 		if (ps.path_c && ps.touched)
 			pilot_flush(w, &ps, b);
@@ -552,7 +556,8 @@ void *tracer_worker(void *arg)
 		int b;
 
 		pthread_mutex_lock(&w->lock);
-		b = w->next_batch < w->end_batch ? w->next_batch++ : -1;
+		b = w->next_batch < w->end_batch && !tracer_cancelled() ?
+		    w->next_batch++ : -1;
 		pthread_mutex_unlock(&w->lock);
 		if (b < 0)
 			break;

@@ -69,7 +69,7 @@ $(B)/obj/tools/cmd_photometer.o: EXTRA_CFLAGS += -Itracer/include
 # The focal-map CLI test runs build/bin/stray and reads its FITS back,
 # also through the reader `stray frames` uses (tools/focal_map_read.c).
 FOCAL_IO_OBJ := $(patsubst %,$(B)/obj/tools/%.o,\
-	focal_map_io focal_map_read cli image_cv)
+	focal_map_io focal_map_read cli cli_capture image_cv)
 $(B)/obj/tests/tracer/test_cmd_focal_map.o: \
 	EXTRA_CFLAGS += -I/usr/include/cjson -Itools
 $(B)/tests/tracer/test_cmd_focal_map: \

@@ -12,6 +12,7 @@
 #include <time.h>
 
 #include "tracer/batches.h"
+#include "tracer/cancel.h"
 #include "tracer/guide.h"
 #include "tracer/integrator.h"
 #include "worker.h"
@@ -278,6 +279,8 @@ static int run_pass(const struct tracer_scene *s,
 	if (merge_tables(&w) || w.failed)
 		rc = stray_error_set(err, STRAY_ENOMEM, "paths",
 				     "out of memory recording paths");
+	if (tracer_cancelled())	/* a part of the paths: no estimate */
+		rc = stray_error_set(err, STRAY_EIO, "trace", "interrupted");
 out_free:
 	free(w.dir);
 	free(w.dir_x);

@@ -61,6 +61,11 @@ void stray_provenance_set(int argc, char **argv)
 	command[len] = '\0';
 }
 
+void stray_provenance_set_text(const char *text)
+{
+	snprintf(command, sizeof(command), "%s", text ? text : "");
+}
+
 const char *stray_provenance_command(void)
 {
 	return command;

@@ -17,6 +17,10 @@
  * per process, before any output is written. */
 void stray_provenance_set(int argc, char **argv);
 
+/* Record a command line already written out (a library caller saving
+ * an output of an earlier call: that call's command); NULL is "". */
+void stray_provenance_set_text(const char *command);
+
 /* The recorded command line, or "" when none was recorded (a library
  * caller that did not say). */
 const char *stray_provenance_command(void);
