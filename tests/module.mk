@@ -72,9 +72,10 @@ build/fuzz/fuzz_focal_map: tests/fuzz/fuzz_focal_map.c \
 	$(CLANG) $(FUZZ_CFLAGS) -Itools -Itracer/include -o $@ $^ \
 		$(STRAY_LDLIBS)
 # The heads file of `stray availability` (issue 31): its parser alone.
-build/fuzz/fuzz_heads: tests/fuzz/fuzz_heads.c tools/avail_heads.c $(FUZZ_LIB_SRC)
+build/fuzz/fuzz_heads: tests/fuzz/fuzz_heads.c mission/avail_heads.c $(FUZZ_LIB_SRC)
 	@mkdir -p $(dir $@)
-	$(CLANG) $(FUZZ_CFLAGS) -Itools -o $@ $^ $(STRAY_LDLIBS)
+	$(CLANG) $(FUZZ_CFLAGS) -Imission/include -Imission -o $@ $^ \
+		$(STRAY_LDLIBS)
 
 # The project file of `stray review` (issue 25) and the plan made from it.
 build/fuzz/fuzz_review_project: tests/fuzz/fuzz_review_project.c \

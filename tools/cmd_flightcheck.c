@@ -2,7 +2,7 @@
  * cmd_flightcheck.c - `stray flightcheck FRAMES --aem A --model M`: the
  * stray-light curve measured from flight frames, made absolute by the
  * catalogue stars in the same frames, against the predicted curve (issue
- * 18, thesis §4.3).  The analysis is tools/flightcheck.c; this file
+ * 18, thesis §4.3).  The analysis is mission/flightcheck.c; this file
  * parses, prints, plots and writes the flight curve.
  */
 #include <math.h>
@@ -14,7 +14,7 @@
 #include "cli.h"
 #include "commands.h"
 #include "fdr_setup.h"
-#include "flightcheck_run.h"
+#include "mission/flightcheck_run.h"
 #include "plot.h"
 #include "stray/errfmt.h"
 #include "stray/curve_io.h"

@@ -73,9 +73,6 @@ $(B)/bench/bench_frames: $(B)/obj/bench/bench_frames.o $(FRAMES_ANALYSIS_OBJ) \
 	$(CC) $(CFLAGS_BASE) -o $@ $< $(FRAMES_ANALYSIS_OBJ) $(STRAY_LIB) \
 		$(FRAMES_LDLIBS) $(STRAY_LDLIBS)
 
-# `stray availability` (issue 15): the heads fly in parallel (OpenMP).
-$(B)/obj/tools/avail_mission.o: EXTRA_CFLAGS += -fopenmp
-TOOLS_LDLIBS += -fopenmp
 # Its CLI test checks the Sun angle against ERFA.
 $(B)/tests/tools/test_availability: $(B)/obj/tests/tools/test_availability.o \
 		tests/tools/run_cli.h $(STRAY_BIN)

@@ -3,8 +3,8 @@
  * written as OEM/AEM, the heads file, the flight module flown per head,
  * the albedo fed to it, the statistics and the plots.
  */
-#ifndef STRAY_TOOLS_AVAIL_MISSION_H
-#define STRAY_TOOLS_AVAIL_MISSION_H
+#ifndef STRAY_MISSION_AVAIL_MISSION_H
+#define STRAY_MISSION_AVAIL_MISSION_H
 
 #include <stdint.h>
 
@@ -88,4 +88,4 @@ void mission_fw_q(const double m[3][3], float q[4]);
  * light (cos of incidence times solid angle); 0.3 on the night side. */
 double mission_cap_albedo(const float pos_km[3], const float sun[3]);
 
-#endif /* STRAY_TOOLS_AVAIL_MISSION_H */
+#endif /* STRAY_MISSION_AVAIL_MISSION_H */

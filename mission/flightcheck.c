@@ -1,12 +1,12 @@
 /*
  * flightcheck.c - the per-frame step and the summary of `stray
- * flightcheck` (tools/flightcheck.h; thesis §4.3, eq. 2.2, 2.3, 2.12).
+ * flightcheck` (mission/flightcheck.h; thesis §4.3, eq. 2.2, 2.3, 2.12).
  */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "flightcheck.h"
+#include "mission/flightcheck.h"
 #include "fdrfw/ephem.h"
 #include "stray/aem.h"
 #include "stray/photometry_io.h"

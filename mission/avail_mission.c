@@ -9,13 +9,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "avail_heads.h"
-#include "avail_mission.h"
+#include "mission/avail_heads.h"
+#include "mission/avail_mission.h"
 #include "fdrfw/earth.h"
 #include "fdrfw/ephem.h"
 #include "fdrfw/table_build.h"
 #include "fdrfw/vec.h"
-#include "flight_table.h"
+#include "mission/flight_table.h"
 #include "stray/ccsds.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"

@@ -8,8 +8,8 @@
  * photometry), the catalogue, time and attitude.  Linked by the command,
  * its test (tests/flightcheck) and its bench.
  */
-#ifndef STRAY_TOOLS_FLIGHTCHECK_H
-#define STRAY_TOOLS_FLIGHTCHECK_H
+#ifndef STRAY_MISSION_FLIGHTCHECK_H
+#define STRAY_MISSION_FLIGHTCHECK_H
 
 #include <stddef.h>
 #include <stdint.h>
@@ -73,7 +73,7 @@ void fc_work_free(struct fc_work *w);
  * with attitude q_ib (stray/aem.h convention). */
 double fc_sun_angle_deg(const double q_ib[4], double t_tt);
 
-/* The background (tools/flightcheck_bg.c): a grouped median per tile, a
+/* The background (mission/flightcheck_bg.c): a grouped median per tile, a
  * plane fitted to the tiles with two 3-sigma rejections; o's background,
  * noise and gradient fields. */
 void fc_background(const struct fc_cfg *c, struct fc_work *w,
@@ -136,4 +136,4 @@ void fc_cfg_init(struct fc_cfg *c, const struct stray_sensor *s,
  * of c (at c->t_exp_s) scaled to it. */
 void fc_cfg_exposure(const struct fc_cfg *c, double t_exp_s,
 		     struct fc_cfg *out);
-#endif /* STRAY_TOOLS_FLIGHTCHECK_H */
+#endif /* STRAY_MISSION_FLIGHTCHECK_H */

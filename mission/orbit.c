@@ -3,7 +3,7 @@
  */
 #include <math.h>
 
-#include "orbit.h"
+#include "mission/orbit.h"
 #include "vec3d.h"
 
 #define TWO_PI 6.28318530717958647692

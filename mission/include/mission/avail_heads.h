@@ -4,8 +4,8 @@
  * paths of their flight tables (resolved against the file's folder, not
  * opened here, so the fuzz target never touches the disk).
  */
-#ifndef STRAY_TOOLS_AVAIL_HEADS_H
-#define STRAY_TOOLS_AVAIL_HEADS_H
+#ifndef STRAY_MISSION_AVAIL_HEADS_H
+#define STRAY_MISSION_AVAIL_HEADS_H
 
 #include <stddef.h>
 
@@ -29,4 +29,4 @@ int avail_heads_parse(const char *buf, size_t len, const char *path,
 		      struct avail_head_spec spec[AVAIL_HEADS_MAX], size_t *n,
 		      struct stray_error *err);
 
-#endif /* STRAY_TOOLS_AVAIL_HEADS_H */
+#endif /* STRAY_MISSION_AVAIL_HEADS_H */

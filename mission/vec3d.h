@@ -2,8 +2,8 @@
  * vec3d.h - the two 3-vector steps the mission writers and the heads file
  * build attitudes from (orbit.c, avail_demo.c, avail_heads.c).
  */
-#ifndef STRAY_TOOLS_VEC3D_H
-#define STRAY_TOOLS_VEC3D_H
+#ifndef STRAY_MISSION_VEC3D_H
+#define STRAY_MISSION_VEC3D_H
 
 #include <math.h>
 
@@ -25,4 +25,4 @@ static inline void cross(const double a[3], const double b[3], double c[3])
 	c[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-#endif /* STRAY_TOOLS_VEC3D_H */
+#endif /* STRAY_MISSION_VEC3D_H */

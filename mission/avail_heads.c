@@ -8,7 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "avail_heads.h"
+#include "mission/avail_heads.h"
 #include "stray/errfmt.h"
 #include "vec3d.h"
 

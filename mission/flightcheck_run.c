@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "flightcheck_run.h"
+#include "mission/flightcheck_run.h"
 #include "fdrfw/ephem.h"
 #include "stray/ccsds.h"
 #include "stray/errfmt.h"

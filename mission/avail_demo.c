@@ -12,9 +12,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "avail_mission.h"
+#include "mission/avail_mission.h"
 #include "fdrfw/ephem.h"
-#include "orbit.h"
+#include "mission/orbit.h"
 #include "stray/ccsds.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"

@@ -3,12 +3,12 @@
  * flight frames (manifest.csv, FITS with DATE-OBS in UTC and EXPTIME)
  * and the AEM of the head, through the per-frame step of flightcheck.h.
  */
-#ifndef STRAY_TOOLS_FLIGHTCHECK_RUN_H
-#define STRAY_TOOLS_FLIGHTCHECK_RUN_H
+#ifndef STRAY_MISSION_FLIGHTCHECK_RUN_H
+#define STRAY_MISSION_FLIGHTCHECK_RUN_H
 
 #include <stddef.h>
 
-#include "flightcheck.h"
+#include "mission/flightcheck.h"
 #include "stray/aem.h"
 #include "stray/oem.h"
 #include "stray/error.h"
@@ -48,4 +48,4 @@ int fc_run_dir_sky(const char *dir, const struct stray_aem *aem,
 		   const struct fc_sky *sky, struct fc_cfg *cfg,
 		   struct fc_frame **frames, size_t *n, struct stray_error *err);
 
-#endif /* STRAY_TOOLS_FLIGHTCHECK_RUN_H */
+#endif /* STRAY_MISSION_FLIGHTCHECK_RUN_H */

@@ -4,7 +4,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 
-#include "flight_table.h"
+#include "mission/flight_table.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"
 

@@ -7,8 +7,8 @@
  * Applications, 4th ed., §9.6, eq. 9-37); no drag, no other harmonics:
  * good to the tens of km that matter for the Earth's angular radius.
  */
-#ifndef STRAY_TOOLS_ORBIT_H
-#define STRAY_TOOLS_ORBIT_H
+#ifndef STRAY_MISSION_ORBIT_H
+#define STRAY_MISSION_ORBIT_H
 
 #define ORBIT_MU_KM3_S2 398600.4418	/* Earth's GM (WGS 84) */
 #define ORBIT_RE_KM 6378.137		/* equatorial radius (WGS 84) */
@@ -49,4 +49,4 @@ void orbit_state(const struct orbit *o, double t_s, double r[3],
  */
 void orbit_anti_nadir_q(const double r[3], const double v[3], double q[4]);
 
-#endif /* STRAY_TOOLS_ORBIT_H */
+#endif /* STRAY_MISSION_ORBIT_H */

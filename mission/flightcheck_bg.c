@@ -1,11 +1,11 @@
 /*
- * flightcheck_bg.c - the background of a flight frame (tools/flightcheck.h,
+ * flightcheck_bg.c - the background of a flight frame (mission/flightcheck.h,
  * step 2 of docs/flightcheck.md): tile medians and a plane.
  */
 #include <math.h>
 #include <stdlib.h>
 
-#include "flightcheck.h"
+#include "mission/flightcheck.h"
 
 #define PI 3.14159265358979323846
 #define DEG (PI / 180.0)

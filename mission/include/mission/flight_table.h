@@ -3,8 +3,8 @@
  * from a file for the commands that fly the flight module (stray orbit,
  * stray availability).
  */
-#ifndef STRAY_TOOLS_FLIGHT_TABLE_H
-#define STRAY_TOOLS_FLIGHT_TABLE_H
+#ifndef STRAY_MISSION_FLIGHT_TABLE_H
+#define STRAY_MISSION_FLIGHT_TABLE_H
 
 #include "fdrfw/fdrfw.h"
 #include "stray/error.h"
@@ -14,4 +14,4 @@
 int flight_table_load(const char *path, struct fdrfw_table *t,
 		      struct stray_error *err);
 
-#endif /* STRAY_TOOLS_FLIGHT_TABLE_H */
+#endif /* STRAY_MISSION_FLIGHT_TABLE_H */
