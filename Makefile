@@ -14,7 +14,7 @@ CC ?= cc
 CLANG ?= clang
 PYTHON ?= python3
 
-MODULES := libstray tools libstray/reduce tests tracer diagnose review rig mission firmware_fdr mpi tests/flightcheck
+MODULES := libstray tools libstray/reduce tests tracer frames diagnose review rig mission firmware_fdr mpi tests/flightcheck
 
 WARN := -Wall -Wextra -Werror
 OPT ?= -O2 -g

@@ -12,7 +12,7 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "focal_map_io.h"
+#include "frames/focal_map_io.h"
 #include "plot.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "frames_io.h"
+#include "frames/frames_io.h"
 
 void frames_map_regions(const float *weight, size_t n,
 			struct stray_region_map *map)

@@ -2,8 +2,8 @@
  * image_cv.h - false-colour images through OpenCV (whose C API is gone in
  * OpenCV 4: image_cv.cpp wraps the C++ one behind this C interface).
  */
-#ifndef STRAY_TOOLS_IMAGE_CV_H
-#define STRAY_TOOLS_IMAGE_CV_H
+#ifndef STRAY_FRAMES_IMAGE_CV_H
+#define STRAY_FRAMES_IMAGE_CV_H
 
 #include <stddef.h>
 
@@ -25,4 +25,4 @@ int image_cv_false_colour(const char *path, const float *img, size_t rows,
 }
 #endif
 
-#endif /* STRAY_TOOLS_IMAGE_CV_H */
+#endif /* STRAY_FRAMES_IMAGE_CV_H */

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "frames_run.h"
+#include "frames/frames_run.h"
 
 struct plane { double a, bx, by, sig_bx, sig_by; };
 

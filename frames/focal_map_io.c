@@ -10,8 +10,8 @@
 #include <string.h>
 
 #include "cli.h"
-#include "focal_map_io.h"
-#include "image_cv.h"
+#include "frames/focal_map_io.h"
+#include "frames/image_cv.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"
 #include "stray/sweep_store.h"

@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "cli.h"
-#include "frames_lost.h"
+#include "frames/frames_lost.h"
 
 static const char *const det_name[2] = { "thesis", "threshold" };
 

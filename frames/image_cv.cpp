@@ -12,7 +12,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "image_cv.h"
+#include "frames/image_cv.h"
 extern "C" {
 #include "stray/file.h"
 }

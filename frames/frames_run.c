@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "frames_run.h"
+#include "frames/frames_run.h"
 #include "stray/sensor.h"
 #include "stray/tail.h"
 

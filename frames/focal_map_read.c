@@ -11,7 +11,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "focal_map_io.h"
+#include "frames/focal_map_io.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"
 #include "stray/sizes.h"

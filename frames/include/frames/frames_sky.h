@@ -5,8 +5,8 @@
  * (--truth-stars) so other star-tracker software can be scored on the
  * frames.
  */
-#ifndef STRAY_TOOLS_FRAMES_SKY_H
-#define STRAY_TOOLS_FRAMES_SKY_H
+#ifndef STRAY_FRAMES_FRAMES_SKY_H
+#define STRAY_FRAMES_FRAMES_SKY_H
 
 #include <stddef.h>
 
@@ -32,4 +32,4 @@ int frames_sky_stars(const char *path, const struct stray_sensor *s,
 int frames_sky_truth_write(const char *path, const struct stray_star *st,
 			   size_t n, int frames, struct stray_error *err);
 
-#endif /* STRAY_TOOLS_FRAMES_SKY_H */
+#endif /* STRAY_FRAMES_FRAMES_SKY_H */

@@ -5,7 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "frames_sky.h"
+#include "frames/frames_sky.h"
 #include "stray/aem.h"
 #include "stray/colour.h"
 #include "stray/file.h"

@@ -5,8 +5,8 @@
  * cmd_trace.c takes the options here, sets the tracer up before the
  * trace and writes the map after it.
  */
-#ifndef STRAY_TOOLS_FOCAL_MAP_IO_H
-#define STRAY_TOOLS_FOCAL_MAP_IO_H
+#ifndef STRAY_FRAMES_FOCAL_MAP_IO_H
+#define STRAY_FRAMES_FOCAL_MAP_IO_H
 
 #include <cJSON.h>
 
@@ -98,4 +98,4 @@ void focal_map_resample(const struct focal_map_file *m, int det_x,
 
 void focal_map_file_free(struct focal_map_file *m);
 
-#endif /* STRAY_TOOLS_FOCAL_MAP_IO_H */
+#endif /* STRAY_FRAMES_FOCAL_MAP_IO_H */

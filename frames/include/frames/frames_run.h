@@ -5,12 +5,12 @@
  * disagreement.  It never reads the renderer's truth settings: only the
  * frames, the star list a catalogue would give, and the nominal model.
  */
-#ifndef STRAY_TOOLS_FRAMES_RUN_H
-#define STRAY_TOOLS_FRAMES_RUN_H
+#ifndef STRAY_FRAMES_FRAMES_RUN_H
+#define STRAY_FRAMES_FRAMES_RUN_H
 
 #include <stddef.h>
 
-#include "frames_detect.h"
+#include "frames/frames_detect.h"
 #include "stray/fdr.h"
 #include "stray/fdr_field.h"
 #include "stray/frames.h"
@@ -93,4 +93,4 @@ int frames_diagnose(const struct frames_model *fm,
 		    const struct frames_evidence *ev, double measured,
 		    double model, int tile_px, char *text, size_t size);
 
-#endif /* STRAY_TOOLS_FRAMES_RUN_H */
+#endif /* STRAY_FRAMES_FRAMES_RUN_H */

@@ -10,7 +10,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "frames_detect.h"
+#include "frames/frames_detect.h"
 
 extern "C" void frames_detect_tiles(int cols, int rows, int tile_px,
 				    int *tiles_x, int *tiles_y)

@@ -4,12 +4,12 @@
  * magnitude bin, beside the lost-star model of stray/detector.h for the
  * same detector (thesis window sum: WINDOW; threshold: THRESHOLD).
  */
-#ifndef STRAY_TOOLS_FRAMES_LOST_H
-#define STRAY_TOOLS_FRAMES_LOST_H
+#ifndef STRAY_FRAMES_FRAMES_LOST_H
+#define STRAY_FRAMES_FRAMES_LOST_H
 
 #include <cJSON.h>
 
-#include "frames_run.h"
+#include "frames/frames_run.h"
 #include "stray/detector.h"
 
 #define FRAMES_LOST_BINS 20	/* 0.1 mag from m = 4.8 */
@@ -43,4 +43,4 @@ void frames_lost_json(const struct frames_lost *l, cJSON *o);
 /* The same as text lines (bins of >= 20 stars). */
 void frames_lost_print(const struct frames_lost *l);
 
-#endif /* STRAY_TOOLS_FRAMES_LOST_H */
+#endif /* STRAY_FRAMES_FRAMES_LOST_H */

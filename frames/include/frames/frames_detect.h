@@ -12,8 +12,8 @@
  * Both subtract the same local background: a clipped mean (5 sigma about
  * the median) on square tiles, bilinear between tile centres.
  */
-#ifndef STRAY_TOOLS_FRAMES_DETECT_H
-#define STRAY_TOOLS_FRAMES_DETECT_H
+#ifndef STRAY_FRAMES_FRAMES_DETECT_H
+#define STRAY_FRAMES_FRAMES_DETECT_H
 
 #include <stddef.h>
 #include <stdint.h>
@@ -62,4 +62,4 @@ void frames_detect_tiles(int cols, int rows, int tile_px, int *tiles_x,
 }
 #endif
 
-#endif /* STRAY_TOOLS_FRAMES_DETECT_H */
+#endif /* STRAY_FRAMES_FRAMES_DETECT_H */

@@ -3,8 +3,8 @@
  * focal_map_io.h) as the regions of the FDR model.  Rendered frames are
  * written through the sweep store (stray/sweep_store.h).
  */
-#ifndef STRAY_TOOLS_FRAMES_IO_H
-#define STRAY_TOOLS_FRAMES_IO_H
+#ifndef STRAY_FRAMES_FRAMES_IO_H
+#define STRAY_FRAMES_FRAMES_IO_H
 
 #include <stddef.h>
 
@@ -14,4 +14,4 @@
 void frames_map_regions(const float *weight, size_t n,
 			struct stray_region_map *map);
 
-#endif /* STRAY_TOOLS_FRAMES_IO_H */
+#endif /* STRAY_FRAMES_FRAMES_IO_H */
