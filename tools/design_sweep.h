@@ -9,7 +9,7 @@
 
 #include <stddef.h>
 
-#include "design_grid.h"
+#include "tracer/design_grid.h"
 #include "stray/error.h"
 
 #define SWEEP_AT_MAX 16

@@ -3,8 +3,8 @@
  * axes over baffle parameters, their Cartesian product (the last axis
  * varies fastest), and each design's --set list and label.
  */
-#ifndef STRAY_TOOLS_DESIGN_GRID_H
-#define STRAY_TOOLS_DESIGN_GRID_H
+#ifndef STRAY_TRACER_DESIGN_GRID_H
+#define STRAY_TRACER_DESIGN_GRID_H
 
 #include <stddef.h>
 
@@ -38,4 +38,4 @@ void design_grid_sets(const struct design_grid *g, size_t d,
 void design_grid_label(const struct design_grid *g, size_t d, char *buf,
 		       size_t size);
 
-#endif /* STRAY_TOOLS_DESIGN_GRID_H */
+#endif /* STRAY_TRACER_DESIGN_GRID_H */

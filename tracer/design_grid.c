@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "design_grid.h"
+#include "tracer/design_grid.h"
 #include "stray/errfmt.h"
 
 static int bad(struct stray_error *err, const char *text, const char *why)
