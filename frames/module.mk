@@ -24,9 +24,6 @@ FRAMES_LDLIBS := $(OPENCV_LDLIBS) -lstdc++
 
 $(FRAMES_OBJ): EXTRA_CFLAGS += $(FRAMES_CFLAGS) -I/usr/include/cjson \
 	-D_DEFAULT_SOURCE
-# For one commit: focal_map_io.c and frames_lost.c still take cli.h.
-$(B)/obj/frames/focal_map_io.o $(B)/obj/frames/frames_lost.o: \
-	EXTRA_CFLAGS += -Itools -Itools/include
 $(B)/obj/frames/%.o: frames/%.cpp
 	@mkdir -p $(dir $@)
 	$(CV_CXX) -c $< -o $@
@@ -77,7 +74,6 @@ $(B)/tests/tracer/test_cmd_focal_map: \
 		$(B)/obj/tests/tracer/test_cmd_focal_map.o $(FRAMES_LIB) \
 		$(TRACER_LIB) $(STRAY_LIB) $(STRAY_BIN)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_BASE) -o $@ $< $(FRAMES_LIB) $(B)/obj/tools/cli.o \
-		$(TRACER_LIB) $(STRAY_LIB) \
+	$(CC) $(CFLAGS_BASE) -o $@ $< $(FRAMES_LIB) $(TRACER_LIB) $(STRAY_LIB) \
 		$(CMOCKA_LIBS) $(TRACER_LDLIBS) -lcjson -lcfitsio \
 		$(FRAMES_LDLIBS) $(STRAY_LDLIBS)

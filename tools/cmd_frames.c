@@ -16,6 +16,7 @@
 #include "frames/focal_map_io.h"
 #include "frames/frames_io.h"
 #include "frames/frames_lost.h"
+#include "frames_report.h"
 #include "frames_plot.h"
 #include "frames/frames_run.h"
 #include "frames/image_cv.h"

@@ -12,7 +12,6 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "frames/focal_map_io.h"
 #include "plot.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"
@@ -26,6 +25,7 @@
 #include "tracer/runner.h"
 #include "tracer/spectral.h"
 #include "tracer/scene_load.h"
+#include "trace_focal.h"
 #include "trace_run.h"
 
 static const char usage[] =

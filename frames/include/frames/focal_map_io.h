@@ -2,13 +2,11 @@
  * focal_map_io.h - `stray trace --focal-map M.fits [--focal-map-png P.png]`:
  * the focal-plane stray-light map of the sensor at --map-angle
  * (issue 13 item 2; physics and FITS format in tracer/README.md).
- * cmd_trace.c takes the options here, sets the tracer up before the
- * trace and writes the map after it.
+ * cmd_trace.c takes the options (tools/trace_focal.h), sets the tracer up
+ * here before the trace and writes the map after it.
  */
 #ifndef STRAY_FRAMES_FOCAL_MAP_IO_H
 #define STRAY_FRAMES_FOCAL_MAP_IO_H
-
-#include <cJSON.h>
 
 #include "stray/sensor.h"
 #include "tracer/focal.h"
@@ -26,30 +24,7 @@ struct focal_map_args {
 	int has_result;
 };
 
-/* The long options (codes 1100..1104) for trace_opts[]. */
-#define FOCAL_MAP_LONG_OPTIONS \
-	{ "focal-map", required_argument, NULL, 1100 }, \
-	{ "focal-map-png", required_argument, NULL, 1101 }, \
-	{ "sensor", required_argument, NULL, 1102 }, \
-	{ "map-cell", required_argument, NULL, 1103 }, \
-	{ "lens-map", required_argument, NULL, 1104 }
-
-#define FOCAL_MAP_USAGE \
-	"  --focal-map M.fits  focal-plane stray-light map at --map-angle:\n" \
-	"                    per-pixel E_px/E_src, mean k_px*alpha (FITS;\n" \
-	"                    a name ending in .png writes the PNG instead)\n" \
-	"  --focal-map-png P.png  the map as false-colour PNG (log, +y up)\n" \
-	"  --sensor S        sensor of the map (default st16-like)\n" \
-	"  --map-cell PX     detector pixels per map cell (default 36)\n" \
-	"  --lens-map R.csv  spread out-of-field light by this region map\n" \
-	"                    (stray reduce --map); default uniform\n"
-
 void focal_map_defaults(struct focal_map_args *f);
-
-/* Take one of FOCAL_MAP_LONG_OPTIONS: 0 when it was one (*rc says
- * whether the value was good), 1 otherwise. */
-int focal_map_option(int opt, char *text, struct focal_map_args *f,
-		     int *rc);
 
 int focal_map_wanted(const struct focal_map_args *f);
 
@@ -61,9 +36,6 @@ int focal_map_prepare(struct focal_map_args *f, size_t theta_index,
 int focal_map_write(struct focal_map_args *f, const struct tracer_result *r,
 		    const struct tracer_scene *s,
 		    const struct tracer_trace_opts *o, struct stray_error *err);
-
-/* Add "focal_map" to a --json summary (when a map was written). */
-void focal_map_json(const struct focal_map_args *f, cJSON *o);
 
 /*
  * A focal map read back (focal_map_read.c), the one reader of the format:

@@ -7,8 +7,6 @@
 #ifndef STRAY_FRAMES_FRAMES_LOST_H
 #define STRAY_FRAMES_FRAMES_LOST_H
 
-#include <cJSON.h>
-
 #include "frames/frames_run.h"
 #include "stray/detector.h"
 
@@ -36,11 +34,5 @@ void frames_lost_add(struct frames_lost *l,
 		     const struct frames_detect_out out[2],
 		     const double match[2], const struct stray_star *stars,
 		     size_t n_stars);
-
-/* "lost_stars": per detector, the bins with stars. */
-void frames_lost_json(const struct frames_lost *l, cJSON *o);
-
-/* The same as text lines (bins of >= 20 stars). */
-void frames_lost_print(const struct frames_lost *l);
 
 #endif /* STRAY_FRAMES_FRAMES_LOST_H */
