@@ -13,7 +13,7 @@ STRAY_MPI_BIN := $(B)/bin/stray-mpi
 MPI_PIECE_OBJ := $(B)/obj/mpi/piece.o
 MPI_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard mpi/*.c))
 MPI_TOOLS_OBJ := $(patsubst %,$(B)/obj/tools/%.o,cli cli_outputs cmd_trace cmd_sweep \
-	design_report fdr_setup plot trace_run trace_focal) $(DIAG_TOOLS_OBJ)
+	design_report fdr_options plot trace_run trace_focal) $(DIAG_TOOLS_OBJ)
 
 $(MPI_OBJ): EXTRA_CFLAGS += -Impi -Itools/include -Itracer/include \
 	-I/usr/include/cjson $(MPI_CFLAGS) -D_DEFAULT_SOURCE

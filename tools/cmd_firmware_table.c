@@ -10,7 +10,7 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "fdr_setup.h"
+#include "fdr_options.h"
 #include "fdrfw/table_build.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"

@@ -13,7 +13,7 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "fdr_setup.h"
+#include "fdr_options.h"
 #include "mission/flightcheck_run.h"
 #include "plot.h"
 #include "stray/errfmt.h"

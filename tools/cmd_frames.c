@@ -12,7 +12,7 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "fdr_setup.h"
+#include "fdr_options.h"
 #include "frames/focal_map_io.h"
 #include "frames/frames_io.h"
 #include "frames/frames_lost.h"

@@ -20,7 +20,7 @@
 #include "cli.h"
 #include "commands.h"
 #include "design_sweep.h"
-#include "fdr_setup.h"
+#include "fdr_options.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"
