@@ -34,12 +34,12 @@ static double frames_fov_deg2(const struct stray_sensor *s, int cols,
 
 void frames_opts_init(struct frames_opts *o)
 {
-	memset(o, 0, sizeof(*o));
-	o->frames = 1;
-	o->seed = 1;
-	o->save = 3;
-	o->mag_max = 10.0;
-	o->epoch = 2000.0;
+	static const struct frames_opts defaults = {
+		.frames = 1, .seed = 1, .save = 3, .mag_max = 10.0,
+		.epoch = 2000.0
+	};
+
+	*o = defaults;
 }
 
 static int close_store(struct frames_job *st, int ok,

@@ -28,22 +28,11 @@ $(B)/obj/frames/%.o: frames/%.cpp
 	@mkdir -p $(dir $@)
 	$(CV_CXX) -c $< -o $@
 
-$(FRAMES_LIB): $(FRAMES_OBJ)
-	@mkdir -p $(dir $@)
-	rm -f $@ && ar rcs $@ $^
-
-all: $(FRAMES_LIB)
+$(eval $(call stray_library,frames,$(FRAMES_LIB),$(FRAMES_OBJ)))
 
 $(TOOLS_OBJ): EXTRA_CFLAGS += -Iframes/include
 $(STRAY_BIN): $(FRAMES_LIB)
 TOOLS_LDLIBS := $(FRAMES_LIB) $(TOOLS_LDLIBS) $(FRAMES_LDLIBS)
-
-install-frames: $(FRAMES_LIB)
-	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/frames
-	install -m 644 $(FRAMES_LIB) $(DESTDIR)$(PREFIX)/lib/
-	install -m 644 frames/include/frames/*.h \
-		$(DESTDIR)$(PREFIX)/include/frames/
-install: install-frames
 
 # Tests (tests/frames) and the bench link the library.
 FRAMES_TESTS := $(patsubst tests/frames/%.c,$(B)/tests/frames/%,\

@@ -20,19 +20,8 @@ $(MISSION_OBJ): EXTRA_CFLAGS += $(MISSION_CFLAGS) -Imission \
 $(B)/obj/mission/avail_mission.o $(B)/obj/mission/flightcheck_run.o: \
 	EXTRA_CFLAGS += -fopenmp
 
-$(MISSION_LIB): $(MISSION_OBJ)
-	@mkdir -p $(dir $@)
-	rm -f $@ && ar rcs $@ $^
-
-all: $(MISSION_LIB)
+$(eval $(call stray_library,mission,$(MISSION_LIB),$(MISSION_OBJ)))
 
 $(TOOLS_OBJ): EXTRA_CFLAGS += -Imission/include
 $(STRAY_BIN): $(MISSION_LIB)
 TOOLS_LDLIBS := $(MISSION_LIB) $(TOOLS_LDLIBS) $(MISSION_LDLIBS)
-
-install-mission: $(MISSION_LIB)
-	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/mission
-	install -m 644 $(MISSION_LIB) $(DESTDIR)$(PREFIX)/lib/
-	install -m 644 mission/include/mission/*.h \
-		$(DESTDIR)$(PREFIX)/include/mission/
-install: install-mission

@@ -5,9 +5,9 @@
 #ifndef STRAY_TOOLS_TRACE_FOCAL_H
 #define STRAY_TOOLS_TRACE_FOCAL_H
 
-#include <cJSON.h>
-
 #include "frames/focal_map_io.h"
+
+struct cJSON;
 
 /* The long options (codes 1100..1104) for trace_opts[]. */
 #define FOCAL_MAP_LONG_OPTIONS \
@@ -33,6 +33,6 @@ int focal_map_option(int opt, char *text, struct focal_map_args *f,
 		     int *rc);
 
 /* Add "focal_map" to a --json summary (when a map was written). */
-void focal_map_json(const struct focal_map_args *f, cJSON *o);
+void focal_map_json(const struct focal_map_args *f, struct cJSON *o);
 
 #endif /* STRAY_TOOLS_TRACE_FOCAL_H */

@@ -62,41 +62,49 @@ struct workspace {
 	size_t bytes, peak_bytes;
 };
 
+/* Workspace memory (sweep_read.c): bytes of the arena at offset at,
+ * counted in the phase's peak; given back at the phase's end. */
 void *stray_rs_ws_take(struct workspace *w, size_t bytes, size_t at);
 void stray_rs_ws_give(struct workspace *w, size_t bytes);
+/* Frame e read (prefetched), checked against the geometry, decoded. */
 int stray_rs_load_frame(struct workspace *w, const struct stray_sweep_entry *e,
 			struct stray_frame *f, uint16_t *pix,
 			struct stray_error *err);
+/* rc of a step on frame e, the error located at its file. */
 int stray_rs_at_frame(struct workspace *w, const struct stray_sweep_entry *e,
 		      int rc, struct stray_error *err);
+/* The first frame's geometry, the pixel buffers and the arena. */
 int stray_rs_setup(struct workspace *w, struct stray_error *err);
+/* The prefetch thread started on every frame in the order read. */
 void stray_rs_start_reading(struct workspace *w,
 			    const struct stray_reduce_sweep_result *res);
-int stray_rs_dark_levels(struct workspace *w,
-			 struct stray_reduce_sweep_result *res,
-			 struct stray_error *err);
-int stray_rs_dark_pixels(struct workspace *w,
-			 struct stray_reduce_sweep_result *res,
-			 struct stray_error *err);
-int stray_rs_plan_visits(struct workspace *w,
-			 struct stray_reduce_sweep_result *res,
-			 struct stray_error *err);
-int stray_rs_check_visits(struct workspace *w,
+/*
+ * The steps of the reduction, run in this order by sweep.c; each returns
+ * STRAY_OK or an error naming the file and field:
+ *   stray_rs_plan_visits    manifest runs paired into visits (sweep_visits.c)
+ *   stray_rs_dark_levels    the darks' levels per read channel, pass 1
+ *   stray_rs_dark_pixels    hot and dead pixels, pass 2 (sweep_darks.c)
+ *   stray_rs_check_visits   a sweep with no FULL or AMBIENT frame refused
+ *   stray_rs_light_buffers  the light accumulators, J and its variance
+ *   stray_rs_track_ghosts   ghost tracks over the first visit of each angle
+ */
+typedef int stray_rs_step(struct workspace *w,
 			  struct stray_reduce_sweep_result *res,
 			  struct stray_error *err);
-int stray_rs_light_buffers(struct workspace *w,
-			   struct stray_reduce_sweep_result *res,
-			   struct stray_error *err);
+stray_rs_step stray_rs_plan_visits, stray_rs_dark_levels,
+	stray_rs_dark_pixels, stray_rs_check_visits, stray_rs_light_buffers,
+	stray_rs_track_ghosts;
+/* Whether every frame carries a time; the span in *span. */
 int stray_rs_all_timed(const struct workspace *w, double *span);
+/* Visit v accumulated to J (eq. 3.6) with its ghosts and profile. */
 int stray_rs_reduce_visit(struct workspace *w, size_t v,
 			  struct stray_reduce_sweep_result *res,
 			  struct stray_error *err);
-int stray_rs_track_ghosts(struct workspace *w,
-			  struct stray_reduce_sweep_result *res,
-			  struct stray_error *err);
+/* Frame-common noise into the visits' sigma; *redo: refit. */
 int stray_rs_add_common(struct workspace *w,
 			struct stray_reduce_sweep_result *res, int *redo,
 			struct stray_error *err);
+/* The read-back angles to the commanded ones; 1: refit. */
 int stray_rs_to_commanded(struct workspace *w,
 			  struct stray_reduce_sweep_result *res);
 
