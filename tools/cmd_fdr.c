@@ -11,7 +11,7 @@
 #include "commands.h"
 #include "fdr_options.h"
 #include "plot.h"
-#include "sky_coverage.h"
+#include "stray/sky_coverage.h"
 #include "stray/photometry.h"
 
 static const char usage[] =

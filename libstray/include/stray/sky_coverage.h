@@ -6,8 +6,8 @@
  * level.  Over the synthetic catalogue (stray/catalogue.h: no real one is
  * installed; every output says so), through the sensor's ideal camera.
  */
-#ifndef STRAY_TOOLS_SKY_COVERAGE_H
-#define STRAY_TOOLS_SKY_COVERAGE_H
+#ifndef STRAY_SKY_COVERAGE_H
+#define STRAY_SKY_COVERAGE_H
 
 #include "stray/error.h"
 #include "stray/sensor.h"
@@ -20,4 +20,4 @@
 int sky_coverage(const struct stray_sensor *s, double mag_lim, int n_min,
 		 double *frac, struct stray_error *err);
 
-#endif /* STRAY_TOOLS_SKY_COVERAGE_H */
+#endif /* STRAY_SKY_COVERAGE_H */

@@ -5,7 +5,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "sky_coverage.h"
+#include "stray/sky_coverage.h"
 #include "stray/catalogue.h"
 #include "stray/sensor_geom.h"
 
