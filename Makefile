@@ -84,6 +84,7 @@ demo-check: all
 # TESTS_SLOW: tests too slow under the sanitizers, run in the normal pass only.
 check: all $(TESTS) $(if $(filter 1,$(SAN)),,$(TESTS_SLOW))
 	@scripts/check-core.sh $(STRAY_CORE_LIB)
+	@scripts/check-layout.sh
 	@scripts/check-equations.sh
 	@scripts/check-docs.sh
 ifneq ($(SAN),1)	# an instrumented library is not for installing
