@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "mission/avail_mission.h"
+#include "avail_report.h"
 #include "cli.h"
 #include "plot.h"
 #include "stray/ccsds.h"

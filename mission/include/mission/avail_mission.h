@@ -74,9 +74,6 @@ int mission_load(const struct mission_args *a, struct mission *m,
 		 struct stray_error *err);
 int mission_fly(const struct mission_args *a, struct mission *m,
 		struct stray_error *err);
-int mission_plot(const struct mission_args *a, const struct mission *m,
-		 struct stray_error *err);
-int mission_summary(const struct mission_args *a, const struct mission *m);
 void mission_free(struct mission *m);
 
 /* The flight module's attitude quaternion (w, x, y, z), Hamilton,
