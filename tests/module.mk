@@ -79,7 +79,8 @@ build/fuzz/fuzz_heads: tests/fuzz/fuzz_heads.c mission/avail_heads.c $(FUZZ_LIB_
 
 # The project file of `stray review` (issue 25) and the plan made from it.
 build/fuzz/fuzz_review_project: tests/fuzz/fuzz_review_project.c \
-		review/project.c review/mission.c review/plan.c $(FUZZ_LIB_SRC)
+		review/project.c review/project_keys.c review/mission.c \
+		review/plan.c $(FUZZ_LIB_SRC)
 	@mkdir -p $(dir $@)
 	$(CLANG) $(FUZZ_CFLAGS) -D_DEFAULT_SOURCE -Ireview/include -o $@ $^ \
 		$(STRAY_LDLIBS)
