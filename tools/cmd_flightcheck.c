@@ -300,13 +300,8 @@ int cmd_flightcheck(int argc, char **argv)
 		return cli_usage_error("flightcheck", "--model is required");
 	if (fdr_setup_load(&su, &err) != STRAY_OK)
 		return cli_fail("flightcheck", &err);
-	o.dir = a.dir;
-	o.aem = a.aem;
-	o.model = a.model;
-	o.catalogue = a.catalogue;
-	o.oem = a.oem;
-	o.moon_min_deg = a.moon_min;
-	o.limb_min_deg = a.limb_min;
+	o = (struct fc_check_opts){ a.dir, o.files, o.n_files, a.aem, a.model,
+				    a.catalogue, a.oem, a.moon_min, a.limb_min };
 	if (fc_check_run(&o, &su, &c, &err) != STRAY_OK)
 		return cli_fail("flightcheck", &err);
 	f = c.f;

@@ -267,13 +267,8 @@ int cmd_orbit(int argc, char **argv)
 	if (flight_table_load(a.table, &table, &err) != STRAY_OK ||
 	    normalisation_check(&a, &table, &err) != STRAY_OK)
 		return cli_fail("orbit", &err);
-	fo.year = a.year;
-	fo.month = a.month;
-	fo.day = a.day;
-	fo.hours = a.hours;
-	fo.step_s = a.step_s;
-	fo.altitude_km = a.altitude_km;
-	fo.ltan_h = a.ltan_h;
+	fo = (struct orbit_fly_opts){ a.year, a.month, a.day, a.hours,
+				      a.step_s, a.altitude_km, a.ltan_h };
 	if (orbit_fly(&fo, &table, &run, &err) != STRAY_OK)
 		return cli_fail("orbit", &err);
 	if ((a.out && write_csv(a.out, &run, &err) != STRAY_OK) ||

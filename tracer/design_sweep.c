@@ -38,10 +38,10 @@ static void blame_grid(const struct design_sweep *a, struct stray_error *err)
 static int make_angles(struct design_sweep *a, double **theta, size_t *n,
 		       struct stray_error *err)
 {
-	double *at = NULL, *t;
+	double *at = NULL;
 	size_t n_at = 0, i;
-	int rc = tracer_angles_parse(a->angles ? a->angles : "0:30:5,30:90:1",
-				     theta, n, err);
+	const char *list = a->angles ? a->angles : "0:30:5,30:90:1";
+	int added, rc = tracer_angles_parse(list, theta, n, err);
 
 	if (!rc) {
 		rc = tracer_angles_parse(a->at_list ? a->at_list : "20,30,40",
@@ -56,17 +56,7 @@ static int make_angles(struct design_sweep *a, double **theta, size_t *n,
 		a->at[i] = at[i];
 	a->n_at = (int)n_at;
 	free(at);
-	if (rc || (*theta)[0] == 0.0)
-		return rc;
-	t = realloc(*theta, (*n + 1) * sizeof(double));
-	if (!t)
-		return stray_error_set(err, STRAY_ENOMEM, "--angles",
-				       "out of memory");
-	memmove(t + 1, t, *n * sizeof(double));
-	t[0] = 0.0;
-	*theta = t;
-	(*n)++;
-	return STRAY_OK;
+	return rc ? rc : tracer_angles_with_zero(theta, n, &added, err);
 }
 
 /* What must match for a kept curve to stand for this run's design. */

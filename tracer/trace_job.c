@@ -26,26 +26,14 @@ static int make_angles(struct tracer_job *j, const struct tracer_scene *s,
 		       double **theta, size_t *n, size_t *first_out,
 		       struct stray_error *err)
 {
-	double *t;
-	int rc = j->auto_angles
+	int added = 0, rc = j->auto_angles
 		? tracer_angles_auto(s, theta, n, &j->cutoff_deg, err)
 		: tracer_angles_parse(j->angles, theta, n, err);
 
-	if (rc)
-		return rc;
-	*first_out = 0;
-	if ((*theta)[0] == 0.0)
-		return STRAY_OK;
-	t = realloc(*theta, (*n + 1) * sizeof(double));
-	if (!t)
-		return stray_error_set(err, STRAY_ENOMEM, "--angles",
-				       "out of memory");
-	memmove(t + 1, t, *n * sizeof(double));
-	t[0] = 0.0;	/* alpha is normalised to P(0) (ref4-baffle.md) */
-	*theta = t;
-	(*n)++;
-	*first_out = 1;
-	return STRAY_OK;
+	if (!rc)
+		rc = tracer_angles_with_zero(theta, n, &added, err);
+	*first_out = (size_t)added;
+	return rc;
 }
 
 int tracer_job_prepare(struct tracer_job *j, struct tracer_scene *s,
