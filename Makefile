@@ -14,7 +14,7 @@ CC ?= cc
 CLANG ?= clang
 PYTHON ?= python3
 
-MODULES := libstray tools libstray/reduce tests tracer diagnose review rig firmware_fdr mpi tests/flightcheck solib python
+MODULES := libstray tools libstray/reduce tests tracer frames diagnose review rig mission firmware_fdr mpi tests/flightcheck solib python
 
 WARN := -Wall -Wextra -Werror
 OPT ?= -O2 -g
@@ -33,6 +33,22 @@ CPPFLAGS_HOST := -D_POSIX_C_SOURCE=200809L -Ilibstray/include
 LDLIBS_BASE := -lm
 
 .PHONY: all test check demo demo-check bench deps install clean
+
+# A library of the product (frames, mission): its archive from its
+# objects, built by `make`, and installed with its public headers
+# (DIR/include/DIR/*.h) by `make install`.
+# $(eval $(call stray_library,DIR,ARCHIVE,OBJECTS))
+define stray_library
+$(2): $(3)
+	@mkdir -p $$(dir $$@)
+	rm -f $$@ && ar rcs $$@ $$^
+all: $(2)
+install-$(1): $(2)
+	install -d $$(DESTDIR)$$(PREFIX)/lib $$(DESTDIR)$$(PREFIX)/include/$(1)
+	install -m 644 $(2) $$(DESTDIR)$$(PREFIX)/lib/
+	install -m 644 $(1)/include/$(1)/*.h $$(DESTDIR)$$(PREFIX)/include/$(1)/
+install: install-$(1)
+endef
 # Keep intermediate objects (incremental builds, no "rm" noise).
 .SECONDARY:
 all:
@@ -72,6 +88,7 @@ demo-check: all
 # TESTS_SLOW: tests too slow under the sanitizers, run in the normal pass only.
 check: all $(TESTS) $(if $(filter 1,$(SAN)),,$(TESTS_SLOW))
 	@scripts/check-core.sh $(STRAY_CORE_LIB)
+	@scripts/check-layout.sh
 	@scripts/check-equations.sh
 	@scripts/check-docs.sh
 ifneq ($(SAN),1)	# an instrumented library is not for installing

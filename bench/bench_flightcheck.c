@@ -15,7 +15,7 @@
 #include <time.h>
 
 #include "bench_alt.h"
-#include "flightcheck.h"
+#include "mission/flightcheck.h"
 #include "stray/aem.h"
 #include "stray/photometry_io.h"
 #include "stray/sensor.h"

@@ -11,7 +11,7 @@
 #include <string.h>
 
 #include "bench_alt.h"
-#include "frames_detect.h"
+#include "frames/frames_detect.h"
 #include "stray/frames.h"
 
 #define COLS 2592

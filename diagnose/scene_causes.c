@@ -19,7 +19,7 @@
 #include "diagnose/diag_eval.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"
-#include "trace_cache.h"
+#include "trace_scene.h"
 
 /* name in a comma list */
 static int listed(const char *list, const char *name)

@@ -27,7 +27,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "trace_cache.h"
+#include "trace_beams.h"
 #include "stray/errfmt.h"
 #include "tracer/runner.h"
 

@@ -116,9 +116,10 @@ build/fuzz/fuzz_fdrfw_blob: tests/fuzz/fuzz_fdrfw_blob.c $(FDRFW_SRC) \
 	$(CLANG) -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined \
 		$(CPPFLAGS_HOST) -Ifirmware_fdr/include -o $@ $^ -lm
 
-# The demo orbit (tools/orbit.c) against the module's attitude convention.
-$(B)/obj/tests/tools/test_orbit.o: EXTRA_CFLAGS += -Ifirmware_fdr/include -Itools
+# The demo orbit (mission/orbit.c) against the module's attitude convention.
+$(B)/obj/tests/tools/test_orbit.o: EXTRA_CFLAGS += -Ifirmware_fdr/include \
+	-Imission/include
 $(B)/tests/tools/test_orbit: $(B)/obj/tests/tools/test_orbit.o \
-		$(B)/obj/tools/orbit.o $(FDRFW_LIB)
+		$(MISSION_LIB) $(FDRFW_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_BASE) -o $@ $^ $(CMOCKA_LIBS) -lm

@@ -13,18 +13,17 @@ STRAY_MPI_BIN := $(B)/bin/stray-mpi
 MPI_PIECE_OBJ := $(B)/obj/mpi/piece.o
 MPI_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(wildcard mpi/*.c))
 MPI_TOOLS_OBJ := $(patsubst %,$(B)/obj/tools/%.o,cli cli_capture cli_outputs cmd_trace cmd_sweep \
-	design_grid design_report fdr_setup plot trace_run focal_map_io \
-	image_cv) $(DIAG_TOOLS_OBJ)
+	design_report fdr_options plot trace_run trace_focal) $(DIAG_TOOLS_OBJ)
 
 $(MPI_OBJ): EXTRA_CFLAGS += -Impi -Itools/include -Itracer/include \
 	-I/usr/include/cjson $(MPI_CFLAGS) -D_DEFAULT_SOURCE
 
-$(STRAY_MPI_BIN): $(MPI_OBJ) $(MPI_TOOLS_OBJ) $(DIAG_LIB) $(TRACER_LIB) \
-		$(STRAY_LIB)
+$(STRAY_MPI_BIN): $(MPI_OBJ) $(MPI_TOOLS_OBJ) $(FRAMES_LIB) $(DIAG_LIB) \
+		$(TRACER_LIB) $(STRAY_LIB)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_BASE) -o $@ $(MPI_OBJ) $(MPI_TOOLS_OBJ) $(DIAG_LIB) \
-		$(TRACER_LIB) $(STRAY_LIB) $(TRACER_LDLIBS) -lplplot -lcjson \
-		$(OPENCV_LDLIBS) -lstdc++ $(STRAY_LDLIBS) $(MPI_LDLIBS) -lpthread
+	$(CC) $(CFLAGS_BASE) -o $@ $(MPI_OBJ) $(MPI_TOOLS_OBJ) $(FRAMES_LIB) \
+		$(DIAG_LIB) $(TRACER_LIB) $(STRAY_LIB) $(TRACER_LDLIBS) -lplplot \
+		-lcjson $(FRAMES_LDLIBS) $(STRAY_LDLIBS) $(MPI_LDLIBS) -lpthread
 
 all: $(STRAY_MPI_BIN)
 
@@ -58,10 +57,10 @@ $(B)/bench/bench_mpi: bench/bench_mpi.sh $(STRAY_MPI_BIN) $(STRAY_BIN)
 	cp $< $@ && chmod +x $@
 
 # test_sweep: `stray sweep` without MPI (grid, errors, resume); both passes.
-$(B)/obj/tests/mpi/test_sweep.o: EXTRA_CFLAGS += -Itools
+$(B)/obj/tests/mpi/test_sweep.o: EXTRA_CFLAGS += -Itracer/include
 $(B)/tests/mpi/test_sweep: $(B)/obj/tests/mpi/test_sweep.o \
-		$(B)/obj/tools/design_grid.o $(STRAY_LIB) $(STRAY_BIN)
+		$(TRACER_LIB) $(STRAY_LIB) $(STRAY_BIN)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_BASE) -o $@ $< $(B)/obj/tools/design_grid.o \
-		$(STRAY_LIB) $(CMOCKA_LIBS) $(STRAY_LDLIBS)
+	$(CC) $(CFLAGS_BASE) -o $@ $< $(TRACER_LIB) $(STRAY_LIB) \
+		$(CMOCKA_LIBS) $(TRACER_LDLIBS) $(STRAY_LDLIBS)
 TESTS += $(B)/tests/mpi/test_sweep

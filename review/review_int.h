@@ -37,11 +37,11 @@ static inline int exists_file(const char *dir, const char *name)
  * status, seconds, outputs - taken - and why). */
 cJSON *review_step_json(const struct review_step *s, cJSON *outputs);
 
-/* project.c: an error on key (a run-time name) of the project file. */
+/* project_keys.c: an error on key (a run-time name) of the project file. */
 int review_bad(struct stray_error *err, const struct review_project *p,
 	       const char *key, const char *value, const char *reason);
 
-/* project.c: a key given twice in obj (*key); keys of obj outside
+/* project_keys.c: a key given twice in obj (*key); keys of obj outside
  * allowed[] (NULL-ended) or given twice refused, naming where. */
 int review_dup_key(const cJSON *obj, const char **key);
 int review_only_keys(const cJSON *obj, const char *const *allowed,

@@ -115,10 +115,15 @@ RIG_TB_BIN := $(B)/bin/rig-testbed
 RIG_TB_SHIM := $(B)/lib/rig-testbed-shim.so
 UMOCKDEV_CFLAGS = $(shell pkg-config --cflags umockdev-1.0)
 UMOCKDEV_LIBS = $(shell pkg-config --libs umockdev-1.0)
-$(B)/obj/rig/testbed/testbed.o: EXTRA_CFLAGS += $(RIG_CFLAGS) $(UMOCKDEV_CFLAGS)
-$(RIG_TB_BIN): $(B)/obj/rig/testbed/testbed.o $(RIG_LIB) $(STRAY_LIB)
+# The test bed's files (tb.h): its state, plugging, usbdevfs, hidraw, GPIO,
+# the umockdev handler, and testbed.c's set-up and main.
+RIG_TB_OBJ := $(patsubst %.c,$(B)/obj/%.o,$(filter-out rig/testbed/shim.c,\
+	$(wildcard rig/testbed/*.c)))
+$(RIG_TB_OBJ): EXTRA_CFLAGS += $(RIG_CFLAGS) $(UMOCKDEV_CFLAGS)
+$(RIG_TB_BIN): $(RIG_TB_OBJ) $(RIG_LIB) $(STRAY_LIB)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_BASE) -o $@ $< $(RIG_LIB) $(RIG_LDLIBS) $(UMOCKDEV_LIBS)
+	$(CC) $(CFLAGS_BASE) -o $@ $(RIG_TB_OBJ) $(RIG_LIB) $(RIG_LDLIBS) \
+		$(UMOCKDEV_LIBS)
 $(RIG_TB_SHIM): rig/testbed/shim.c rig/testbed/testbed.h
 	@mkdir -p $(dir $@)
 	$(CC) -std=c99 $(WARN) -O2 -fPIC -shared -o $@ $< -ldl

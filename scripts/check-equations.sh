@@ -7,7 +7,7 @@
 set -eu
 cd "$(dirname "$0")/.."
 dirs=("$@")
-[ ${#dirs[@]} -gt 0 ] || dirs=(libstray tracer diagnose firmware_fdr rig tools mpi)
+[ ${#dirs[@]} -gt 0 ] || dirs=(libstray tracer diagnose firmware_fdr rig mission frames tools mpi)
 # The method's equations the code implements: eq. 2.1-2.18 (photometry and
 # the false-detection model) and eq. 3.1-3.15 (the lab measurement and its
 # reduction).  Chapter 3.4's trace and chapter 4's validation have none.

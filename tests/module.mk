@@ -76,24 +76,26 @@ build/fuzz/fuzz_import_frame: tests/fuzz/fuzz_import_frame.c \
 	$(CLANG) $(FUZZ_CFLAGS) -o $@ $^ $(STRAY_LDLIBS)
 
 # The FITS readers of issue 31: a flight frame as flightcheck reads it,
-# and a focal map (tools/focal_map_read.c, from a file on disk).
+# and a focal map (frames/focal_map_read.c, from a file on disk).
 build/fuzz/fuzz_flight_frame: tests/fuzz/fuzz_flight_frame.c \
 		$(STRAY_SWEEP_SRC) $(FUZZ_LIB_SRC)
 	@mkdir -p $(dir $@)
 	$(CLANG) $(FUZZ_CFLAGS) -o $@ $^ $(STRAY_LDLIBS)
 build/fuzz/fuzz_focal_map: tests/fuzz/fuzz_focal_map.c \
-		tools/focal_map_read.c $(FUZZ_LIB_SRC)
+		frames/focal_map_read.c $(FUZZ_LIB_SRC)
 	@mkdir -p $(dir $@)
-	$(CLANG) $(FUZZ_CFLAGS) -Itools -Itracer/include -o $@ $^ \
+	$(CLANG) $(FUZZ_CFLAGS) -Iframes/include -Itracer/include -o $@ $^ \
 		$(STRAY_LDLIBS)
 # The heads file of `stray availability` (issue 31): its parser alone.
-build/fuzz/fuzz_heads: tests/fuzz/fuzz_heads.c tools/avail_heads.c $(FUZZ_LIB_SRC)
+build/fuzz/fuzz_heads: tests/fuzz/fuzz_heads.c mission/avail_heads.c $(FUZZ_LIB_SRC)
 	@mkdir -p $(dir $@)
-	$(CLANG) $(FUZZ_CFLAGS) -Itools -o $@ $^ $(STRAY_LDLIBS)
+	$(CLANG) $(FUZZ_CFLAGS) -Imission/include -Imission -o $@ $^ \
+		$(STRAY_LDLIBS)
 
 # The project file of `stray review` (issue 25) and the plan made from it.
 build/fuzz/fuzz_review_project: tests/fuzz/fuzz_review_project.c \
-		review/project.c review/mission.c review/plan.c $(FUZZ_LIB_SRC)
+		review/project.c review/project_keys.c review/mission.c \
+		review/plan.c $(FUZZ_LIB_SRC)
 	@mkdir -p $(dir $@)
 	$(CLANG) $(FUZZ_CFLAGS) -D_DEFAULT_SOURCE -Ireview/include -o $@ $^ \
 		$(STRAY_LDLIBS)

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "avail_mission.h"
+#include "avail_report.h"
 #include "fdrfw/table_build.h"
 #include "cli.h"
 #include "plot.h"

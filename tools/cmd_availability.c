@@ -13,7 +13,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "avail_mission.h"
+#include "avail_report.h"
 #include "cli.h"
 #include "commands.h"
 #include "stray/detector.h"

@@ -13,7 +13,7 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "fdr_setup.h"
+#include "fdr_options.h"
 #include "plot.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"

@@ -9,9 +9,9 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "fdr_setup.h"
+#include "fdr_options.h"
 #include "plot.h"
-#include "sky_coverage.h"
+#include "stray/sky_coverage.h"
 #include "stray/photometry.h"
 
 static const char usage[] =

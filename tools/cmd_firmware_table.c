@@ -10,7 +10,7 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "fdr_setup.h"
+#include "fdr_options.h"
 #include "fdrfw/table_build.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"
@@ -161,34 +161,6 @@ static int write_outputs(const struct ft_args *a, const struct fdrfw_table *t,
 	return rc;
 }
 
-/*
- * The table from the curve, thinned to the table's rows when longer (the
- * default trace grid has 160-190 angles): a first pass gives the Sun's
- * alpha_req (it depends on the sensor, not the curve), the second keeps
- * the two samples around its crossing, so the table's Sun angle is the
- * whole curve's.
- */
-static int build_thinned(const struct stray_curve_view *v,
-			 const struct stray_sensor *sensor,
-			 const struct fdrfw_build_params *p,
-			 struct fdrfw_table *t, struct stray_exclusion *sun,
-			 struct fdrfw_thin_report *thin,
-			 struct stray_error *err)
-{
-	static double th[FDRFW_CURVE_MAX], al[FDRFW_CURVE_MAX];
-	struct stray_curve_view tv;
-	double req;
-	int rc = fdrfw_curve_thin(v, NULL, 0, th, al, &tv, thin, err);
-
-	if (rc == STRAY_OK)
-		rc = fdrfw_table_build_verdict(&tv, sensor, p, t, sun, err);
-	if (rc != STRAY_OK || thin->rows_in == thin->rows_out)
-		return rc;
-	req = (double)t->alpha_req_sun;
-	rc = fdrfw_curve_thin(v, &req, 1, th, al, &tv, thin, err);
-	return rc ? rc : fdrfw_table_build_verdict(&tv, sensor, p, t, sun, err);
-}
-
 static int print_summary(const struct ft_args *a, const struct fdrfw_table *t,
 			 const struct stray_exclusion *sun,
 			 const struct fdrfw_thin_report *thin)
@@ -300,7 +272,8 @@ int cmd_firmware_table(int argc, char **argv)
 	p.detector = s.detector;
 	p.detector_sigma = s.detector_sigma;
 	v = stray_curve_view_of(&c);
-	rc = build_thinned(&v, &s.sensor, &p, &t, &sun, &thin, &err);
+	rc = fdrfw_table_build_thinned(&v, &s.sensor, &p, &t, &sun, &thin,
+					&err);
 	stray_curve_free(&c);
 	if (rc == STRAY_OK)
 		rc = write_outputs(&a, &t, &err);

@@ -2,8 +2,8 @@
  * cmd_flightcheck.c - `stray flightcheck FRAMES --aem A --model M`: the
  * stray-light curve measured from flight frames, made absolute by the
  * catalogue stars in the same frames, against the predicted curve (issue
- * 18, thesis §4.3).  The analysis is tools/flightcheck.c; this file
- * parses, prints, plots and writes the flight curve.
+ * 18, thesis §4.3).  The analysis is libmission (fc_check_run,
+ * mission/flightcheck_check.c); this file parses, prints and plots.
  */
 #include <math.h>
 #include <stdio.h>
@@ -13,8 +13,8 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "fdr_setup.h"
-#include "flightcheck_run.h"
+#include "fdr_options.h"
+#include "mission/flightcheck_check.h"
 #include "plot.h"
 #include "stray/errfmt.h"
 #include "stray/curve_io.h"
@@ -72,48 +72,6 @@ static int cmp_theta(const void *a, const void *b)
 	const struct fc_point *p = a, *q = b;
 
 	return (p->theta_deg > q->theta_deg) - (p->theta_deg < q->theta_deg);
-}
-
-static int write_curve(const char *path, const struct fc_point *p, size_t n,
-		       const struct fc_summary *s, const char *cat_name,
-		       struct stray_error *err)
-{
-	struct stray_curve c;
-	double *model = malloc(n * sizeof(*model));
-	size_t i;
-	char v[64];
-	int rc;
-
-	if (!model)
-		return stray_error_set(err, STRAY_ENOMEM, "out", "out of memory");
-	if ((rc = stray_curve_alloc(&c, n, 1, err)) != STRAY_OK) {
-		free(model);
-		return rc;
-	}
-	for (i = 0; i < n; i++) {
-		c.theta_deg[i] = p[i].theta_deg;
-		c.alpha[i] = p[i].alpha_px / s->k_px_model;
-		c.sigma[i] = p[i].sigma / s->k_px_model;
-		model[i] = p[i].model;
-	}
-	snprintf(v, sizeof(v), "%.6g", s->scale_over_kpx);
-	rc = stray_curve_add_column(&c, "model", model, err);
-	if (!rc)
-		rc = stray_curve_add_meta(&c, "kind", "flight (stray flightcheck)", err);
-	if (!rc)
-		rc = stray_curve_add_meta(&c, "scale_over_k_px", v, err);
-	if (!rc)
-		rc = stray_curve_add_meta(&c, "stars", cat_name, err);
-	/* sigma is the background's; the star calibration is one factor
-	 * common to every point: add it to any fitted scale */
-	snprintf(v, sizeof(v), "%.4g", s->dn_per_e_sigma / s->dn_per_e);
-	if (!rc)
-		rc = stray_curve_add_meta(&c, "calibration_rel_sigma", v, err);
-	if (!rc)
-		rc = stray_curve_save(path, &c, err);
-	stray_curve_free(&c);
-	free(model);
-	return rc;
 }
 
 static int plot(const char *path, const struct fc_point *p, size_t n,
@@ -280,21 +238,14 @@ int cmd_flightcheck(int argc, char **argv)
 		{ NULL, 0, NULL, 0 }
 	};
 	struct fc_args a = { 0 };
-	struct fc_sky sky = { 0 };
-	struct stray_oem oem;
+	struct fc_check_opts o = { 0 };
+	struct fc_check c;
 	struct fdr_setup su;
 	struct stray_error err;
-	struct stray_aem aem;
-	struct stray_curve model;
-	struct stray_curve_view mv;
-	struct fc_cfg cfg;
 	struct fc_frame *f = NULL;
 	struct fc_point *p = NULL;
 	struct fc_summary s;
-	struct stray_starcat cat;
-	struct stray_colour colour;
-	char why[256];
-	size_t n = 0, i;
+	size_t n = 0;
 	int opt, rc;
 
 	fdr_setup_init(&su);
@@ -339,8 +290,8 @@ int cmd_flightcheck(int argc, char **argv)
 
 		if (optind < argc - 1 || (stat(a.dir, &st) == 0 &&
 					  !S_ISDIR(st.st_mode))) {
-			sky.files = argv + optind;
-			sky.n_files = (size_t)(argc - optind);
+			o.files = argv + optind;
+			o.n_files = (size_t)(argc - optind);
 		}
 	}
 	if (!a.aem)
@@ -349,68 +300,21 @@ int cmd_flightcheck(int argc, char **argv)
 		return cli_usage_error("flightcheck", "--model is required");
 	if (fdr_setup_load(&su, &err) != STRAY_OK)
 		return cli_fail("flightcheck", &err);
-	if (stray_curve_load(a.model, &model, &err) != STRAY_OK)
+	o = (struct fc_check_opts){ a.dir, o.files, o.n_files, a.aem, a.model,
+				    a.catalogue, a.oem, a.moon_min, a.limb_min };
+	if (fc_check_run(&o, &su, &c, &err) != STRAY_OK)
 		return cli_fail("flightcheck", &err);
-	if (stray_aem_read(a.aem, &aem, &err) != STRAY_OK) {
-		stray_curve_free(&model);
-		return cli_fail("flightcheck", &err);
-	}
-	snprintf(a.cat_name, sizeof(a.cat_name), "synthetic");
-	if (a.catalogue) {
-		const char *base = strrchr(a.catalogue, '/');
-
-		if ((rc = stray_starcat_load(a.catalogue, &cat, &err)) == STRAY_OK &&
-		    (rc = stray_colour_for_qe(&colour, su.sensor.qe, &err)) != STRAY_OK)
-			stray_starcat_free(&cat);
-		if (rc != STRAY_OK) {
-			stray_aem_free(&aem);
-			stray_curve_free(&model);
-			return cli_fail("flightcheck", &err);
-		}
-		snprintf(a.cat_name, sizeof(a.cat_name), "%s %.50s",
-			 stray_starcat_kind_name(cat.kind),
-			 base ? base + 1 : a.catalogue);
-	}
-	if (a.oem && stray_oem_read(a.oem, &oem, &err) != STRAY_OK) {
-		if (a.catalogue)
-			stray_starcat_free(&cat);
-		stray_aem_free(&aem);
-		stray_curve_free(&model);
-		return cli_fail("flightcheck", &err);
-	}
-	sky.cat = a.catalogue ? &cat : NULL;
-	sky.colour = a.catalogue ? &colour : NULL;
-	sky.oem = a.oem ? &oem : NULL;
-	sky.moon_min_deg = a.moon_min;
-	sky.limb_min_deg = a.limb_min;
-	rc = fc_run_dir_sky(a.dir, &aem, &su.sensor, &su.flux, &sky, &cfg, &f,
-			    &n, &err);
-	if (a.catalogue)
-		stray_starcat_free(&cat);
-	if (a.oem)
-		stray_oem_free(&oem);
-	stray_aem_free(&aem);
-	if (rc != STRAY_OK) {
-		stray_curve_free(&model);
-		return cli_fail("flightcheck", &err);
-	}
-	mv = stray_curve_view_of(&model);
-	p = calloc(n, sizeof(*p));
-	for (i = 0; p && i < n; i++)
-		p[i].model = stray_curve_alpha_at(&mv, f[i].theta_deg);
-	stray_curve_free(&model);
-	if (!p) {
-		free(f);
-		stray_error_set(&err, STRAY_ENOMEM, "flightcheck", "out of memory");
-		return cli_fail("flightcheck", &err);
-	}
-	fc_summarise(&cfg, f, n, fdr_setup_k_px(&su), p, &s);
-	if (fc_verdict(&s, why, sizeof(why))) {
+	f = c.f;
+	p = c.p;
+	n = c.n;
+	s = c.s;
+	snprintf(a.cat_name, sizeof(a.cat_name), "%s", c.cat_name);
+	if (c.why[0]) {
 		/* no number is printed for frames that cannot be calibrated */
 		free(f);
 		free(p);
 		fprintf(stderr, "stray flightcheck: %s: cannot be calibrated: %s\n",
-			a.dir, why);
+			a.dir, c.why);
 		return 1;
 	}
 	rc = STRAY_OK;
@@ -421,7 +325,7 @@ int cmd_flightcheck(int argc, char **argv)
 		if (q) {
 			memcpy(q, p, n * sizeof(*q));
 			qsort(q, n, sizeof(*q), cmp_theta);
-			rc = write_curve(a.out, q, n, &s, a.cat_name, &err);
+			rc = fc_write_curve(a.out, q, n, &s, a.cat_name, &err);
 			if (!rc && a.plot)
 				rc = plot(a.plot, q, n, &s, &err);
 			free(q);

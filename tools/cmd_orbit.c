@@ -12,13 +12,11 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "fdrfw/ephem.h"
 #include "fdrfw/fdrfw.h"
 #include "fdrfw/table_build.h"
-#include "flight_table.h"
-#include "orbit.h"
+#include "mission/flight_table.h"
+#include "mission/orbit_fly.h"
 #include "plot.h"
-#include "stray/ccsds.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"
 
@@ -52,12 +50,6 @@ struct orbit_args {
 	double hours, step_s, altitude_km, ltan_h;
 };
 
-struct orbit_run {
-	size_t n;
-	double *t_h, *theta[FDRFW_BODIES], *stars;
-	uint32_t *flags;
-};
-
 static const uint32_t flag_bits[] = {
 	FDRFW_SUN_EXCLUDED, FDRFW_MOON_EXCLUDED, FDRFW_EARTH_EXCLUDED,
 	FDRFW_SUN_IN_FOV, FDRFW_MOON_IN_FOV, FDRFW_EARTH_IN_FOV,
@@ -68,68 +60,6 @@ static const char *const flag_names[] = {
 	"moon_in_fov", "earth_in_fov", "sun_eclipsed", "input_invalid",
 };
 #define N_FLAGS (sizeof(flag_bits) / sizeof(flag_bits[0]))
-
-static int run_alloc(struct orbit_run *r, size_t n)
-{
-	int b;
-
-	memset(r, 0, sizeof(*r));
-	r->n = n;
-	r->t_h = calloc(n, sizeof(double));
-	r->stars = calloc(n, sizeof(double));
-	r->flags = calloc(n, sizeof(uint32_t));
-	for (b = 0; b < FDRFW_BODIES; b++)
-		r->theta[b] = calloc(n, sizeof(double));
-	return r->t_h && r->stars && r->flags && r->theta[0] && r->theta[1] &&
-	       r->theta[2];
-}
-
-static void run_free(struct orbit_run *r)
-{
-	int b;
-
-	free(r->t_h);
-	free(r->stars);
-	free(r->flags);
-	for (b = 0; b < FDRFW_BODIES; b++)
-		free(r->theta[b]);
-}
-
-/* Fly the orbit: one fdrfw_frame call per step, as on board. */
-static void fly(const struct orbit_args *a, const struct fdrfw_table *t,
-		struct orbit_run *run)
-{
-	struct fdrfw_ctx ctx;
-	struct orbit orb;
-	float sun[3];
-	long day0 = stray_ccsds_days_from_2000(a->year, a->month, a->day);
-	int32_t t0 = (int32_t)(day0 * 86400L - 43200L);
-	size_t i;
-
-	fdrfw_init(&ctx, t);
-	fdrfw_sun_dir(t0, sun);
-	orbit_sso(&orb, a->altitude_km, a->ltan_h, atan2(sun[1], sun[0]));
-	for (i = 0; i < run->n; i++) {
-		struct fdrfw_input in = { .t_exp_s = t->t_exp_nominal_s };
-		struct fdrfw_output out;
-		double ts = i * a->step_s, r[3], v[3], q[4];
-		int k;
-
-		orbit_state(&orb, ts, r, v);
-		orbit_anti_nadir_q(r, v, q);
-		for (k = 0; k < 4; k++)
-			in.q[k] = (float)q[k];
-		for (k = 0; k < 3; k++)
-			in.pos_km[k] = (float)r[k];
-		in.t_tt_s = t0 + (int32_t)ts;
-		fdrfw_frame(&ctx, &in, &out);
-		run->t_h[i] = ts / 3600.0;
-		for (k = 0; k < FDRFW_BODIES; k++)
-			run->theta[k][i] = out.theta_deg[k];
-		run->stars[i] = out.false_stars_total;
-		run->flags[i] = out.flags;
-	}
-}
 
 static int write_csv(const char *path, const struct orbit_run *r,
 		     struct stray_error *err)
@@ -332,6 +262,7 @@ int cmd_orbit(int argc, char **argv)
 	struct orbit_args a = { NULL, NULL, NULL, NULL, 2026, 6, 21, 24.0,
 				10.0, 550.0, 22.5 };
 	struct fdrfw_table table;
+	struct orbit_fly_opts fo;
 	struct orbit_run run;
 	struct stray_error err;
 	int rc = parse_args(argc, argv, &a);
@@ -342,18 +273,16 @@ int cmd_orbit(int argc, char **argv)
 	if (flight_table_load(a.table, &table, &err) != STRAY_OK ||
 	    normalisation_check(&a, &table, &err) != STRAY_OK)
 		return cli_fail("orbit", &err);
-	if (!run_alloc(&run, (size_t)(a.hours * 3600.0 / a.step_s) + 1)) {
-		run_free(&run);
-		stray_error_set(&err, STRAY_ENOMEM, "frames", 0);
+	fo = (struct orbit_fly_opts){ a.year, a.month, a.day, a.hours,
+				      a.step_s, a.altitude_km, a.ltan_h };
+	if (orbit_fly(&fo, &table, &run, &err) != STRAY_OK)
 		return cli_fail("orbit", &err);
-	}
-	fly(&a, &table, &run);
 	if ((a.out && write_csv(a.out, &run, &err) != STRAY_OK) ||
 	    (a.plot && plot_run(a.plot, &run, &table, &err) != STRAY_OK)) {
-		run_free(&run);
+		orbit_run_free(&run);
 		return cli_fail("orbit", &err);
 	}
 	rc = summary(&a, &table, &run);
-	run_free(&run);
+	orbit_run_free(&run);
 	return rc;
 }

@@ -7,7 +7,7 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "fdr_setup.h"
+#include "fdr_options.h"
 #include "stray/spectrum_io.h"
 
 static const char usage[] =

@@ -13,7 +13,6 @@
 #include "cli.h"
 #include "cli_capture.h"
 #include "commands.h"
-#include "focal_map_io.h"
 #include "plot.h"
 #include "stray/curve_io.h"
 #include "stray/errfmt.h"
@@ -26,7 +25,9 @@
 #include "tracer/path_report.h"
 #include "tracer/runner.h"
 #include "tracer/spectral.h"
+#include "tracer/trace_job.h"
 #include "tracer/scene_load.h"
+#include "trace_focal.h"
 #include "trace_run.h"
 
 static const char usage[] =
@@ -76,22 +77,16 @@ static const char usage[] =
 	TRACER_BAFFLE_KEYS "\n"
 	"--set keys of mesh scenes: accept_half_angle_deg edge_radius\n";
 
-#define SETS_MAX 64
-
+/* The command line: the trace job (tracer/trace_job.h) and what only the
+ * command writes and prints. */
 struct trace_args {
-	const struct tracer_runner *runner;	/* who runs the trace */
-	const char *scene, *angles, *out, *lens, *export_obj, *paths_out;
+	struct tracer_job job;
+	const char *out, *export_obj, *paths_out;
 	const char *plot, *plot_orders, *dump, *map;
-	const char *spectrum, *response;	/* tracer/spectral.h */
 	double map_angle;
 	int dump_count, map_size;
-	const char *scene_note;	/* what loading the scene changed */
-	int auto_angles;	/* no --angles, or "auto": fitted grid */
-	double cutoff_deg;	/* the direct cut-off it found */
-	const char *sets[SETS_MAX];
-	int n_sets, top;
-	struct tracer_trace_opts o;
-	struct focal_map_args fm;	/* --focal-map (focal_map_io.h) */
+	int top;
+	struct focal_map_args fm;	/* --focal-map (trace_focal.h) */
 };
 
 static const struct option trace_opts[] = {
@@ -137,7 +132,7 @@ static int parse_number(int opt, const char *text, struct trace_args *a,
 	case 'T': *rc = cli_parse_count("trace", "top", text, 1, 1000, &v);
 		a->top = (int)v; return 0;
 	default:
-		return trace_run_option("trace", opt, text, &a->o, rc);
+		return trace_run_option("trace", opt, text, &a->job.o, rc);
 	}
 }
 
@@ -145,18 +140,18 @@ static int parse_number(int opt, const char *text, struct trace_args *a,
 static int parse_file(int opt, char *text, struct trace_args *a)
 {
 	switch (opt) {
-	case 's': a->scene = text; return 0;
-	case 'a': a->angles = text; return 0;
+	case 's': a->job.scene = text; return 0;
+	case 'a': a->job.angles = text; return 0;
 	case 'o': a->out = text; return 0;
-	case 'l': a->lens = text; return 0;
+	case 'l': a->job.lens = text; return 0;
 	case 'x': a->export_obj = text; return 0;
 	case 'p': a->paths_out = text; return 0;
 	case 'P': a->plot = text; return 0;
 	case 'O': a->plot_orders = text; return 0;
 	case 'D': a->dump = text; return 0;
 	case 'M': a->map = text; return 0;
-	case 1001: a->spectrum = text; return 0;
-	case 1002: a->response = text; return 0;
+	case 1001: a->job.spectrum = text; return 0;
+	case 1002: a->job.response = text; return 0;
 	default: return 1;
 	}
 }
@@ -174,8 +169,8 @@ static int parse_args(int argc, char **argv, struct trace_args *a)
 			continue;
 		if (opt == 'j') {
 			cli.json = 1;
-		} else if (opt == 'S' && a->n_sets < SETS_MAX) {
-			a->sets[a->n_sets++] = optarg;
+		} else if (opt == 'S' && a->job.n_sets < TRACER_JOB_SETS_MAX) {
+			a->job.sets[a->job.n_sets++] = optarg;
 		} else if (opt == 'S') {
 			return cli_usage_error("trace", "too many --set");
 		} else if (opt == 'h') {
@@ -189,7 +184,7 @@ static int parse_args(int argc, char **argv, struct trace_args *a)
 	if (!rc && optind < argc)
 		rc = cli_usage_error("trace", "unexpected argument '%s'",
 				     argv[optind]);
-	if (!rc && !a->scene)
+	if (!rc && !a->job.scene)
 		rc = cli_usage_error("trace", "--scene is required");
 	if (!rc && !a->out && !a->export_obj && !cli.json && !a->plot &&
 	    !a->plot_orders && !a->paths_out && !a->top && !a->dump &&
@@ -211,129 +206,6 @@ static void progress(void *user, double fraction)
 	}
 }
 
-/* Angles to trace: the requested ones (without --angles or with
- * "auto", the grid fitted to the committed scene's direct cut-off), with
- * 0 added as the reference. */
-static int make_angles(struct trace_args *a, const struct tracer_scene *s,
-		       double **theta, size_t *n, size_t *first_out,
-		       struct stray_error *err)
-{
-	double *t;
-	int rc = a->auto_angles
-		? tracer_angles_auto(s, theta, n, &a->cutoff_deg, err)
-		: tracer_angles_parse(a->angles, theta, n, err);
-
-	if (rc)
-		return rc;
-	*first_out = 0;
-	if ((*theta)[0] == 0.0)
-		return STRAY_OK;
-	t = realloc(*theta, (*n + 1) * sizeof(double));
-	if (!t)
-		return stray_error_set(err, STRAY_ENOMEM, "--angles",
-				       "out of memory");
-	memmove(t + 1, t, *n * sizeof(double));
-	t[0] = 0.0;	/* alpha is normalised to P(0) (ref4-baffle.md) */
-	*theta = t;
-	(*n)++;
-	*first_out = 1;
-	return STRAY_OK;
-}
-
-/* The map's angle must be one of the traced ones. */
-static int map_index(const struct trace_args *a, const double *theta,
-		     size_t n, size_t *j, struct stray_error *err)
-{
-	for (*j = 0; *j < n; (*j)++)
-		if (fabs(theta[*j] - a->map_angle) < 1e-9)
-			return STRAY_OK;
-	return stray_error_set_value(err, STRAY_EINVAL, "--map-angle",
-				     "is not one of --angles", a->map_angle);
-}
-
-static const char *const order_names[TRACER_ORDERS] = {
-	"direct", "order1", "order2", "order3plus"
-};
-
-static int add_meta(struct stray_curve *c, const struct trace_args *a,
-		    struct stray_error *err)
-{
-	char buf[512];
-	int rc = stray_curve_add_meta(c, "kind", a->lens ? "system" : "baffle",
-				      err);
-	size_t k, len;
-
-	len = (size_t)snprintf(buf, sizeof(buf), "%s", a->scene);
-	for (k = 0; k < (size_t)a->n_sets && len < sizeof(buf); k++)
-		len += (size_t)snprintf(buf + len, sizeof(buf) - len, "%s%s",
-					k ? ", " : " with --set ", a->sets[k]);
-	if (!rc)
-		rc = stray_curve_add_meta(c, "scene", buf, err);
-	if (!rc && a->lens)	/* a curve path or ideal:DEG */
-		rc = stray_curve_add_meta(c, "lens", a->lens, err);
-	if (!rc && a->scene_note)
-		rc = stray_curve_add_meta(c, "mesh", a->scene_note, err);
-	snprintf(buf, sizeof(buf), "stray trace, adjoint Monte Carlo with "
-		 "next-event connections; %llu paths, seed %llu",
-		 (unsigned long long)a->o.n_paths,
-		 (unsigned long long)a->o.seed);
-	if (!rc)
-		rc = stray_curve_add_meta(c, "source", buf, err);
-	snprintf(buf, sizeof(buf), "one standard error from %d batches",
-		 a->o.n_batches);
-	if (!rc)
-		rc = stray_curve_add_meta(c, "sigma", buf, err);
-	if (a->auto_angles) {
-		snprintf(buf, sizeof(buf), "auto: 1 deg, 0.1 deg within 1 deg "
-			 "of the direct cut-off at %.1f deg, 0.5 deg beyond",
-			 a->cutoff_deg);
-		if (!rc)
-			rc = stray_curve_add_meta(c, "angles", buf, err);
-	}
-	return rc;
-}
-
-static int write_curve(const struct trace_args *a,
-		       const struct tracer_result *r, size_t first,
-		       struct stray_error *err)
-{
-	struct stray_curve c;
-	double *col = NULL;
-	size_t n = r->n_theta - first, j;
-	int rc = stray_curve_alloc(&c, n, 1, err), k;
-
-	if (rc)
-		return rc;
-	col = malloc(n * sizeof(double));
-	if (!col) {
-		rc = stray_error_set(err, STRAY_ENOMEM, "--out", "out of memory");
-		goto out_free;
-	}
-	for (j = 0; j < n; j++) {
-		c.theta_deg[j] = a->o.theta_deg[first + j];
-		tracer_result_alpha(r, first + j, 0, -1, &c.alpha[j],
-				    &c.sigma[j]);
-	}
-	for (k = 0; k < TRACER_ORDERS && !rc; k++) {
-		for (j = 0; j < n; j++) {
-			double s;
-
-			tracer_result_alpha(r, first + j, 0, k, &col[j], &s);
-		}
-		rc = stray_curve_add_column(&c, order_names[k], col, err);
-	}
-	if (!rc)
-		rc = add_meta(&c, a, err);
-	if (!rc)	/* a library call's curve: the bits, not the text */
-		rc = cli_capture_curve(&c, err);
-	if (!rc && a->out)
-		rc = stray_curve_save(a->out, &c, err);
-out_free:
-	free(col);
-	stray_curve_free(&c);
-	return rc;
-}
-
 static cJSON *summary_json(const struct trace_args *a,
 			   const struct tracer_result *r, size_t first)
 {
@@ -346,12 +218,13 @@ static cJSON *summary_json(const struct trace_args *a,
 		if (al > 0.0 && sg / al > worst)
 			worst = sg / al;
 	}
-	cJSON_AddStringToObject(o, "scene", a->scene);
+	cJSON_AddStringToObject(o, "scene", a->job.scene);
 	cJSON_AddNumberToObject(o, "angles", (double)(r->n_theta - first));
-	if (a->auto_angles)
-		cJSON_AddNumberToObject(o, "direct_cutoff_deg", a->cutoff_deg);
+	if (a->job.auto_angles)
+		cJSON_AddNumberToObject(o, "direct_cutoff_deg",
+					a->job.cutoff_deg);
 	cJSON_AddNumberToObject(o, "paths", (double)r->n_paths);
-	cJSON_AddNumberToObject(o, "threads", a->o.threads);
+	cJSON_AddNumberToObject(o, "threads", a->job.o.threads);
 	cJSON_AddItemToObject(o, "seconds", cli_json_number(r->seconds));
 	cJSON_AddItemToObject(o, "paths_per_s",
 			      cli_json_number(r->n_paths / r->seconds));
@@ -404,7 +277,7 @@ static int plot_curve(const struct trace_args *a,
 		for (j = 0; j < n; j++)
 			tracer_result_alpha(r, first + j, 0, k, &y[j], &s);
 		ser[k] = (struct plot_series){ buf, y, n, NULL, NULL, col[k],
-			PLOT_LINE, order_names[k] };
+			PLOT_LINE, tracer_order_names[k] };
 	}
 	if (!rc && a->plot_orders) {
 		sp.path = a->plot_orders;
@@ -419,94 +292,64 @@ static int plot_curve(const struct trace_args *a,
 static int load_scene(const struct trace_args *a, struct tracer_scene *s,
 		      struct stray_error *err)
 {
-	int rc = tracer_scene_load(a->scene, a->sets, a->n_sets, s, err);
+	int rc = tracer_scene_load(a->job.scene, a->job.sets, a->job.n_sets,
+				   s, err);
 
 	if (!rc && a->export_obj)
 		rc = tracer_obj_export(&s->mesh, a->export_obj, err);
 	return rc;
 }
 
-/* alpha = P_det(theta) / P_det(0) (§3.4): with nothing on the detector
- * on axis (a plate blocking the beam, a lens curve of zeros) every alpha
- * would be 0/0, printed as 0 +- 0.  Refuse the scene instead. */
-static int check_on_axis(const struct trace_args *a,
-			 const struct tracer_result *r, struct stray_error *err)
-{
-	double p0, s0;
-
-	tracer_result_power(r, 0, -1, &p0, &s0);
-	if (p0 > 0.0)
-		return STRAY_OK;
-	return stray_error_at(err, STRAY_EINVAL, a->scene, 0, "beam",
-		"no on-axis power reaches the detector (is the beam blocked?): "
-		"alpha = P(theta) / P(0) would be 0/0");
-}
-
 static int run_trace(struct trace_args *a, struct tracer_scene *s,
 		     struct stray_error *err)
 {
+	struct tracer_job *j = &a->job;
 	struct tracer_result r;
-	struct tracer_lens lens = { 0, NULL, NULL };
-	static struct tracer_band band;
-	double *theta = NULL;
-	size_t n, first;
+	size_t first;
 	int rc, last = -1;
 
-	rc = tracer_scene_commit(s, err);
-	if (!rc)
-		rc = make_angles(a, s, &theta, &n, &first, err);
-	if (!rc && a->lens)
-		rc = tracer_lens_load(a->lens, &lens, err);
+	j->o.record_paths = a->paths_out || a->top;
+	rc = tracer_job_prepare(j, s, err);
 	if (rc)
-		goto out_free;
-	a->o.theta_deg = theta;
-	a->o.n_theta = n;
-	a->o.lens = a->lens ? &lens : NULL;
-	a->o.record_paths = a->paths_out || a->top;
-	if (tracer_scene_spectral(s)) {	/* a "reflectance_table" */
-		rc = tracer_band_load(a->spectrum, a->response, &band, err);
-		if (rc)
-			goto out_free;
-		a->o.record_paths = 1;
-	}
+		return rc;
+	first = j->first;
 	if (a->dump)
-		a->o.dump_paths = (uint64_t)a->dump_count <= a->o.n_paths ?
-				  (uint64_t)a->dump_count : a->o.n_paths;
+		j->o.dump_paths = (uint64_t)a->dump_count <= j->o.n_paths ?
+				  (uint64_t)a->dump_count : j->o.n_paths;
 	if (a->map) {
-		rc = map_index(a, theta, n, &a->o.map_theta_index, err);
-		a->o.map_n = a->map_size;
+		rc = tracer_job_angle_index(j, a->map_angle,
+					    &j->o.map_theta_index, err);
+		j->o.map_n = a->map_size;
 		if (rc)
-			goto out_free;
+			return rc;
 	}
 	if (focal_map_wanted(&a->fm)) {
-		size_t j;
+		size_t k;
 
-		rc = map_index(a, theta, n, &j, err);
+		rc = tracer_job_angle_index(j, a->map_angle, &k, err);
 		if (!rc)
-			rc = focal_map_prepare(&a->fm, j, &a->o, err);
+			rc = focal_map_prepare(&a->fm, k, &j->o, err);
 		if (rc)
-			goto out_free;
+			return rc;
 	}
 	if (isatty(STDERR_FILENO) && !cli_capturing()) {
-		a->o.progress = progress;
-		a->o.progress_user = &last;
+		j->o.progress = progress;
+		j->o.progress_user = &last;
 	}
-	{
-		struct tracer_scene_spec spec = { a->scene, a->sets, a->n_sets,
-						  a->lens, 0.0, 0.0 };
-
-		rc = tracer_run(a->runner, &spec, s, &a->o, &r, err);
-	}
-	if (!rc && tracer_scene_spectral(s)) {
-		rc = tracer_result_apply_band(&r, s, &band, err);
-		if (rc)
-			tracer_result_free(&r);
-	}
+	rc = tracer_job_run(j, s, &r, err);
 	if (rc)
-		goto out_free;
-	rc = check_on_axis(a, &r, err);
-	if (!rc && (a->out || cli_capturing()))
-		rc = write_curve(a, &r, first, err);
+		return rc;
+	if (a->out || cli_capturing()) {	/* a library call keeps the bits */
+		struct stray_curve c;
+
+		rc = tracer_job_curve(j, &r, &c, err);
+		if (!rc) {
+			rc = cli_capture_curve(&c, err);
+			if (!rc && a->out)
+				rc = stray_curve_save(a->out, &c, err);
+			stray_curve_free(&c);
+		}
+	}
 	if (!rc && (a->plot || a->plot_orders))
 		rc = plot_curve(a, &r, first, err);
 	if (!rc && a->paths_out)
@@ -516,15 +359,12 @@ static int run_trace(struct trace_args *a, struct tracer_scene *s,
 	if (!rc && a->map)
 		rc = tracer_map_write_csv(&r, a->map, err);
 	if (!rc && focal_map_wanted(&a->fm))
-		rc = focal_map_write(&a->fm, &r, s, &a->o, err);
+		rc = focal_map_write(&a->fm, &r, s, &j->o, err);
 	if (!rc && a->top && !cli.json)
 		tracer_paths_print_top(&r, s, first, a->top, stdout);
 	if (!rc && cli.json)
 		rc = cli_json_emit(summary_json(a, &r, first));
 	tracer_result_free(&r);
-out_free:
-	tracer_lens_free(&lens);
-	free(theta);
 	return rc;
 }
 
@@ -536,27 +376,28 @@ int cmd_trace(int argc, char **argv, const struct tracer_runner *runner)
 	int rc;
 
 	memset(&a, 0, sizeof(a));
-	a.runner = runner;
-	trace_run_defaults(&a.o, 1500000);	/* about 1 % at every angle */
+	a.job.runner = runner;
+	trace_run_defaults(&a.job.o, 1500000);	/* about 1 % at every angle */
 	a.dump_count = 100;
 	a.map_size = 64;
 	focal_map_defaults(&a.fm);
 	rc = parse_args(argc, argv, &a);
 	if (rc)
 		return rc < 0 ? CLI_OK : rc;
-	a.auto_angles = !a.angles || strcmp(a.angles, "auto") == 0;
+	a.job.auto_angles = !a.job.angles || strcmp(a.job.angles, "auto") == 0;
 	stray_error_clear(&err);
 	tracer_scene_init(&s);
 	stray_file_defer();	/* every output renamed at the end, or none */
 	rc = load_scene(&a, &s, &err);
 	if (!rc && s.note[0]) {	/* a CAD mesh put right: say what */
-		fprintf(stderr, "stray trace: %s: %s\n", a.scene, s.note);
-		a.scene_note = s.note;
+		fprintf(stderr, "stray trace: %s: %s\n", a.job.scene, s.note);
+		a.job.scene_note = s.note;
 	}
 	if (!rc && (a.out || cli.json || a.paths_out || a.top || a.plot ||
 		    a.plot_orders || a.dump || a.map ||
 		    focal_map_wanted(&a.fm)))
 		rc = run_trace(&a, &s, &err);
+	tracer_job_free(&a.job);
 	tracer_scene_free(&s);
 	if (stray_file_finish(rc == STRAY_OK, &err) != STRAY_OK && !rc)
 		rc = STRAY_EIO;

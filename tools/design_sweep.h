@@ -9,17 +9,8 @@
 
 #include <stddef.h>
 
-#include "design_grid.h"
+#include "tracer/design_sweep.h"
 #include "stray/error.h"
-
-#define SWEEP_AT_MAX 16
-
-struct design_result {
-	char label[GRID_AXES_MAX * 2 * GRID_TEXT_MAX];
-	double sun_deg, sun_lo_deg, sun_hi_deg;	/* NaN: not excluded */
-	double alpha_at[SWEEP_AT_MAX];
-	int resumed;			/* read back from the state folder */
-};
 
 struct sweep_summary {
 	const struct design_result *d;

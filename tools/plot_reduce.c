@@ -7,7 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "image_cv.h"
+#include "frames/image_cv.h"
 #include "plot.h"
 #include "reduce_report.h"
 #include "stray/errfmt.h"

@@ -120,3 +120,23 @@ int tracer_angles_parse(const char *list, double **theta_deg, size_t *n,
 	*n = m;
 	return STRAY_OK;
 }
+
+int tracer_angles_with_zero(double **theta_deg, size_t *n, int *added,
+			    struct stray_error *err)
+{
+	double *t;
+
+	*added = 0;
+	if ((*theta_deg)[0] == 0.0)
+		return STRAY_OK;
+	t = realloc(*theta_deg, (*n + 1) * sizeof(double));
+	if (!t)
+		return stray_error_set(err, STRAY_ENOMEM, "--angles",
+				       "out of memory");
+	memmove(t + 1, t, *n * sizeof(double));
+	t[0] = 0.0;	/* alpha is normalised to P(0) (ref4-baffle.md) */
+	*theta_deg = t;
+	(*n)++;
+	*added = 1;
+	return STRAY_OK;
+}

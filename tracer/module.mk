@@ -11,8 +11,6 @@ $(TRACER_OBJ): EXTRA_CFLAGS += -Itracer/include -I/usr/include/cjson -D_DEFAULT_
 # (no reassociation: the same bits as scalar code)
 $(B)/obj/tracer/integrator.o: EXTRA_CFLAGS += -ftree-vectorize
 $(B)/obj/tools/cmd_trace.o: EXTRA_CFLAGS += -Itracer/include
-$(B)/obj/tools/focal_map_io.o: \
-	EXTRA_CFLAGS += -Itracer/include -D_DEFAULT_SOURCE
 
 $(TRACER_LIB): $(TRACER_OBJ)
 	@mkdir -p $(dir $@)
@@ -65,17 +63,3 @@ $(TRACER_FUZZ): tests/tracer/fuzz_tracer_args.c tracer/angles.c \
 # The virtual photometer draws its noise from the tracer's Philox streams.
 $(B)/obj/tools/cmd_photometer.o: EXTRA_CFLAGS += -Itracer/include
 
-
-# The focal-map CLI test runs build/bin/stray and reads its FITS back,
-# also through the reader `stray frames` uses (tools/focal_map_read.c).
-FOCAL_IO_OBJ := $(patsubst %,$(B)/obj/tools/%.o,\
-	focal_map_io focal_map_read cli cli_capture image_cv)
-$(B)/obj/tests/tracer/test_cmd_focal_map.o: \
-	EXTRA_CFLAGS += -I/usr/include/cjson -Itools
-$(B)/tests/tracer/test_cmd_focal_map: \
-		$(B)/obj/tests/tracer/test_cmd_focal_map.o $(FOCAL_IO_OBJ) \
-		$(TRACER_LIB) $(STRAY_LIB) $(STRAY_BIN)
-	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_BASE) -o $@ $(filter %.o,$^) $(TRACER_LIB) $(STRAY_LIB) \
-		$(CMOCKA_LIBS) $(TRACER_LDLIBS) -lcjson -lcfitsio \
-		$(OPENCV_LDLIBS) -lstdc++ $(STRAY_LDLIBS)

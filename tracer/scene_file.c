@@ -24,7 +24,7 @@
  * the sky, radius); normal defaults to +z; "radius_mm": "auto" (or left
  * out) over-fills the mesh (its widest vertex from the beam axis).
  * A file with "type": "vanes" describes a parametric vane baffle instead
- * (tracer/scene_vanes.c).
+ * (tracer/scene_vanes.c); both read materials through scene_json.c.
  */
 #include <limits.h>
 #include <math.h>
@@ -36,7 +36,6 @@
 
 #include "stray/errfmt.h"
 #include "stray/file.h"
-#include "stray/spectrum_io.h"
 #include "tracer/mesh_import.h"
 #include "tracer/scene_file.h"
 #include "scene_json.h"
@@ -71,20 +70,6 @@ static char *read_text(const struct ctx *c, int *rc)
 	return buf;
 }
 
-static int number(const struct ctx *c, const cJSON *o, const char *key,
-		  double *v, int required)
-{
-	const cJSON *it = cJSON_GetObjectItemCaseSensitive(o, key);
-
-	if (!it && !required)
-		return STRAY_OK;
-	if (!cJSON_IsNumber(it) || !isfinite(it->valuedouble))
-		return fail(c, STRAY_EINVAL, key, it ? "must be a number" :
-						   "is missing");
-	*v = it->valuedouble;
-	return STRAY_OK;
-}
-
 static int vec(const struct ctx *c, const cJSON *o, const char *key,
 	       struct vec3 *v)
 {
@@ -105,159 +90,6 @@ static int vec(const struct ctx *c, const cJSON *o, const char *key,
 	return STRAY_OK;
 }
 
-int tracer_json_fail(const struct ctx *c, int code, const char *field,
-		     const char *reason)
-{
-	return fail(c, code, field, reason);
-}
-
-int tracer_json_fail_text(const struct ctx *c, int code, const char *field,
-			  const char *reason, const char *text)
-{
-	int rc = fail(c, code, field, reason);
-
-	stray_error_text(c->err, text);
-	return rc;
-}
-
-/* Path of a mesh file relative to the scene file's directory. */
-static void sibling(const char *scene, const char *file, char *out,
-		    size_t size);
-
-/* "reflectance_table": a CSV (wavelength_nm,<reflectance>) or inline
- * arrays; rho in [0, 1], wavelengths increasing; b->rho its mean. */
-static int rho_table(const struct ctx *c, const cJSON *m,
-		     struct tracer_brdf *b, struct tracer_rho_table *t)
-{
-	const cJSON *it = cJSON_GetObjectItemCaseSensitive(m,
-							   "reflectance_table");
-	double sum = 0.0;
-	int i, n;
-
-	t->n = 0;
-	if (!it)
-		return STRAY_OK;
-	if (cJSON_IsString(it)) {
-		struct stray_spectrum_data d;
-		char path[PATH_MAX];
-		int rc;
-
-		sibling(c->path, it->valuestring, path, sizeof(path));
-		memset(&d, 0, sizeof(d));
-		rc = stray_spectrum_load(path, &d, c->err);
-		if (!rc && (d.s.n < 1 || d.s.n > TRACER_RHO_TABLE_MAX))
-			rc = fail(c, STRAY_EINVAL, "reflectance_table",
-				  "needs 1 to 64 rows");
-		for (i = 0; !rc && i < (int)d.s.n; i++) {
-			t->nm[i] = d.wavelength_nm[i];
-			t->rho[i] = d.value[i];
-		}
-		n = rc ? 0 : (int)d.s.n;
-		stray_spectrum_data_free(&d);
-		if (rc)
-			return rc;
-	} else {
-		const cJSON *l = cJSON_GetObjectItemCaseSensitive(it,
-							"wavelength_nm");
-		const cJSON *r = cJSON_GetObjectItemCaseSensitive(it,
-							"reflectance");
-
-		n = cJSON_GetArraySize(l);
-		if (!cJSON_IsArray(l) || !cJSON_IsArray(r) || n < 1 ||
-		    n > TRACER_RHO_TABLE_MAX || cJSON_GetArraySize(r) != n)
-			return fail(c, STRAY_EINVAL, "reflectance_table",
-				    "must be a CSV file or { \"wavelength_nm\": "
-				    "[...], \"reflectance\": [...] } of 1 to "
-				    "64 equal lengths");
-		for (i = 0; i < n; i++) {
-			const cJSON *x = cJSON_GetArrayItem(l, i),
-				    *y = cJSON_GetArrayItem(r, i);
-
-			if (!cJSON_IsNumber(x) || !cJSON_IsNumber(y))
-				return fail(c, STRAY_EINVAL,
-					    "reflectance_table",
-					    "entries must be numbers");
-			t->nm[i] = x->valuedouble;
-			t->rho[i] = y->valuedouble;
-		}
-	}
-	for (i = 0; i < n; i++) {
-		if (!(t->nm[i] > 0.0 && isfinite(t->nm[i])) ||
-		    (i > 0 && !(t->nm[i] > t->nm[i - 1])))
-			return fail(c, STRAY_EINVAL, "reflectance_table",
-				    "wavelength_nm must be > 0 and increasing");
-		if (!(t->rho[i] >= 0.0 && t->rho[i] <= 1.0))
-			return fail(c, STRAY_EINVAL, "reflectance_table",
-				    "reflectance must be in [0, 1]");
-		sum += t->rho[i];
-	}
-	t->n = n;
-	b->rho = sum / n;
-	return STRAY_OK;
-}
-
-int tracer_json_material(const struct ctx *c, const cJSON *m,
-			 struct tracer_brdf *b, struct tracer_rho_table *tab)
-{
-	const cJSON *t = cJSON_GetObjectItemCaseSensitive(m, "type");
-	const char *type = cJSON_IsString(t) ? t->valuestring : "";
-	int rc = STRAY_OK;
-
-	memset(b, 0, sizeof(*b));
-	tab->n = 0;
-	b->rho = 1.0;
-	if (strcmp(type, "absorber") == 0)
-		return STRAY_OK;
-	if (strcmp(type, "lambert") == 0)
-		b->ops = &tracer_brdf_lambert_ops;
-	else if (strcmp(type, "mirror") == 0)
-		b->ops = &tracer_brdf_mirror_ops;
-	else if (strcmp(type, "abg") == 0)
-		b->ops = &tracer_brdf_abg_ops;
-	else
-		return fail(c, STRAY_EINVAL, "type", "must be lambert, mirror, "
-			    "abg or absorber");
-	rc = number(c, m, "reflectance", &b->rho, b->ops ==
-		    &tracer_brdf_lambert_ops &&
-		    !cJSON_GetObjectItemCaseSensitive(m, "reflectance_table"));
-	if (!rc && b->ops == &tracer_brdf_abg_ops)
-		rc = number(c, m, "a", &b->abg.a, 1) ||
-		     number(c, m, "b", &b->abg.b, 1) ||
-		     number(c, m, "g", &b->abg.g, 1);
-	if (!rc && (b->rho < 0.0 || b->rho > 1.0))
-		rc = fail(c, STRAY_EINVAL, "reflectance", "must be in [0, 1]");
-	if (!rc)
-		rc = rho_table(c, m, b, tab);
-	if (!rc && b->ops == &tracer_brdf_abg_ops &&
-	    !(b->abg.a >= 0.0 && b->abg.b > 0.0 && b->abg.g >= 0.0))
-		rc = fail(c, STRAY_EINVAL, "abg", "needs a >= 0, b > 0, g >= 0");
-	return rc ? c->err ? c->err->code : STRAY_EINVAL : STRAY_OK;
-}
-
-int tracer_json_group_material(const struct ctx *c, const cJSON *m,
-			       const char *mname, struct tracer_scene *s,
-			       size_t g)
-{
-	int rc = tracer_json_material(c, m, &s->material[g], &s->spectral[g]);
-
-	if (rc)
-		stray_error_text(c->err, mname);
-	return rc;
-}
-
-/* Path of a mesh file relative to the scene file's directory. */
-static void sibling(const char *scene, const char *file, char *out,
-		    size_t size)
-{
-	const char *slash = strrchr(scene, '/');
-
-	if (file[0] == '/' || !slash)
-		snprintf(out, size, "%s", file);
-	else
-		snprintf(out, size, "%.*s/%s", (int)(slash - scene), scene,
-			 file);
-}
-
 static int meshes(const struct ctx *c, const cJSON *root,
 		  struct tracer_mesh *m)
 {
@@ -276,10 +108,10 @@ static int meshes(const struct ctx *c, const cJSON *root,
 		if (!cJSON_IsString(f) || (g && !cJSON_IsString(g)))
 			return fail(c, STRAY_EINVAL, "meshes",
 				    "each needs a \"file\" (and a string \"group\")");
-		rc = number(c, it, "scale_mm", &scale, 0);
+		rc = tracer_json_number(c, it, "scale_mm", &scale, 0);
 		if (rc)
 			return rc;
-		sibling(c->path, f->valuestring, path, sizeof(path));
+		tracer_json_sibling(c->path, f->valuestring, path, sizeof(path));
 		rc = tracer_mesh_import(m, path, g ? g->valuestring : NULL,
 					scale, c->err);
 		if (rc)
@@ -361,19 +193,19 @@ static int detector_and_beam(const struct ctx *c, const cJSON *root,
 		rc = vec(c, d, "normal", &det->normal);
 	det->normal = v3_norm(det->normal);
 	if (!rc)
-		rc = number(c, d, "accept_half_angle_deg",
+		rc = tracer_json_number(c, d, "accept_half_angle_deg",
 			    &det->accept_half_angle_deg, 0);
 	if (!rc && cJSON_IsString(shape) &&
 	    strcmp(shape->valuestring, "rect") == 0) {
 		det->shape = TRACER_DET_RECT;
-		rc = number(c, d, "width_mm", &det->half_w_mm, 1);
+		rc = tracer_json_number(c, d, "width_mm", &det->half_w_mm, 1);
 		if (!rc)
-			rc = number(c, d, "height_mm", &det->half_h_mm, 1);
+			rc = tracer_json_number(c, d, "height_mm", &det->half_h_mm, 1);
 		det->half_w_mm *= 0.5;
 		det->half_h_mm *= 0.5;
 	} else if (!rc) {
 		det->shape = TRACER_DET_DISK;
-		rc = number(c, d, "radius_mm", &det->radius_mm, 1);
+		rc = tracer_json_number(c, d, "radius_mm", &det->radius_mm, 1);
 	}
 	if (!rc)
 		rc = vec(c, b, "center", &s->beam.center);
@@ -387,7 +219,7 @@ static int detector_and_beam(const struct ctx *c, const cJSON *root,
 		    "radius_mm")->valuestring, "auto") == 0)))
 		s->beam.radius_mm = overfill_radius(s);
 	else if (!rc)
-		rc = number(c, b, "radius_mm", &s->beam.radius_mm, 1);
+		rc = tracer_json_number(c, b, "radius_mm", &s->beam.radius_mm, 1);
 	if (!rc && !(s->beam.radius_mm > 0.0))
 		rc = fail(c, STRAY_EINVAL, "radius_mm", "beam must be wider than 0");
 	if (!rc && tracer_detector_check(det, c->err))
@@ -496,4 +328,22 @@ int tracer_scene_file_load_sets(const char *path, const char *const *sets,
 	cJSON_Delete(root);
 	free(text);
 	return rc;
+}
+
+int tracer_scene_file_is_vanes(const char *path)
+{
+	char *text;
+	size_t len;
+	cJSON *root;
+	const cJSON *t;
+	int yes;
+
+	if (stray_file_read(path, &text, &len, NULL) != STRAY_OK)
+		return 0;
+	root = cJSON_Parse(text);
+	free(text);
+	t = cJSON_GetObjectItemCaseSensitive(root, "type");
+	yes = cJSON_IsString(t) && strcmp(t->valuestring, "vanes") == 0;
+	cJSON_Delete(root);
+	return yes;
 }

@@ -25,6 +25,15 @@ int tracer_json_fail_text(const struct tracer_json_ctx *c, int code,
 			  const char *field, const char *reason,
 			  const char *text);
 
+/* o's number key into v: an error naming key when it is not a finite
+ * number, or missing and required. */
+int tracer_json_number(const struct tracer_json_ctx *c, const cJSON *o,
+		       const char *key, double *v, int required);
+
+/* Path of file relative to the scene file's directory. */
+void tracer_json_sibling(const char *scene, const char *file, char *out,
+			 size_t size);
+
 /* One material object ({"type": "lambert", "reflectance": ...}), with
  * its "reflectance_table" (if any) into tab. */
 int tracer_json_material(const struct tracer_json_ctx *c, const cJSON *m,

@@ -31,9 +31,7 @@
 #include <string.h>
 
 #include "stray/errfmt.h"
-#include "stray/file.h"
 #include "tracer/baffle.h"
-#include "tracer/scene_file.h"
 #include "scene_json.h"
 
 /* An error at a key of the file (a run-time name: copied). */
@@ -246,22 +244,4 @@ int tracer_scene_vanes_build(const struct tracer_json_ctx *c,
 	if (rc)
 		stray_error_locate(c->err, c->path, 0);
 	return rc ? rc : materials(c, root, s);
-}
-
-int tracer_scene_file_is_vanes(const char *path)
-{
-	char *text;
-	size_t len;
-	cJSON *root;
-	const cJSON *t;
-	int yes;
-
-	if (stray_file_read(path, &text, &len, NULL) != STRAY_OK)
-		return 0;
-	root = cJSON_Parse(text);
-	free(text);
-	t = cJSON_GetObjectItemCaseSensitive(root, "type");
-	yes = cJSON_IsString(t) && strcmp(t->valuestring, "vanes") == 0;
-	cJSON_Delete(root);
-	return yes;
 }

@@ -117,3 +117,31 @@ int fdrfw_curve_thin(const struct stray_curve_view *in,
 	r->rows_out = k;
 	return STRAY_OK;
 }
+
+/*
+ * The table from the curve, thinned to the table's rows when longer (the
+ * default trace grid has 160-190 angles): a first pass gives the Sun's
+ * alpha_req (it depends on the sensor, not the curve), the second keeps
+ * the two samples around its crossing, so the table's Sun angle is the
+ * whole curve's.
+ */
+int fdrfw_table_build_thinned(const struct stray_curve_view *v,
+			      const struct stray_sensor *sensor,
+			      const struct fdrfw_build_params *p,
+			      struct fdrfw_table *t, struct stray_exclusion *sun,
+			      struct fdrfw_thin_report *thin,
+			      struct stray_error *err)
+{
+	double th[FDRFW_CURVE_MAX], al[FDRFW_CURVE_MAX];
+	struct stray_curve_view tv;
+	double req;
+	int rc = fdrfw_curve_thin(v, NULL, 0, th, al, &tv, thin, err);
+
+	if (rc == STRAY_OK)
+		rc = fdrfw_table_build_verdict(&tv, sensor, p, t, sun, err);
+	if (rc != STRAY_OK || thin->rows_in == thin->rows_out)
+		return rc;
+	req = (double)t->alpha_req_sun;
+	rc = fdrfw_curve_thin(v, &req, 1, th, al, &tv, thin, err);
+	return rc ? rc : fdrfw_table_build_verdict(&tv, sensor, p, t, sun, err);
+}

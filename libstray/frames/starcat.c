@@ -1,6 +1,7 @@
 /*
  * starcat.c - the parsers of stray/starcat.h: the I/311 and BSC5 fixed
- * columns, the I/239 `|` fields, the CSV by its header.  Columns are
+ * columns, the I/239 `|` fields, the CSV by its header; and the
+ * catalogue they fill, freed.  Columns are
  * the catalogues' ReadMe byte ranges (1-based, inclusive).
  */
 #include <ctype.h>
@@ -16,6 +17,20 @@
 #define PI 3.14159265358979323846
 #define LINE_MAX_CH 4096
 #define CSV_COLS 9
+
+/* V from Hipparcos Hp and B-V (the fit of stray/starcat.h). */
+double stray_hp_to_v(double hp, double b_v)
+{
+	double c = fmax(-0.2, fmin(1.8, b_v));
+
+	return hp - 0.2964 * c + 0.1110 * c * c;
+}
+
+void stray_starcat_free(struct stray_starcat *c)
+{
+	free(c->s);
+	memset(c, 0, sizeof(*c));
+}
 
 /* A field's text: blank (1), a number (0, *v), or not a number (-1). */
 static int num(const char *p, size_t n, double *v)

@@ -24,13 +24,6 @@ const char *stray_starcat_kind_name(int kind)
 	}
 }
 
-double stray_hp_to_v(double hp, double b_v)
-{
-	double c = fmax(-0.2, fmin(1.8, b_v));
-
-	return hp - 0.2964 * c + 0.1110 * c * c;
-}
-
 double stray_jyear_of_tt(double t_tt_s)
 {
 	return 2000.0 + t_tt_s / (365.25 * 86400.0);
@@ -49,12 +42,6 @@ int stray_starcat_load(const char *path, struct stray_starcat *c,
 		rc = stray_starcat_parse(buf, len, path, c, err);
 	free(buf);
 	return rc;
-}
-
-void stray_starcat_free(struct stray_starcat *c)
-{
-	free(c->s);
-	memset(c, 0, sizeof(*c));
 }
 
 /* The unit vector of s at epoch: the catalogue place moved along its

@@ -9,8 +9,8 @@
 #include <string.h>
 
 #include "aem_types.h"
-#include "stray/aem.h"
 #include "stray/ccsds.h"
+#include "stray/quaternion.h"
 
 #define D2R 1.745329251994329576923691e-2
 

@@ -1,10 +1,9 @@
 # tests/flightcheck: `stray flightcheck` (issue 18) on flight frames made
 # by the truth generator (truth.c, test side only) with a hidden scale.
-FLIGHTCHECK_OBJ := $(B)/obj/tools/flightcheck.o $(B)/obj/tools/flightcheck_bg.o \
-	$(B)/obj/tools/flightcheck_run.o
+# The analysis is libmission (mission/flightcheck*.c).
+FLIGHTCHECK_OBJ := $(MISSION_LIB)
 FLIGHTCHECK_TRUTH_OBJ := $(B)/obj/tests/flightcheck/truth.o
-$(B)/obj/tools/flightcheck_run.o: EXTRA_CFLAGS += -fopenmp
-$(B)/obj/tests/flightcheck/%.o: EXTRA_CFLAGS += -Itools -Itests \
+$(B)/obj/tests/flightcheck/%.o: EXTRA_CFLAGS += -Imission/include -Itests \
 	-Itests/flightcheck -Ifirmware_fdr/include
 FLIGHTCHECK_TESTS := $(patsubst tests/flightcheck/%.c,$(B)/tests/flightcheck/%,\
 	$(wildcard tests/flightcheck/test_*.c))
@@ -25,14 +24,12 @@ $(FLIGHT_GEN): $(B)/obj/tests/flightcheck/make_flight.o $(FLIGHTCHECK_TRUTH_OBJ)
 all: $(FLIGHT_GEN)
 # make bench: the per-frame step on full frames (target >= 10 frames/s).
 BENCHES += $(B)/bench/bench_flightcheck
-$(B)/obj/bench/bench_flightcheck.o: EXTRA_CFLAGS += -Itools -fopenmp
+$(B)/obj/bench/bench_flightcheck.o: EXTRA_CFLAGS += -Imission/include -fopenmp
 $(B)/bench/bench_flightcheck: $(B)/obj/bench/bench_flightcheck.o \
-		$(B)/obj/tools/flightcheck.o $(B)/obj/tools/flightcheck_bg.o \
-		$(STRAY_LIB) $(FDRFW_LIB)
+		$(MISSION_LIB) $(STRAY_LIB) $(FDRFW_LIB)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_BASE) -fopenmp -o $@ $< $(B)/obj/tools/flightcheck.o \
-		$(B)/obj/tools/flightcheck_bg.o $(STRAY_LIB) $(FDRFW_LIB) \
-		$(STRAY_LDLIBS)
+	$(CC) $(CFLAGS_BASE) -fopenmp -o $@ $< $(MISSION_LIB) $(STRAY_LIB) \
+		$(FDRFW_LIB) $(STRAY_LDLIBS)
 # The diagnosis test runs build/bin/stray (trace, flightcheck, diagnose).
 $(B)/obj/tests/flightcheck/test_flightcheck_diag.o: EXTRA_CFLAGS += \
 	-I/usr/include/cjson

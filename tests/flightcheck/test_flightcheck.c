@@ -15,7 +15,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "flightcheck_run.h"
+#include "mission/flightcheck_run.h"
 #include "truth.h"
 #include "stray/photometry_io.h"
 #include "stray/sensor.h"

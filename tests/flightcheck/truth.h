@@ -4,7 +4,7 @@
  * Sun offset angle, the catalogue's stars through the *true* attitude
  * (the AEM written carries a small pointing error, as a real one does),
  * stray light from a truth curve times a hidden scale.  Kept apart from
- * the analysis (tools/flightcheck.c), which reads only the frames'
+ * the analysis (mission/flightcheck.c), which reads only the frames'
  * DATE-OBS and the AEM; the truth keywords (TALPHA, TSCALE) are for
  * people.
  */

@@ -9,7 +9,7 @@
 
 #include <stdlib.h>
 
-#include "frames_run.h"
+#include "frames/frames_run.h"
 #include "stray/photometry_io.h"
 #include "stray/sensor.h"
 

@@ -1,5 +1,5 @@
 /*
- * test_detect.c - both star detectors (tools/frames_detect.h) find stars
+ * test_detect.c - both star detectors (frames/include/frames/frames_detect.h) find stars
  * injected at known positions, and report no star on a star-free frame
  * whose noise is far below threshold.
  */

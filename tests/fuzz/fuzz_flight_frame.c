@@ -1,6 +1,6 @@
 /*
  * fuzz_flight_frame.c - libFuzzer target for a flight frame as `stray
- * flightcheck` reads it (tools/flightcheck_run.c): the lab-frame header
+ * flightcheck` reads it (mission/flightcheck_run.c): the lab-frame header
  * and its checks from memory (stray_sweep_fits_open_mem), DATE-OBS as a
  * UTC epoch, the pixels.  A header's NAXIS must never claim more pixels
  * than the bytes hold (issue 31: a 6 KB frame claiming 65536 x 8192 took

@@ -1,6 +1,6 @@
 /*
  * fuzz_focal_map.c - libFuzzer target for the focal-map reader of
- * `stray frames --map` and `stray flightcheck` (tools/focal_map_read.c):
+ * `stray frames --map` and `stray flightcheck` (frames/focal_map_read.c):
  * the bytes as a FITS file on disk, read with its size checks (issue 31:
  * a 5.7 KB map claiming 2^32 x 2^30 cells overflowed the heap), then
  * resampled to a small window.  Any map must fail cleanly or give cells
@@ -14,7 +14,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "focal_map_io.h"
+#include "frames/focal_map_io.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {

@@ -1,6 +1,6 @@
 /*
  * fuzz_heads.c - libFuzzer target for the heads file of `stray
- * availability` (tools/avail_heads.c): arbitrary bytes parsed, and the
+ * availability` (mission/avail_heads.c): arbitrary bytes parsed, and the
  * frames of a file that parses checked orthonormal.  Tables are named,
  * never opened.
  */
@@ -9,7 +9,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 
-#include "avail_heads.h"
+#include "mission/avail_heads.h"
 #include "stray/errfmt.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)

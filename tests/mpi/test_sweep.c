@@ -3,7 +3,7 @@
  * its bad input, one-line errors for bad values, and resumption that
  * keeps only what matches (a changed run or a damaged file is retraced).
  */
-#include "design_grid.h"
+#include "tracer/design_grid.h"
 #include "mpi_run.h"
 
 #define SWEEP "sweep --scene ref4 --set segments=64 --set bevel_face=upper " \

@@ -1,5 +1,5 @@
 /*
- * test_orbit.c - the demo orbit (tools/orbit.c): a sun-synchronous orbit
+ * test_orbit.c - the demo orbit (mission/orbit.c): a sun-synchronous orbit
  * at 550 km and an anti-nadir attitude, against published values and the
  * flight module's own boresight convention.
  */
@@ -11,7 +11,7 @@
 
 #include "../test_util.h"
 #include "fdrfw/vec.h"
-#include "orbit.h"
+#include "mission/orbit.h"
 
 #define DEG (180.0 / 3.14159265358979323846)
 

@@ -7,7 +7,7 @@
 #include <cJSON.h>
 #include <fitsio.h>
 
-#include "focal_map_io.h"
+#include "frames/focal_map_io.h"
 #include "tracer_cli.h"
 
 static void read_map(const char *path, long *nx, long *ny, double *mean,

@@ -79,6 +79,17 @@ int fdrfw_curve_thin(const struct stray_curve_view *in,
 		     struct stray_curve_view *out, struct fdrfw_thin_report *r,
 		     struct stray_error *err);
 
+/* The table of `stray firmware-table` (curve_thin.c): fdrfw_table_build_
+ * verdict on the curve thinned to the table's rows, keeping the samples
+ * around the Sun's crossing so the table's Sun angle is the whole
+ * curve's; thin says what was left out. */
+int fdrfw_table_build_thinned(const struct stray_curve_view *curve,
+			      const struct stray_sensor *sensor,
+			      const struct fdrfw_build_params *p,
+			      struct fdrfw_table *t, struct stray_exclusion *sun,
+			      struct fdrfw_thin_report *thin,
+			      struct stray_error *err);
+
 /*
  * libstray's verdict on a sealed table's own curve and Sun alpha_req (a
  * table from before the verdict may carry 89.98 deg for a Sun the baffle

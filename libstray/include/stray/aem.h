@@ -25,6 +25,7 @@
 
 #include "stray/ccsds.h"
 #include "stray/error.h"
+#include "stray/quaternion.h"
 
 struct stray_aem {
 	size_t n;
@@ -47,16 +48,6 @@ void stray_aem_free(struct stray_aem *aem);
  * owns t; STRAY_ERANGE where no segment covers t or inside a gap (a step
  * over twice the median, never bridged: stray_ccsds_gap_s). */
 int stray_aem_attitude(const struct stray_aem *aem, double t, double q[4]);
-
-/* M(q) of CCSDS 504.0 (above), rows first. */
-void stray_q_dcm(const double q[4], double m[3][3]);
-
-/* The unit quaternion whose M(q) is m (Shepperd's method). */
-void stray_dcm_q(const double m[3][3], double q[4]);
-
-/* Spherical linear interpolation, shortest arc, f in [0, 1]. */
-void stray_q_slerp(const double a[4], const double b[4], double f,
-		   double q[4]);
 
 /* Write one segment: EME2000 -> SC_BODY_1, A2B, QUATERNION_TYPE LAST. */
 int stray_aem_write(FILE *f, const char *object, int ts, const double *t,

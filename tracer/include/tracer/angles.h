@@ -21,6 +21,11 @@ struct tracer_scene;
 int tracer_angles_parse(const char *list, double **theta_deg, size_t *n,
 			struct stray_error *err);
 
+/* 0 put first in *theta_deg (an array of *n from the above) when it is
+ * not there: alpha is normalised to P(0).  *added says whether it was. */
+int tracer_angles_with_zero(double **theta_deg, size_t *n, int *added,
+			    struct stray_error *err);
+
 /*
  * The default grid fitted to a committed scene (angles_auto.c): the
  * direct cut-off found by shadow rays on a 0.1 deg lattice (*cutoff_deg:
