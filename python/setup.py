@@ -15,7 +15,7 @@ from setuptools.dist import Distribution
 
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent
-LIBS = ["stray", "tracer", "diagnose", "review", "straycmd"]
+LIBS = ["stray", "tracer", "diagnose", "review", "frames", "mission", "straycmd"]
 
 
 class BinaryDistribution(Distribution):

@@ -5,6 +5,8 @@
 #   libtracer    the Monte Carlo tracer (Embree)
 #   libdiagnose  the model-vs-measurement diagnosis
 #   libreview    the design review
+#   libframes    rendered frames, star detectors, focal maps (OpenCV)
+#   libmission   availability, flightcheck, orbits, flight tables
 #   libstraycmd  the `stray` commands as flat C calls (tools/api.c, public
 #                header tools/include/tools/api.h): what Python binds to
 # Each is libX.so.MAJOR.MINOR.0 with soname libX.so.MAJOR and the
@@ -35,8 +37,11 @@ SO_STRAY := $(B)/lib/libstray.so
 SO_TRACER := $(B)/lib/libtracer.so
 SO_DIAG := $(B)/lib/libdiagnose.so
 SO_REVIEW := $(B)/lib/libreview.so
+SO_FRAMES := $(B)/lib/libframes.so
+SO_MISSION := $(B)/lib/libmission.so
 SO_CMD := $(B)/lib/libstraycmd.so
-SO_LIBS := $(SO_STRAY) $(SO_TRACER) $(SO_DIAG) $(SO_REVIEW) $(SO_CMD)
+SO_LIBS := $(SO_STRAY) $(SO_TRACER) $(SO_DIAG) $(SO_REVIEW) $(SO_FRAMES) \
+	$(SO_MISSION) $(SO_CMD)
 
 # The commands' objects: every tools object but the program's main.
 SO_CMD_OBJ = $(filter-out $(B)/obj/tools/stray.o,$(TOOLS_OBJ))
@@ -50,11 +55,18 @@ $(SO_DIAG): $(DIAG_OBJ) $(SO_TRACER)
 	$(call so_link,diagnose,$(DIAG_OBJ),-ltracer -lstray -lcjson -lm)
 $(SO_REVIEW): $(REVIEW_OBJ) $(SO_STRAY)
 	$(call so_link,review,$(REVIEW_OBJ),-lstray -lplplot -lcjson -lm)
+$(SO_FRAMES): $(FRAMES_OBJ) $(SO_TRACER)
+	$(call so_link,frames,$(FRAMES_OBJ),-ltracer -lstray $(FRAMES_LDLIBS) \
+		-lcjson $(STRAY_LDLIBS))
 # the flight module's two archives go in whole-objects-needed, as in stray
-$(SO_CMD): $(SO_CMD_OBJ) $(SO_DIAG) $(SO_REVIEW) $(FDRFW_GROUND_LIB) \
-		$(FDRFW_LIB)
-	$(call so_link,straycmd,$(SO_CMD_OBJ),-ldiagnose -lreview -ltracer \
-		-lstray $(FDRFW_GROUND_LIB) $(FDRFW_LIB) -lplplot -lcjson \
+$(SO_MISSION): $(MISSION_OBJ) $(SO_FRAMES) $(FDRFW_GROUND_LIB) $(FDRFW_LIB)
+	$(call so_link,mission,$(MISSION_OBJ),-lframes -ltracer -lstray \
+		$(FDRFW_GROUND_LIB) $(FDRFW_LIB) -lplplot -lcjson -fopenmp \
+		$(STRAY_LDLIBS) -lpthread)
+$(SO_CMD): $(SO_CMD_OBJ) $(SO_DIAG) $(SO_REVIEW) $(SO_MISSION) \
+		$(FDRFW_GROUND_LIB) $(FDRFW_LIB)
+	$(call so_link,straycmd,$(SO_CMD_OBJ),-lmission -lframes -ldiagnose \
+		-lreview -ltracer -lstray $(FDRFW_GROUND_LIB) $(FDRFW_LIB) -lplplot -lcjson \
 		$(OPENCV_LDLIBS) -lstdc++ -fopenmp $(STRAY_LDLIBS) -lpthread)
 
 # What python/setup.py asks for (pip install ./python).
@@ -65,13 +77,13 @@ ifneq ($(SAN),1)
 all: $(SO_LIBS)
 
 # pkg-config files of the shared libraries (stray.pc is libstray's own).
-SO_PC := tracer diagnose review straycmd
+SO_PC := tracer diagnose review frames mission straycmd
 install-solib: $(SO_LIBS) $(patsubst %,solib/%.pc.in,$(SO_PC))
 	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig \
 		$(DESTDIR)$(PREFIX)/include/tracer \
 		$(DESTDIR)$(PREFIX)/include/diagnose \
 		$(DESTDIR)$(PREFIX)/include/straycmd
-	for l in stray tracer diagnose review straycmd; do \
+	for l in stray tracer diagnose review frames mission straycmd; do \
 		install -m 755 $(B)/lib/lib$$l.so.$(SO_FULL) $(DESTDIR)$(PREFIX)/lib/ && \
 		ln -sf lib$$l.so.$(SO_FULL) $(DESTDIR)$(PREFIX)/lib/lib$$l.so.$(STRAY_SOMAJOR) && \
 		ln -sf lib$$l.so.$(STRAY_SOMAJOR) $(DESTDIR)$(PREFIX)/lib/lib$$l.so || exit 1; \
