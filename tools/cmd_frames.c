@@ -18,6 +18,7 @@
 #include "frames_lost.h"
 #include "frames_plot.h"
 #include "frames_run.h"
+#include "frames_sat.h"
 #include "image_cv.h"
 #include "stray/aem.h"
 #include "stray/catalogue.h"
@@ -231,6 +232,7 @@ struct frames_state {
 	struct frames_args a;
 	int cols, rows, col0, row0;
 	double k_px, alpha, wmean, stars_sum;
+	double clip_frac;		/* pixels whose background clips */
 	float *weight, *expect, *tiles;
 	uint16_t *dn;
 	struct stray_star *stars;
@@ -373,6 +375,10 @@ static int setup_model(struct frames_state *st, struct stray_error *err)
 	frames_detect_cfg_init(&st->dc, &st->fm, &st->s.sensor);
 	if (rc == STRAY_OK)
 		rc = frames_lost_init(&st->lost, &st->fm, err);
+	if (rc == STRAY_OK)	/* white frames: refuse, not "agree" */
+		rc = frames_saturation(&st->fm, st->weight,
+			(size_t)st->cols * st->rows, st->alpha, &st->clip_frac,
+			err);
 	return rc;
 }
 
@@ -612,8 +618,10 @@ static void det_result(const struct frames_state *st, int d,
 	r->sigma = sqrt((double)st->n_false[d]) / n;
 	r->found = st->n_found[d] / n;
 	r->extended = d == 0 ? st->rates.sliding : st->rates.clusters;
-	frames_diagnose(&st->fm, &st->ev[d], r->measured, r->extended, 128,
-			r->verdict, sizeof(r->verdict));
+	if (!frames_saturation_verdict(st->clip_frac, r->verdict,
+				       sizeof(r->verdict)))
+		frames_diagnose(&st->fm, &st->ev[d], r->measured, r->extended,
+				128, r->verdict, sizeof(r->verdict));
 }
 
 static double ratio(double model, double measured)
@@ -651,6 +659,7 @@ static int print_json(const struct frames_state *st,
 	fdr_setup_json(&st->s, o);
 	cJSON_AddStringToObject(o, "stray_light", st->a.map ? st->a.map : "uniform");
 	cJSON_AddItemToObject(o, "stray_e_per_px", cli_json_number(st->fm.stray_e));
+	cJSON_AddItemToObject(o, "clipped_fraction", cli_json_number(st->clip_frac));
 	cJSON_AddItemToObject(o, "threshold_e", cli_json_number(st->fm.i_sdt_e));
 	cJSON_AddItemToObject(o, "pixel_threshold_e", cli_json_number(st->fm.pixel_threshold_e));
 	cJSON_AddItemToObject(o, "window_px", cli_json_number(st->fm.win.n_px));
