@@ -588,8 +588,11 @@ static int run_frames(struct frames_state *st, struct stray_error *err)
 			st->ev[d].frames = i + 1;
 		}
 		{
-			double match[2] = { st->dc.window_radius_px, 4.0 };
+			double match[2] = { FRAMES_REACH_PX, 4.0 };
 
+			frames_lost_set_frame(&st->lost, st->tiles,
+				st->ev[0].tiles_x, st->ev[0].tiles_y, 128,
+				st->weight, st->cols, st->rows);
 			frames_lost_add(&st->lost, st->out, match, st->stars,
 					n_stars);
 		}

@@ -73,6 +73,7 @@ void stray_detector_init(struct stray_detector *d,
 	d->psf_sigma_px = d->window_r_px * PSF_PER_RADIUS;
 	d->i_sdt_e = d->pixel_t_e = d->pos_rho = 0;
 	d->win.n_px = 0;
+	d->n_animal = 0;
 }
 
 stray_real stray_detector_pixel_var(const struct stray_fdr_model *m,
@@ -191,6 +192,8 @@ int stray_detector_setup(struct stray_detector *d,
 	    (rc = stray_gauss_q_inv(m->pr_drs, &z, err)) != STRAY_OK)
 		return rc;
 	d->pos_rho = positions_rho(d->window_r_px);
+	if ((rc = stray_detector_blob_setup(d, err)) != STRAY_OK)
+		return rc;
 	/* The fixed pixel threshold's eq. 2.16: the DRS centred on a pixel
 	 * lights its min_px-th brightest pixel above it with Pr_drs. */
 	i_drs = stray_fdr_drs_photons(m);

@@ -121,9 +121,10 @@ static stray_real window_prob(const struct stray_detector *d, stray_real b,
 	return sum > 1 ? 0 : 1 - sum;
 }
 
-/* THRESHOLD: at least min_px of the pixels within 2.5 px of the star
- * above t (a Poisson-binomial count; they touch the star's peak, so they
- * are taken as connected). */
+/* THRESHOLD past the animal table (min_px > STRAY_DET_BLOB_PX_MAX): at
+ * least min_px of the pixels within 2.5 px of the star above t (a
+ * Poisson-binomial count; they touch the star's peak, so they are taken
+ * as connected: detector_blob.c's model is exact in that). */
 static stray_real threshold_prob(const struct stray_detector *d, stray_real b,
 				 stray_real star, stray_real ox, stray_real oy)
 {
@@ -227,7 +228,9 @@ static stray_real region_prob(const struct stray_detector *d,
 			if (d->kind == STRAY_DET_WINDOW)
 				sum += window_prob(d, b, star, ox, oy);
 			else if (d->kind == STRAY_DET_THRESHOLD)
-				sum += threshold_prob(d, b, star, ox, oy);
+				sum += d->n_animal ?
+				       stray_detector_blob_prob(d, b, star, ox, oy) :
+				       threshold_prob(d, b, star, ox, oy);
 			else
 				sum += tetra3_prob(d, b, t3, star, ox, oy);
 		}
