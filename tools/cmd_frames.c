@@ -16,6 +16,7 @@
 #include "focal_map_io.h"
 #include "frames_io.h"
 #include "frames_lost.h"
+#include "frames_mapterm.h"
 #include "frames_plot.h"
 #include "frames_run.h"
 #include "frames_sat.h"
@@ -233,6 +234,8 @@ struct frames_state {
 	int cols, rows, col0, row0;
 	double k_px, alpha, wmean, stars_sum;
 	double clip_frac;		/* pixels whose background clips */
+	double resid_rel;		/* the map's background-error term */
+	double flat[2];			/* extended rates without it */
 	float *weight, *expect, *tiles;
 	uint16_t *dn;
 	struct stray_star *stars;
@@ -375,6 +378,19 @@ static int setup_model(struct frames_state *st, struct stray_error *err)
 	frames_detect_cfg_init(&st->dc, &st->fm, &st->s.sensor);
 	if (rc == STRAY_OK)
 		rc = frames_lost_init(&st->lost, &st->fm, err);
+	if (rc == STRAY_OK && st->weight) {	/* the map's structure */
+		int d;
+
+		st->resid_rel = frames_map_resid_rel(st->weight, st->cols,
+						     st->rows, 128);
+		st->flat[0] = st->rates.sliding;
+		st->flat[1] = st->rates.clusters;
+		rc = frames_mapterm_rates(&st->fm, st->resid_rel,
+					  &st->rates.sliding,
+					  &st->rates.clusters, err);
+		for (d = 0; d < 2; d++)
+			st->lost.det[d].bg_resid_rel = st->resid_rel;
+	}
 	if (rc == STRAY_OK)	/* white frames: refuse, not "agree" */
 		rc = frames_saturation(&st->fm, st->weight,
 			(size_t)st->cols * st->rows, st->alpha, &st->clip_frac,
@@ -641,6 +657,9 @@ static void add_det(cJSON *o, const struct frames_state *st,
 	cJSON_AddItemToObject(o, "model_fdr", cli_json_number(st->rates.model));
 	cJSON_AddItemToObject(o, "model_fdr_thesis", cli_json_number(st->rates.thesis));
 	cJSON_AddItemToObject(o, "model_fdr_extended", cli_json_number(r->extended));
+	cJSON_AddItemToObject(o, "model_fdr_extended_no_map_term", cli_json_number(
+		st->weight ? st->flat[strcmp(r->name, "thesis") ? 1 : 0] :
+			     r->extended));
 	cJSON_AddItemToObject(o, "ratio_before", cli_json_number(ratio(st->rates.model, r->measured)));
 	cJSON_AddItemToObject(o, "ratio_after", cli_json_number(ratio(r->extended, r->measured)));
 	cJSON_AddItemToObject(o, "stars_found_per_image", cli_json_number(r->found));
@@ -663,6 +682,7 @@ static int print_json(const struct frames_state *st,
 	cJSON_AddStringToObject(o, "stray_light", st->a.map ? st->a.map : "uniform");
 	cJSON_AddItemToObject(o, "stray_e_per_px", cli_json_number(st->fm.stray_e));
 	cJSON_AddItemToObject(o, "clipped_fraction", cli_json_number(st->clip_frac));
+	cJSON_AddItemToObject(o, "bg_resid_rel", cli_json_number(st->resid_rel));
 	cJSON_AddItemToObject(o, "threshold_e", cli_json_number(st->fm.i_sdt_e));
 	cJSON_AddItemToObject(o, "pixel_threshold_e", cli_json_number(st->fm.pixel_threshold_e));
 	cJSON_AddItemToObject(o, "window_px", cli_json_number(st->fm.win.n_px));

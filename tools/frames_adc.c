@@ -86,6 +86,7 @@ int frames_adc_star_prob(const struct frames_adc *a,
 	}
 	mm.map = NULL;		/* the star's own place: its local level */
 	memcpy(&dd, d, sizeof(dd));
+	dd.bg_resid_rel = 0;	/* b^ - L at the star is this frame's error */
 	if (d->kind == STRAY_DET_WINDOW) {
 		dd.i_sdt_e = d->i_sdt_e + d->win.n_px * (bg - level);
 	} else if (d->kind == STRAY_DET_THRESHOLD) {

@@ -49,7 +49,8 @@ $(STRAY_BIN): $(FRAMES_DETECT_OBJ)
 
 # The analysis objects the tests and the bench link (not cmd_frames).
 FRAMES_ANALYSIS_OBJ := $(FRAMES_DETECT_OBJ) $(B)/obj/tools/frames_run.o \
-	$(B)/obj/tools/frames_diagnose.o $(B)/obj/tools/frames_adc.o
+	$(B)/obj/tools/frames_diagnose.o $(B)/obj/tools/frames_adc.o \
+	$(B)/obj/tools/frames_mapterm.o $(B)/obj/tools/frames_io.o
 FRAMES_LDLIBS := -lopencv_imgproc -lopencv_core -lstdc++
 
 FRAMES_TESTS := $(patsubst tests/frames/%.c,$(B)/tests/frames/%,\

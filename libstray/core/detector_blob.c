@@ -139,7 +139,7 @@ static stray_real gauss_cdf(stray_real z)
 
 stray_real stray_detector_blob_prob(const struct stray_detector *d,
 				    stray_real b, stray_real star,
-				    stray_real ox, stray_real oy)
+				    stray_real ox, stray_real oy, stray_real t)
 {
 	static const int seed[4][2] = { { 0, 0 }, { 1, 0 }, { 0, 1 }, { 1, 1 } };
 	stray_real q[GRID * GRID], p = 0, below = 1;
@@ -152,8 +152,8 @@ stray_real stray_detector_blob_prob(const struct stray_detector *d,
 				d->psf_sigma_px, ox, oy, i, jj), v = s + b;
 
 			q[(jj + GHALF) * GRID + i + GHALF] = v > 0 ?
-				gauss_cdf((s - d->pixel_t_e) / stray_sqrt(v)) :
-				(stray_real)(s > d->pixel_t_e);
+				gauss_cdf((s - t) / stray_sqrt(v)) :
+				(stray_real)(s > t);
 		}
 	for (k = 0; k < 4; k++) {
 		int sx = seed[k][0], sy = seed[k][1];

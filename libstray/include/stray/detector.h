@@ -65,6 +65,12 @@ struct stray_detector {
 	stray_real pixel_t_e;		/* THRESHOLD: pixel threshold */
 	struct stray_window_corr win;	/* WINDOW: neighbour overlaps */
 	stray_real pos_rho;		/* WINDOW: mean overlap of positions */
+	/* WINDOW, THRESHOLD: rms of the error of the detector's background
+	 * estimate per pixel, in units of the mean stray level: the focal
+	 * map's structure its estimator cannot follow (stray frames: the map
+	 * against its 128 px tiles' bilinear, frames_mapterm.h).  0: none
+	 * (uniform light, or a region map without places). */
+	stray_real bg_resid_rel;
 	/* THRESHOLD, min_px <= STRAY_DET_BLOB_PX_MAX: the animals smaller
 	 * than min_px through a pixel (0: the Poisson-binomial rule). */
 	unsigned n_animal;
@@ -97,7 +103,8 @@ int stray_detector_setup(struct stray_detector *d,
 stray_real stray_detector_pixel_var(const struct stray_fdr_model *m,
 				    stray_real alpha);
 
-/* ln false stars per image of m->n_tot pixels at alpha (map included). */
+/* ln false stars per image of m->n_tot pixels at alpha (map included,
+ * and the background-error term: eq. R of detector.c). */
 int stray_detector_log_false_rate(const struct stray_detector *d,
 				  const struct stray_fdr_model *m,
 				  stray_real alpha, stray_real *log_rate,
@@ -172,7 +179,15 @@ int stray_detector_blob_setup(struct stray_detector *d,
  * pixels, under background variance b. */
 stray_real stray_detector_blob_prob(const struct stray_detector *d,
 				    stray_real b, stray_real star,
-				    stray_real ox, stray_real oy);
+				    stray_real ox, stray_real oy, stray_real t);
+/* The background-error term: STRAY_DET_RESID_NODES Gauss-Hermite nodes
+ * (z, weight) of N(0, 1), the error at node k being z_k bg_resid_rel
+ * I_px(alpha); n = 1 (z 0, weight 1) when bg_resid_rel is 0 or the
+ * detector follows the frame (THESIS, TETRA3). */
+#define STRAY_DET_RESID_NODES 7
+unsigned stray_detector_resid_nodes(const struct stray_detector *d,
+				    stray_real z[STRAY_DET_RESID_NODES],
+				    stray_real w[STRAY_DET_RESID_NODES]);
 /* TETRA3's threshold above the background at alpha, e-. */
 stray_real stray_detector_tetra3_threshold(const struct stray_detector *d,
 					   const struct stray_fdr_model *m,
