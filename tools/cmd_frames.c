@@ -249,6 +249,7 @@ struct frames_state {
 	struct frames_evidence ev[2];
 	struct frames_lost lost;	/* stars found per magnitude (issue 28) */
 	long n_false[2], n_found[2];
+	double n_false_sq[2];		/* sum of per-frame counts squared */
 	uint16_t *det_rows;		/* detector row of each frame row */
 	struct stray_dir_out dir;	/* --out-dir, filled as a temporary */
 	struct stray_sweep_manifest mf;
@@ -600,6 +601,7 @@ static int run_frames(struct frames_state *st, struct stray_error *err)
 				&st->ev[d].n_f, st->ev[d].max_f);
 
 			st->n_false[d] += (long)nf;
+			st->n_false_sq[d] += (double)nf * (double)nf;
 			st->n_found[d] += (long)(st->out[d].n - nf);
 			st->ev[d].frames = i + 1;
 		}
@@ -624,6 +626,7 @@ static int run_frames(struct frames_state *st, struct stray_error *err)
 struct det_result {
 	const char *name;
 	double measured, sigma, extended, found;
+	double dispersion;		/* frame-to-frame variance / mean */
 	char verdict[512];
 };
 
@@ -634,7 +637,19 @@ static void det_result(const struct frames_state *st, int d,
 
 	r->name = d == 0 ? "thesis" : "threshold";
 	r->measured = st->n_false[d] / n;
+	/* Poisson, or the frames' own scatter when larger: false stars
+	 * cluster where the background estimate errs (a map's structure,
+	 * frames_mapterm.h), so counts are over-dispersed */
 	r->sigma = sqrt((double)st->n_false[d]) / n;
+	if (n > 1) {
+		double var = (st->n_false_sq[d] - n * r->measured * r->measured) /
+			     (n - 1);
+
+		r->dispersion = r->measured > 0 ? var / r->measured : NAN;
+		r->sigma = fmax(r->sigma, sqrt(fmax(var, 0.0) / n));
+	} else {
+		r->dispersion = NAN;
+	}
 	r->found = st->n_found[d] / n;
 	r->extended = d == 0 ? st->rates.sliding : st->rates.clusters;
 	if (!frames_saturation_verdict(st->clip_frac, r->verdict,
@@ -654,6 +669,7 @@ static void add_det(cJSON *o, const struct frames_state *st,
 	cJSON_AddStringToObject(o, "detector", r->name);
 	cJSON_AddItemToObject(o, "false_stars_per_image", cli_json_number(r->measured));
 	cJSON_AddItemToObject(o, "false_stars_sigma", cli_json_number(r->sigma));
+	cJSON_AddItemToObject(o, "false_stars_dispersion", cli_json_number(r->dispersion));
 	cJSON_AddItemToObject(o, "model_fdr", cli_json_number(st->rates.model));
 	cJSON_AddItemToObject(o, "model_fdr_thesis", cli_json_number(st->rates.thesis));
 	cJSON_AddItemToObject(o, "model_fdr_extended", cli_json_number(r->extended));
