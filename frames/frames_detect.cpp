@@ -142,6 +142,10 @@ static void components(const cv::Mat &mask, const cv::Mat &w, int min_px,
 			d->x = (ok ? sx[k] / sw[k] : cent.at<double>(k, 0)) + off_x;
 			d->y = (ok ? sy[k] / sw[k] : cent.at<double>(k, 1)) + off_y;
 			d->n_px = area;
+			d->x0 = stats.at<int>(k, cv::CC_STAT_LEFT) + off_x;
+			d->y0 = stats.at<int>(k, cv::CC_STAT_TOP) + off_y;
+			d->x1 = d->x0 + stats.at<int>(k, cv::CC_STAT_WIDTH) - 1;
+			d->y1 = d->y0 + stats.at<int>(k, cv::CC_STAT_HEIGHT) - 1;
 		}
 		out->n++;
 	}

@@ -13,6 +13,8 @@
 #include "frames/focal_map_io.h"
 #include "frames/frames_io.h"
 #include "frames/frames_job.h"
+#include "frames/frames_mapterm.h"
+#include "frames/frames_sat.h"
 #include "frames/frames_sky.h"
 #include "frames/image_cv.h"
 #include "stray/aem.h"
@@ -165,6 +167,23 @@ static int setup_model(struct frames_job *st, struct stray_error *err)
 	frames_detect_cfg_init(&st->dc, &st->fm, &st->s->sensor);
 	if (rc == STRAY_OK)
 		rc = frames_lost_init(&st->lost, &st->fm, err);
+	if (rc == STRAY_OK && st->weight) {	/* the map's structure */
+		int d;
+
+		st->resid_rel = frames_map_resid_rel(st->weight, st->cols,
+						     st->rows, 128);
+		st->flat[0] = st->rates.sliding;
+		st->flat[1] = st->rates.clusters;
+		rc = frames_mapterm_rates(&st->fm, st->resid_rel,
+					  &st->rates.sliding,
+					  &st->rates.clusters, err);
+		for (d = 0; d < 2; d++)
+			st->lost.det[d].bg_resid_rel = st->resid_rel;
+	}
+	if (rc == STRAY_OK)	/* white frames: refuse, not "agree" */
+		rc = frames_saturation(&st->fm, st->weight,
+			(size_t)st->cols * st->rows, st->alpha, &st->clip_frac,
+			err);
 	return rc;
 }
 
@@ -374,12 +393,16 @@ static int run_frames(struct frames_job *st, struct stray_error *err)
 				&st->ev[d].n_f, st->ev[d].max_f);
 
 			st->n_false[d] += (long)nf;
+			st->n_false_sq[d] += (double)nf * (double)nf;
 			st->n_found[d] += (long)(st->out[d].n - nf);
 			st->ev[d].frames = i + 1;
 		}
 		{
-			double match[2] = { st->dc.window_radius_px, 4.0 };
+			double match[2] = { FRAMES_REACH_PX, 4.0 };
 
+			frames_lost_set_frame(&st->lost, st->tiles,
+				st->ev[0].tiles_x, st->ev[0].tiles_y, 128,
+				st->weight, st->cols, st->rows);
 			frames_lost_add(&st->lost, st->out, match, st->stars,
 					n_stars);
 		}
@@ -399,11 +422,26 @@ static void det_result(const struct frames_job *st, int d,
 
 	r->name = d == 0 ? "thesis" : "threshold";
 	r->measured = st->n_false[d] / n;
+	/* Poisson, or the frames' own scatter when larger: false stars
+	 * cluster where the background estimate errs (a map's structure,
+	 * frames_mapterm.h), so counts are over-dispersed */
 	r->sigma = sqrt((double)st->n_false[d]) / n;
+	if (n > 1) {
+		double var = (st->n_false_sq[d] - n * r->measured * r->measured) /
+			     (n - 1);
+
+		r->dispersion = r->measured > 0 ? var / r->measured : NAN;
+		r->sigma = fmax(r->sigma, sqrt(fmax(var, 0.0) / n));
+	} else {
+		r->dispersion = NAN;
+	}
 	r->found = st->n_found[d] / n;
 	r->extended = d == 0 ? st->rates.sliding : st->rates.clusters;
-	frames_diagnose(&st->fm, &st->ev[d], r->measured, r->extended, 128,
-			r->verdict, sizeof(r->verdict));
+	r->extended_no_map_term = st->weight ? st->flat[d] : r->extended;
+	if (!frames_saturation_verdict(st->clip_frac, r->verdict,
+				       sizeof(r->verdict)))
+		frames_diagnose(&st->fm, &st->ev[d], r->measured, r->extended,
+				128, r->verdict, sizeof(r->verdict));
 }
 
 int frames_run(struct frames_job *job, const struct fdr_setup *s,

@@ -18,6 +18,10 @@ int frames_lost_init(struct frames_lost *l, const struct frames_model *fm,
 	memset(l, 0, sizeof(*l));
 	l->m = fm->m;		/* k_px folded into alpha_eff (frames_run.h) */
 	l->alpha_eff = fm->alpha_eff;
+	l->adc.stray_e = fm->stray_e;
+	l->adc.dark_e = fm->dark_e;
+	l->adc.read_noise_e = fm->read_noise_e;
+	l->adc.gain_e_per_dn = STRAY_FRAMES_GAIN_E_PER_DN;
 	for (d = 0; d < 2; d++) {
 		stray_detector_init(&l->det[d], kind[d], l->m.n_pps);
 		if ((rc = stray_detector_setup(&l->det[d], &l->m, err)))
@@ -47,6 +51,32 @@ static double model_p(struct frames_lost *l, int d, double mag, double e)
 	return p;
 }
 
+void frames_lost_set_frame(struct frames_lost *l, const float *tiles,
+			   int tiles_x, int tiles_y, int tile_px,
+			   const float *weight, int cols, int rows)
+{
+	l->adc.tiles = tiles;
+	l->adc.tiles_x = tiles_x;
+	l->adc.tiles_y = tiles_y;
+	l->adc.tile_px = tile_px;
+	l->adc.weight = weight;
+	l->adc.cols = cols;
+	l->adc.rows = rows;
+}
+
+/* This frame's model for the star (the nominal one without tiles). */
+static double frame_p(struct frames_lost *l, int d, const struct stray_star *s)
+{
+	double p = NAN;
+
+	if (!l->adc.tiles)
+		return model_p(l, d, s->mag, s->photons_e);
+	if (frames_adc_star_prob(&l->adc, &l->det[d], &l->m, l->alpha_eff,
+				 s->x, s->y, s->photons_e, &p, NULL) != STRAY_OK)
+		p = NAN;
+	return p;
+}
+
 void frames_lost_add(struct frames_lost *l,
 		     const struct frames_detect_out out[2],
 		     const double match[2], const struct stray_star *stars,
@@ -67,15 +97,19 @@ void frames_lost_add(struct frames_lost *l,
 			double m2 = match[d] * match[d];
 			int hit = 0;
 
-			for (j = 0; j < n && !hit; j++) {
+			if (d == 0)
+				hit = frames_adc_window_found(&out[0], stars[i].x,
+							      stars[i].y, match[0]);
+			for (j = 0; d == 1 && j < n && !hit; j++) {
 				double dx = out[d].det[j].x - stars[i].x;
 				double dy = out[d].det[j].y - stars[i].y;
 
 				hit = dx * dx + dy * dy <= m2;
 			}
 			l->found[d][b] += hit;
-			l->model[d][b] += model_p(l, d, stars[i].mag,
-						  stars[i].photons_e);
+			l->model[d][b] += frame_p(l, d, &stars[i]);
+			l->nominal[d][b] += model_p(l, d, stars[i].mag,
+						    stars[i].photons_e);
 		}
 	}
 }

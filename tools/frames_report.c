@@ -38,6 +38,8 @@ void frames_lost_json(const struct frames_lost *l, cJSON *o)
 				sqrt(f * (1.0 - f) / n)));
 			cJSON_AddItemToObject(e, "model", cli_json_number(
 				l->model[d][b] / n));
+			cJSON_AddItemToObject(e, "model_nominal", cli_json_number(
+				l->nominal[d][b] / n));
 			cJSON_AddItemToArray(a, e);
 		}
 	}
@@ -53,10 +55,11 @@ void frames_lost_print(const struct frames_lost *l)
 
 			if (l->n[b] < 20)
 				continue;
-			printf("  %-9s stars m %.2f-%.2f: found %.3f (model %.3f) of %ld\n",
+			printf("  %-9s stars m %.2f-%.2f: found %.3f (model %.3f, nominal %.3f) of %ld\n",
 			       det_name[d], FRAMES_LOST_MAG0 + b * FRAMES_LOST_STEP,
 			       FRAMES_LOST_MAG0 + (b + 1) * FRAMES_LOST_STEP,
-			       l->found[d][b] / n, l->model[d][b] / n, l->n[b]);
+			       l->found[d][b] / n, l->model[d][b] / n,
+			       l->nominal[d][b] / n, l->n[b]);
 		}
 }
 
@@ -71,9 +74,11 @@ static void add_det(cJSON *o, const struct frames_job *st,
 	cJSON_AddStringToObject(o, "detector", r->name);
 	cJSON_AddItemToObject(o, "false_stars_per_image", cli_json_number(r->measured));
 	cJSON_AddItemToObject(o, "false_stars_sigma", cli_json_number(r->sigma));
+	cJSON_AddItemToObject(o, "false_stars_dispersion", cli_json_number(r->dispersion));
 	cJSON_AddItemToObject(o, "model_fdr", cli_json_number(st->rates.model));
 	cJSON_AddItemToObject(o, "model_fdr_thesis", cli_json_number(st->rates.thesis));
 	cJSON_AddItemToObject(o, "model_fdr_extended", cli_json_number(r->extended));
+	cJSON_AddItemToObject(o, "model_fdr_extended_no_map_term", cli_json_number(r->extended_no_map_term));
 	cJSON_AddItemToObject(o, "ratio_before", cli_json_number(ratio(st->rates.model, r->measured)));
 	cJSON_AddItemToObject(o, "ratio_after", cli_json_number(ratio(r->extended, r->measured)));
 	cJSON_AddItemToObject(o, "stars_found_per_image", cli_json_number(r->found));
@@ -95,6 +100,8 @@ int frames_print_json(const struct frames_job *st, int detector)
 	fdr_setup_json(st->s, o);
 	cJSON_AddStringToObject(o, "stray_light", st->a.map ? st->a.map : "uniform");
 	cJSON_AddItemToObject(o, "stray_e_per_px", cli_json_number(st->fm.stray_e));
+	cJSON_AddItemToObject(o, "clipped_fraction", cli_json_number(st->clip_frac));
+	cJSON_AddItemToObject(o, "bg_resid_rel", cli_json_number(st->resid_rel));
 	cJSON_AddItemToObject(o, "threshold_e", cli_json_number(st->fm.i_sdt_e));
 	cJSON_AddItemToObject(o, "pixel_threshold_e", cli_json_number(st->fm.pixel_threshold_e));
 	cJSON_AddItemToObject(o, "window_px", cli_json_number(st->fm.win.n_px));

@@ -71,8 +71,9 @@ void stray_detector_init(struct stray_detector *d,
 	d->min_px = 5;
 	d->window_r_px = r < 1 ? 1 : r;
 	d->psf_sigma_px = d->window_r_px * PSF_PER_RADIUS;
-	d->i_sdt_e = d->pixel_t_e = d->pos_rho = 0;
+	d->i_sdt_e = d->pixel_t_e = d->pos_rho = d->bg_resid_rel = 0;
 	d->win.n_px = 0;
+	d->n_animal = 0;
 }
 
 stray_real stray_detector_pixel_var(const struct stray_fdr_model *m,
@@ -174,6 +175,10 @@ int stray_detector_setup(struct stray_detector *d,
 	if (!(d->window_r_px >= 1 && d->window_r_px <= DISK_HALF))
 		return stray_error_set_value(err, STRAY_EINVAL, "window_radius_px",
 			STRAY_MSG("must lie in 1..64"), d->window_r_px);
+	if (!(isfinite(d->bg_resid_rel) && d->bg_resid_rel >= 0 &&
+	      d->bg_resid_rel <= 1))
+		return stray_error_set_value(err, STRAY_EINVAL, "bg_resid_rel",
+			STRAY_MSG("must lie in 0..1"), d->bg_resid_rel);
 	if (!(d->psf_sigma_px >= STRAY_R(0.25) && d->psf_sigma_px <= 16))
 		return stray_error_set_value(err, STRAY_EINVAL, "psf_sigma_px",
 			STRAY_MSG("must lie in 0.25..16"), d->psf_sigma_px);
@@ -191,6 +196,8 @@ int stray_detector_setup(struct stray_detector *d,
 	    (rc = stray_gauss_q_inv(m->pr_drs, &z, err)) != STRAY_OK)
 		return rc;
 	d->pos_rho = positions_rho(d->window_r_px);
+	if ((rc = stray_detector_blob_setup(d, err)) != STRAY_OK)
+		return rc;
 	/* The fixed pixel threshold's eq. 2.16: the DRS centred on a pixel
 	 * lights its min_px-th brightest pixel above it with Pr_drs. */
 	i_drs = stray_fdr_drs_photons(m);
@@ -267,28 +274,55 @@ stray_real stray_detector_tetra3_threshold(const struct stray_detector *d,
 	return d->sigma_k * stray_sqrt(stray_detector_pixel_var(m, alpha));
 }
 
-static int pixel_false_rate(const struct stray_detector *d,
-			    const struct stray_fdr_model *m, stray_real alpha,
-			    stray_real *log_rate, struct stray_error *err)
+/* One region's ln false stars: n_px pixels at mean stray photons i_px,
+ * the background estimate low by z bg_resid_rel i_px (eq. R below). */
+static int region_rate(const struct stray_detector *d,
+		       const struct stray_fdr_model *m, stray_real n_px,
+		       stray_real alpha_r, stray_real t3, stray_real z,
+		       stray_real *lr, struct stray_error *err)
+{
+	stray_real i_px = stray_fdr_pixel_photons(m, alpha_r);
+	stray_real eps = z * d->bg_resid_rel * i_px;
+
+	if (d->kind == STRAY_DET_WINDOW) {
+		struct stray_fdr_model g = *m;
+		stray_real u = d->i_sdt_e - d->win.n_px * eps;
+
+		g.map = 0;
+		g.n_tot = n_px;
+		/* a node whose threshold falls to the background is held
+		 * there: the rate has saturated (every window a blob) */
+		return stray_fdr_log_rate_sliding(&g, &d->win, alpha_r,
+						  u > 0 ? u : 0, lr, err);
+	}
+	if (d->kind == STRAY_DET_THRESHOLD)
+		t3 = d->pixel_t_e - (eps < d->pixel_t_e ? eps : d->pixel_t_e);
+	return region_pixel_rate(d, m, n_px, i_px, t3, lr, err);
+}
+
+/* ln false stars over the map's regions (or uniform light) at node z. */
+static int map_false_rate(const struct stray_detector *d,
+			  const struct stray_fdr_model *m, stray_real alpha,
+			  stray_real z, stray_real *log_rate,
+			  struct stray_error *err)
 {
 	const struct stray_region_map *map = m->map;
-	stray_real t = d->kind == STRAY_DET_TETRA3 ?
-		stray_detector_tetra3_threshold(d, m, alpha) : d->pixel_t_e;
+	stray_real t3 = d->kind == STRAY_DET_TETRA3 ?
+		stray_detector_tetra3_threshold(d, m, alpha) : 0;
 	stray_real norm = 0, acc = -STRAY_HUGE, lr;
 	unsigned r;
 	int rc;
 
 	if (!map)
-		return region_pixel_rate(d, m, m->n_tot,
-			stray_fdr_pixel_photons(m, alpha), t, log_rate, err);
+		return region_rate(d, m, m->n_tot, alpha, t3, z, log_rate, err);
 	if ((rc = stray_region_map_norm(map, &norm, err)) != STRAY_OK)
 		return rc;
 	for (r = 0; r < map->n; r++) {
 		if (map->fraction[r] <= 0)
 			continue;
-		rc = region_pixel_rate(d, m, m->n_tot * map->fraction[r],
-			stray_fdr_pixel_photons(m, alpha * map->rel_alpha[r] /
-						   norm), t, &lr, err);
+		rc = region_rate(d, m, m->n_tot * map->fraction[r],
+				 alpha * map->rel_alpha[r] / norm, t3, z, &lr,
+				 err);
 		if (rc != STRAY_OK)
 			return rc;
 		acc = stray_log_add(acc, lr);
@@ -297,23 +331,80 @@ static int pixel_false_rate(const struct stray_detector *d,
 	return STRAY_OK;
 }
 
+/*
+ * The background-error term (issue 28: mapped light).  A detector that
+ * subtracts an estimate b^ of the background leaves e = L - b^ in every
+ * pixel where the stray light's shape has structure its estimator cannot
+ * follow (curvature, steps at the tile scale).  e varies slowly, so a
+ * window sum carries n_px e and a star's pixels share one e: over the
+ * frame the rate and the detection probability are their averages over
+ * the distribution of e, taken as N(0, s^2), s = bg_resid_rel I_px with
+ * I_px the region's level (the map's structure multiplies its light):
+ *
+ *   rate = sum_k w_k rate(t - z_k s),   P = sum_k w_k P(t - z_k s)     (R)
+ *
+ * (Gauss-Hermite nodes z_k, weights w_k of N(0, 1); t the pixel threshold,
+ * or I_sdt with n_px z_k s for the window sum).  Convex in e, so structure
+ * adds false stars and, for a star near its limit, takes few.
+ */
+static const stray_real gh_z[STRAY_DET_RESID_NODES] = {
+	STRAY_R(0.0), STRAY_R(1.154405394739968), STRAY_R(-1.154405394739968),
+	STRAY_R(2.366759410734541), STRAY_R(-2.366759410734541),
+	STRAY_R(3.750439717725742), STRAY_R(-3.750439717725742)
+};
+static const stray_real gh_w[STRAY_DET_RESID_NODES] = {
+	STRAY_R(0.457142857142857), STRAY_R(0.240123178605013),
+	STRAY_R(0.240123178605013), STRAY_R(0.030757123967586),
+	STRAY_R(0.030757123967586), STRAY_R(0.000548268855972),
+	STRAY_R(0.000548268855972)
+};
+
+unsigned stray_detector_resid_nodes(const struct stray_detector *d,
+				    stray_real z[STRAY_DET_RESID_NODES],
+				    stray_real w[STRAY_DET_RESID_NODES])
+{
+	unsigned k;
+
+	if (!(d->bg_resid_rel > 0) || (d->kind != STRAY_DET_WINDOW &&
+				       d->kind != STRAY_DET_THRESHOLD)) {
+		z[0] = 0;
+		w[0] = 1;
+		return 1;
+	}
+	for (k = 0; k < STRAY_DET_RESID_NODES; k++) {
+		z[k] = gh_z[k];
+		w[k] = gh_w[k];
+	}
+	return STRAY_DET_RESID_NODES;
+}
+
 int stray_detector_log_false_rate(const struct stray_detector *d,
 				  const struct stray_fdr_model *m,
 				  stray_real alpha, stray_real *log_rate,
 				  struct stray_error *err)
 {
+	stray_real z[STRAY_DET_RESID_NODES], w[STRAY_DET_RESID_NODES];
+	stray_real acc = -STRAY_HUGE, lr;
+	unsigned n, k;
+	int rc;
+
 	if (!(isfinite(alpha) && alpha >= 0))
 		return stray_error_set_value(err, STRAY_EINVAL, "alpha",
 			STRAY_MSG("must be finite and >= 0"), alpha);
-	switch (d->kind) {
-	case STRAY_DET_THESIS:
+	if (d->kind == STRAY_DET_THESIS)
 		return stray_fdr_log_rate(m, alpha, d->i_sdt_e, log_rate, err);
-	case STRAY_DET_WINDOW:
+	if (d->kind == STRAY_DET_WINDOW && !(d->bg_resid_rel > 0))
 		return stray_fdr_log_rate_sliding(m, &d->win, alpha, d->i_sdt_e,
 						  log_rate, err);
-	default:
-		return pixel_false_rate(d, m, alpha, log_rate, err);
+	n = stray_detector_resid_nodes(d, z, w);
+	for (k = 0; k < n; k++) {	/* eq. R */
+		if ((rc = map_false_rate(d, m, alpha, z[k], &lr, err)) !=
+		    STRAY_OK)
+			return rc;
+		acc = n == 1 ? lr : stray_log_add(acc, stray_log(w[k]) + lr);
 	}
+	*log_rate = acc;
+	return STRAY_OK;
 }
 
 struct search_ctx {

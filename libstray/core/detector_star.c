@@ -80,7 +80,8 @@ static void psf_1d(stray_real sigma, stray_real o, stray_real *g, int half)
  * Pr(miss) = int phi(z) prod_d Phi((t - I f_d - s_c z) / s_i) dz.
  */
 static stray_real window_prob(const struct stray_detector *d, stray_real b,
-			      stray_real star, stray_real ox, stray_real oy)
+			      stray_real star, stray_real ox, stray_real oy,
+			      stray_real i_sdt)
 {
 	stray_real gx[2 * G_HALF + 1], gy[2 * G_HALF + 1], f[STRAY_DET_POS_MAX];
 	stray_real fmax = 0, sb2 = d->win.n_px * b, sc, si, h, sum = 0;
@@ -111,7 +112,7 @@ static stray_real window_prob(const struct stray_detector *d, stray_real b,
 				  STRAY_R(0.39894228040143267794);
 
 		for (p = 0; p < n && miss > 0; p++) {
-			stray_real a = d->i_sdt_e - star * f[p] - sc * z;
+			stray_real a = i_sdt - star * f[p] - sc * z;
 
 			miss *= si > 0 ? gauss_cdf(a / si) : (a > 0);
 		}
@@ -121,11 +122,13 @@ static stray_real window_prob(const struct stray_detector *d, stray_real b,
 	return sum > 1 ? 0 : 1 - sum;
 }
 
-/* THRESHOLD: at least min_px of the pixels within 2.5 px of the star
- * above t (a Poisson-binomial count; they touch the star's peak, so they
- * are taken as connected). */
+/* THRESHOLD past the animal table (min_px > STRAY_DET_BLOB_PX_MAX): at
+ * least min_px of the pixels within 2.5 px of the star above t (a
+ * Poisson-binomial count; they touch the star's peak, so they are taken
+ * as connected: detector_blob.c's model is exact in that). */
 static stray_real threshold_prob(const struct stray_detector *d, stray_real b,
-				 stray_real star, stray_real ox, stray_real oy)
+				 stray_real star, stray_real ox, stray_real oy,
+				 stray_real t)
 {
 	stray_real dp[STRAY_CLUSTER_SIZE_MAX + 2], tail = 0;
 	unsigned k, c = d->min_px;
@@ -141,7 +144,7 @@ static stray_real threshold_prob(const struct stray_detector *d, stray_real b,
 			if (ex * ex + ey * ey > NEAR_R2)
 				continue;
 			q = pixel_above(star * stray_detector_psf_pixel(
-				d->psf_sigma_px, ox, oy, i, j), b, d->pixel_t_e);
+				d->psf_sigma_px, ox, oy, i, j), b, t);
 			dp[c] += dp[c - 1] * q;
 			for (k = c - 1; k >= 1; k--)
 				dp[k] = dp[k] * (1 - q) + dp[k - 1] * q;
@@ -203,13 +206,16 @@ static stray_real tetra3_prob(const struct stray_detector *d, stray_real b,
 	return p < 0 ? 0 : p > 1 ? 1 : p;
 }
 
-/* Detection probability in one region of stray attenuation alpha_r. */
+/* Detection probability in one region of stray attenuation alpha_r, the
+ * background estimate eps e-/px low (detector.c's eq. R). */
 static stray_real region_prob(const struct stray_detector *d,
 			      const struct stray_fdr_model *m,
 			      stray_real alpha_r, stray_real t3,
-			      stray_real star)
+			      stray_real star, stray_real eps)
 {
 	stray_real b = stray_detector_pixel_var(m, alpha_r), sum = 0;
+	stray_real i_sdt = d->i_sdt_e - d->win.n_px * eps;
+	stray_real t = d->pixel_t_e - eps;
 	int i, j;
 
 	if (d->kind == STRAY_DET_THESIS) {
@@ -225,9 +231,12 @@ static stray_real region_prob(const struct stray_detector *d,
 			stray_real oy = (j + STRAY_R(0.5)) / (2 * SUB);
 
 			if (d->kind == STRAY_DET_WINDOW)
-				sum += window_prob(d, b, star, ox, oy);
+				sum += window_prob(d, b, star, ox, oy, i_sdt);
 			else if (d->kind == STRAY_DET_THRESHOLD)
-				sum += threshold_prob(d, b, star, ox, oy);
+				sum += d->n_animal ?
+				       stray_detector_blob_prob(d, b, star, ox,
+								oy, t) :
+				       threshold_prob(d, b, star, ox, oy, t);
 			else
 				sum += tetra3_prob(d, b, t3, star, ox, oy);
 		}
@@ -240,8 +249,9 @@ int stray_detector_star_prob(const struct stray_detector *d,
 			     struct stray_error *err)
 {
 	const struct stray_region_map *map = m->map;
-	stray_real t3, norm = 0;
-	unsigned r;
+	stray_real t3, norm = 0, s, z[STRAY_DET_RESID_NODES];
+	stray_real w[STRAY_DET_RESID_NODES];
+	unsigned r, n, k;
 	int rc;
 
 	if (!(isfinite(alpha) && alpha >= 0))
@@ -251,17 +261,27 @@ int stray_detector_star_prob(const struct stray_detector *d,
 		return stray_error_set_value(err, STRAY_EINVAL, "star_e",
 			STRAY_MSG("must be finite and >= 0"), star_e);
 	t3 = stray_detector_tetra3_threshold(d, m, alpha);
-	if (!map) {
-		*p = region_prob(d, m, alpha, t3, star_e);
-		return STRAY_OK;
-	}
-	if ((rc = stray_region_map_norm(map, &norm, err)) != STRAY_OK)
+	n = stray_detector_resid_nodes(d, z, w);
+	if (map && (rc = stray_region_map_norm(map, &norm, err)) != STRAY_OK)
 		return rc;
 	*p = 0;
-	for (r = 0; r < map->n; r++)
-		if (map->fraction[r] > 0)
-			*p += map->fraction[r] * region_prob(d, m,
-				alpha * map->rel_alpha[r] / norm, t3, star_e);
+	for (k = 0; k < n; k++) {	/* detector.c's eq. R */
+		if (!map) {
+			s = d->bg_resid_rel * stray_fdr_pixel_photons(m, alpha);
+			*p += w[k] * region_prob(d, m, alpha, t3, star_e,
+						 z[k] * s);
+			continue;
+		}
+		for (r = 0; r < map->n; r++) {
+			stray_real a_r = alpha * map->rel_alpha[r] / norm;
+
+			if (!(map->fraction[r] > 0))
+				continue;
+			s = d->bg_resid_rel * stray_fdr_pixel_photons(m, a_r);
+			*p += w[k] * map->fraction[r] * region_prob(d, m, a_r,
+				t3, star_e, z[k] * s);
+		}
+	}
 	return STRAY_OK;
 }
 

@@ -4,14 +4,21 @@
  * stray light at alpha (consistent k_px), each with one designed
  * reference star (m 5.75) at a random place at least 16 px from the
  * edges, rendered by libstray/frames.  Writes per frame the star's x, y
- * (float32) and the DN pixels (uint16), little-endian, to OUT.
+ * (float32) and the DN pixels (uint16), little-endian, to OUT.  With
+ * "mapped", the stray light follows a ramp 0.7-1.3 along columns times
+ * 1 + 0.005 sin sin of 256 px (mean 1, as validate_det.c), and its 64
+ * levels go to OUT.regions.csv (fraction,rel_alpha) for `stray fdr --map`.
  *
- *   render_drs ALPHA FRAMES SEED OUT
+ *   render_drs ALPHA FRAMES SEED OUT [mapped]
  */
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 
+#include <math.h>
+#include <string.h>
+
+#include "frames_io.h"
 #include "stray/fdr.h"
 #include "stray/frames.h"
 #include "stray/photometry_io.h"
@@ -23,6 +30,7 @@ int main(int argc, char **argv)
 {
 	static float expect[W * W];
 	static uint16_t dn[W * W];
+	static float wmap[W * W];
 	const struct stray_sensor *s = stray_sensor_st16_like();
 	struct stray_fdr_model m;
 	struct stray_frame_cfg c;
@@ -32,8 +40,8 @@ int main(int argc, char **argv)
 	FILE *out;
 	long i, n;
 
-	if (argc != 5)
-		return fprintf(stderr, "usage: render_drs ALPHA FRAMES SEED OUT\n"), 2;
+	if (argc != 5 && !(argc == 6 && strcmp(argv[5], "mapped") == 0))
+		return fprintf(stderr, "usage: render_drs ALPHA FRAMES SEED OUT [mapped]\n"), 2;
 	if (stray_reference_fluxes(s, &f, NULL) != STRAY_OK)
 		return 1;
 	stray_sensor_fdr_model(s, f.sun, f.drs, &m);
@@ -42,6 +50,36 @@ int main(int argc, char **argv)
 	c.dark_e = s->dark_current_e_s * s->t_exp_s;
 	c.read_noise_e = s->read_noise_e;
 	c.psf_sigma_px = 1.5;
+	if (argc == 6) {
+		struct stray_region_map map;
+		char path[4096];
+		double sum = 0;
+		unsigned k;
+		int x, y;
+
+		for (y = 0; y < W; y++)
+			for (x = 0; x < W; x++) {
+				double v = (0.7 + 0.6 * (x + 0.5) / W) *
+					(1 + 0.005 * sin(2 * 3.14159265358979 * (x + 0.5) / 256) *
+					 sin(2 * 3.14159265358979 * (y + 0.5) / 256));
+
+				wmap[y * W + x] = (float)v;
+				sum += v;
+			}
+		for (x = 0; x < W * W; x++)
+			wmap[x] = (float)(wmap[x] / (sum / (W * W)));
+		c.weight = wmap;
+		frames_map_regions(wmap, (size_t)W * W, &map);
+		snprintf(path, sizeof(path), "%s.regions.csv", argv[4]);
+		out = fopen(path, "w");
+		if (!out)
+			return 1;
+		fprintf(out, "fraction,rel_alpha\n");
+		for (k = 0; k < map.n; k++)
+			fprintf(out, "%.9g,%.9g\n", map.fraction[k], map.rel_alpha[k]);
+		if (fclose(out))
+			return 1;
+	}
 	n = atol(argv[2]);
 	r = (uint64_t)atol(argv[3]) * 0x9E3779B97F4A7C15ull + 7;
 	out = fopen(argv[4], "wb");

@@ -24,6 +24,7 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "frames_adc.h"
 #include "stray/detector.h"
 #include "stray/frames.h"
 #include "stray/photometry_io.h"
@@ -270,8 +271,23 @@ static void check_prob(struct mc *c, struct stray_detector *d, double alpha,
 			found += detect_tetra3(c, d->sigma_k, d->min_px, NS);
 	}
 	*meas = (double)found / ((double)frames * NS);
-	assert_int_equal(stray_detector_star_prob(d, &c->m, alpha, star, model,
-						  NULL), STRAY_OK);
+	if (d->kind == STRAY_DET_THRESHOLD) {
+		/* The test's pixels are whole DN: the threshold's place on
+		 * the ADC's 2 e- steps, exactly (frames_adc.h eq. 1), with the
+		 * background known; the steps leave the variance. */
+		static struct stray_detector dd;
+		struct stray_fdr_model mm = c->m;
+		double level = c->cfg.stray_e + c->cfg.dark_e;
+
+		dd = *d;
+		dd.pixel_t_e = frames_adc_threshold(d->pixel_t_e, level, level,
+						    c->cfg.gain_e_per_dn);
+		mm.read_noise_e = c->cfg.read_noise_e;
+		assert_int_equal(stray_detector_star_prob(&dd, &mm, alpha, star,
+							  model, NULL), STRAY_OK);
+	} else
+		assert_int_equal(stray_detector_star_prob(d, &c->m, alpha, star,
+							  model, NULL), STRAY_OK);
 	printf("# %-9s k %g alpha %.3g star %.0f e-: P model %.3f measured %.3f (%d stars)\n",
 	       stray_detector_name(d->kind), d->sigma_k, alpha, star, *model,
 	       *meas, frames * NS);
@@ -315,6 +331,28 @@ static void test_threshold_lost(void **state)
 
 	(void)state;
 	prob_case(STRAY_DET_THRESHOLD, 3, 0.6, a, 5, 32);
+}
+
+/* The DRS itself through the threshold detector: ~0.95 from 0 to 4e-7,
+ * right at Pr_drs, so whether lost stars bind turns on 0.01: the
+ * component model (detector_blob.c) must hold to that.  The rule it
+ * replaced said 0.965-0.98 here, and "never" for the lost-star limit. */
+static void test_threshold_drs(void **state)
+{
+	static const double a[] = { 1e-7, 3e-7 };
+	struct mc *c = mc_new();
+	struct stray_detector d;
+	double meas, model;
+	int i;
+
+	(void)state;
+	for (i = 0; i < 2; i++) {
+		stray_detector_init(&d, STRAY_DET_THRESHOLD, c->m.n_pps);
+		check_prob(c, &d, a[i], stray_fdr_drs_photons(&c->m), 64, &meas,
+			   &model);
+		assert_true(fabs(model - meas) <= 0.015);
+	}
+	free(c);
 }
 
 static void test_tetra3_lost(void **state)
@@ -381,6 +419,7 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_window_lost),
 		cmocka_unit_test(test_threshold_lost),
+		cmocka_unit_test(test_threshold_drs),
 		cmocka_unit_test(test_tetra3_lost),
 		cmocka_unit_test(test_tetra3_false),
 	};

@@ -36,6 +36,9 @@ struct frames_detect_cfg {
 struct frames_detection {
 	double x, y;		/* centroid, px (pixel centres at i + 0.5) */
 	double n_px;		/* pixels of the region */
+	/* the region's bounding box, pixel centres (i + 0.5), inclusive:
+	 * the window detector's lost-star rule (frames_lost.h) */
+	double x0, y0, x1, y1;
 };
 
 struct frames_detect_out {

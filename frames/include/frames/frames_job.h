@@ -46,6 +46,8 @@ struct frames_opts {
 struct frames_det_result {
 	const char *name;	/* "thesis" or "threshold" */
 	double measured, sigma, extended, found;	/* per frame */
+	double dispersion;	/* frame-to-frame variance / mean */
+	double extended_no_map_term;	/* extended without the map's term */
 	char verdict[512];	/* frames_diagnose's reading */
 };
 
@@ -55,6 +57,9 @@ struct frames_job {
 	struct frames_opts a;
 	int cols, rows, col0, row0;
 	double k_px, alpha, wmean, stars_sum;
+	double clip_frac;		/* pixels whose background clips */
+	double resid_rel;		/* the map's background-error term */
+	double flat[2];			/* extended rates without it */
 	float *weight, *expect, *tiles;
 	uint16_t *dn;
 	struct stray_star *stars;
@@ -68,6 +73,7 @@ struct frames_job {
 	struct frames_evidence ev[2];
 	struct frames_lost lost;	/* stars found per magnitude (issue 28) */
 	long n_false[2], n_found[2];
+	double n_false_sq[2];		/* sum of per-frame counts squared */
 	struct frames_det_result res[2];	/* thesis, threshold */
 	uint16_t *det_rows;		/* detector row of each frame row */
 	struct stray_dir_out dir;	/* out_dir, filled as a temporary */
