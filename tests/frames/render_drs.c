@@ -18,7 +18,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "frames_io.h"
+#include "frames/frames_io.h"
 #include "stray/fdr.h"
 #include "stray/frames.h"
 #include "stray/photometry_io.h"

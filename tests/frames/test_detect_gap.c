@@ -27,8 +27,8 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "frames_adc.h"
-#include "frames_run.h"
+#include "frames/frames_adc.h"
+#include "frames/frames_run.h"
 #include "stray/photometry_io.h"
 #include "stray/sensor.h"
 

@@ -24,7 +24,7 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "frames_adc.h"
+#include "frames/frames_adc.h"
 #include "stray/detector.h"
 #include "stray/frames.h"
 #include "stray/photometry_io.h"

@@ -15,9 +15,9 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "frames_io.h"
-#include "frames_mapterm.h"
-#include "frames_run.h"
+#include "frames/frames_io.h"
+#include "frames/frames_mapterm.h"
+#include "frames/frames_run.h"
 #include "stray/photometry_io.h"
 #include "stray/sensor.h"
 

@@ -15,10 +15,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "frames_adc.h"
-#include "frames_io.h"
-#include "frames_mapterm.h"
-#include "frames_run.h"
+#include "frames/frames_adc.h"
+#include "frames/frames_io.h"
+#include "frames/frames_mapterm.h"
+#include "frames/frames_run.h"
 #include "stray/photometry_io.h"
 #include "stray/sensor.h"
 
