@@ -47,15 +47,27 @@ $(B)/obj/%.o: %.S
 deps:
 	@scripts/install-deps.sh
 
-# The README's test command.  Installs what is missing, fuzzes each
-# parser's target for 15 s (two at a time), runs the demo small and
-# checks its report, runs every test binary, then repeats the suite under
-# AddressSanitizer and UBSan.
+# The README's test command.  Installs what is missing, builds the three
+# trees at once (normal, ASan+UBSan, fuzz targets: one -j2 job server, so
+# neither core waits on a serial link), fuzzes each parser's target for
+# 15 s (two at a time), runs the demo small and checks its report, runs
+# every test binary, then repeats the suite under AddressSanitizer and
+# UBSan (TEST_JOBS binaries at a time, tests/run-tests.sh).
+TEST_JOBS ?= 2
+export TEST_JOBS
 test: deps
+	@$(MAKE) --no-print-directory -j$(TEST_JOBS) test-builds
 	@$(MAKE) --no-print-directory fuzz-ci
 	@$(MAKE) --no-print-directory demo-check
 	@$(MAKE) --no-print-directory check
 	@$(MAKE) --no-print-directory check B=build/asan SAN=1
+
+.PHONY: test-builds test-build-normal test-build-asan check-build
+test-builds: test-build-normal test-build-asan fuzz-build
+test-build-normal:
+	+@$(MAKE) --no-print-directory check-build
+test-build-asan:
+	+@$(MAKE) --no-print-directory check-build B=build/asan SAN=1
 
 # The README's first command, run small and read as a reader would: the
 # report opened in headless Chromium, every figure loaded, no section empty.
@@ -66,14 +78,16 @@ demo-check: all
 	@scripts/check-report.sh $(B)/demo-check --complete
 
 # TESTS_SLOW: tests too slow under the sanitizers, run in the normal pass only.
-check: all $(TESTS) $(if $(filter 1,$(SAN)),,$(TESTS_SLOW))
+CHECK_BINS = $(TESTS) $(if $(filter 1,$(SAN)),,$(TESTS_SLOW))
+check-build: all $(CHECK_BINS)
+check: check-build
 	@scripts/check-core.sh $(STRAY_CORE_LIB)
 	@scripts/check-equations.sh
 	@scripts/check-docs.sh
 ifneq ($(SAN),1)	# an instrumented library is not for installing
 	@scripts/check-install.sh $(B)
 endif
-	@tests/run-tests.sh $(B) $(TESTS) $(if $(filter 1,$(SAN)),,$(TESTS_SLOW))
+	@tests/run-tests.sh $(B) $(CHECK_BINS)
 
 # deps first, then a fresh make for the build: on a bare machine the
 # packages arrive with deps, after this Makefile was parsed, and `make -j`
