@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Run every test binary given, from the top of the tree, TEST_JOBS at a
+# Run every test binary given (or any program: make test adds the demo
+# check), from the top of the tree, TEST_JOBS at a
 # time (default 2: the binaries are independent, each works in its own
 # mkdtemp folder; one after another left a core idle through the tests
 # that wait on daemons, sockets and mpirun), and close with one line that
@@ -7,6 +8,7 @@
 # output is printed whole when it ends.  The slowest binaries of the last
 # run (BUILD_DIR/test-times.txt, seconds per binary) start first, so two
 # long ones do not end the run alone.
+# A binary under OTHER_BUILD/tests/ runs with STRAY_BUILD=OTHER_BUILD.
 # Usage: [TEST_JOBS=N] tests/run-tests.sh BUILD_DIR BINARY...
 set -u
 build=$1; shift
@@ -19,6 +21,12 @@ times="$build/test-times.txt"
 
 if [ "${1:-}" = --one ]; then	# internal: xargs calls back here
 	dir=$2 t=$3
+	# a binary of another tree (make test: build/asan/tests/...) runs
+	# with that tree's stray
+	case $t in
+	*/tests/*) export STRAY_BUILD="${t%%/tests/*}"
+		   export STRAY_BIN="$STRAY_BUILD/bin/stray" ;;
+	esac
 	log="$dir/$(echo "$t" | tr / _)"
 	t0=$(date +%s%N)
 	"$t" >"$log.out" 2>&1
