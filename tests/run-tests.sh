@@ -39,10 +39,11 @@ if [ "${1:-}" = --one ]; then	# internal: xargs calls back here
 fi
 
 dir=$(mktemp -d); trap 'rm -rf "$dir"' EXIT
-# the last run's slowest first, the rest in the order given
+# the last run's slowest first; one it has not timed (new, or every one
+# on a fresh tree) before all, in the order given: it may be long
 order=$(printf '%s\n' "$@" | awk -v f="$times" '
 	BEGIN { while ((getline l < f) > 0) { split(l, a, " "); s[a[1]] = a[2] } }
-	{ print (($0 in s) ? s[$0] : 0), NR, $0 }' |
+	{ print (($0 in s) ? s[$0] : 1e9), NR, $0 }' |
 	sort -k1,1gr -k2,2n | cut -d' ' -f3-)
 [ $# -eq 0 ] || printf '%s\n' "$order" | xargs -d '\n' -P "$jobs" -n 1 "$0" "$build" --one "$dir"
 
