@@ -52,8 +52,7 @@ peer-check: $(B)/bench/bench_trace
 # others (FUZZ_TARGETS in tests/module.mk); seeds in tests/fuzz/seeds/tracer_args.
 TRACER_FUZZ := build/fuzz/fuzz_tracer_args
 $(TRACER_FUZZ): tests/tracer/fuzz_tracer_args.c tracer/angles.c \
-		tracer/baffle_params.c $(STRAY_CORE_SRC) $(STRAY_HOST_SRC) \
-		libstray/host/builtin_data.S
+		tracer/baffle_params.c $(FUZZ_LIB_A)
 	@mkdir -p $(dir $@)
 	$(CLANG) -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined \
 		$(CPPFLAGS_HOST) -D_DEFAULT_SOURCE -Itracer/include \

@@ -47,9 +47,9 @@ $(B)/tests/reduce/%: $(B)/obj/tests/reduce/%.o $(REDUCE_TEST_SYNTH) \
 
 # The sweep store's manifest/FITS parsers under libFuzzer (`make fuzz`,
 # `make fuzz-smoke`).
+# (the library archives come from tests/module.mk, read after this file)
 build/fuzz/fuzz_reduce_input: tests/fuzz/fuzz_reduce_input.c \
-		$(STRAY_SWEEP_SRC) $(STRAY_CORE_SRC) $(STRAY_HOST_SRC) \
-		libstray/host/builtin_data.S
+		build/fuzz/obj/libsweep_fuzz.a build/fuzz/obj/libstray_fuzz.a
 	@mkdir -p $(dir $@)
 	$(CLANG) -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined \
 		$(CPPFLAGS_HOST) -I/usr/include/cjson \
