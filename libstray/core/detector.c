@@ -76,28 +76,6 @@ void stray_detector_init(struct stray_detector *d,
 	d->n_animal = 0;
 }
 
-stray_real stray_detector_pixel_var(const struct stray_fdr_model *m,
-				    stray_real alpha)
-{
-	return stray_fdr_pixel_photons(m, alpha) +
-	       m->read_noise_e * m->read_noise_e +
-	       m->dark_current_e_s * m->t_exp_s;
-}
-
-/* Fraction of a star's photons in pixel (i, j) from the star, sigma s,
- * the star at (ox, oy) from the centre of pixel (0, 0). */
-stray_real stray_detector_psf_pixel(stray_real s, stray_real ox,
-				    stray_real oy, int i, int j)
-{
-	stray_real k = 1 / (s * STRAY_R(1.41421356237309505));
-	stray_real gx = STRAY_R(0.5) * (stray_erfc((i - STRAY_R(0.5) - ox) * k) -
-				stray_erfc((i + STRAY_R(0.5) - ox) * k));
-	stray_real gy = STRAY_R(0.5) * (stray_erfc((j - STRAY_R(0.5) - oy) * k) -
-				stray_erfc((j + STRAY_R(0.5) - oy) * k));
-
-	return gx * gy;
-}
-
 /* The fraction in the n-th brightest pixel of a star centred on a pixel. */
 static stray_real nth_pixel_fraction(stray_real s, unsigned n)
 {
@@ -263,17 +241,6 @@ static int region_pixel_rate(const struct stray_detector *d,
 	return STRAY_OK;
 }
 
-/* The k sigma threshold of TETRA3: k times the frame's RMS after the
- * background is removed, the root mean square over the map's regions. */
-stray_real stray_detector_tetra3_threshold(const struct stray_detector *d,
-					   const struct stray_fdr_model *m,
-					   stray_real alpha)
-{
-	/* the map's rel_alpha has mean 1, so the mean variance is that of
-	 * the mean level: the variance is linear in I_px */
-	return d->sigma_k * stray_sqrt(stray_detector_pixel_var(m, alpha));
-}
-
 /* One region's ln false stars: n_px pixels at mean stray photons i_px,
  * the background estimate low by z bg_resid_rel i_px (eq. R below). */
 static int region_rate(const struct stray_detector *d,
@@ -347,37 +314,6 @@ static int map_false_rate(const struct stray_detector *d,
  * or I_sdt with n_px z_k s for the window sum).  Convex in e, so structure
  * adds false stars and, for a star near its limit, takes few.
  */
-static const stray_real gh_z[STRAY_DET_RESID_NODES] = {
-	STRAY_R(0.0), STRAY_R(1.154405394739968), STRAY_R(-1.154405394739968),
-	STRAY_R(2.366759410734541), STRAY_R(-2.366759410734541),
-	STRAY_R(3.750439717725742), STRAY_R(-3.750439717725742)
-};
-static const stray_real gh_w[STRAY_DET_RESID_NODES] = {
-	STRAY_R(0.457142857142857), STRAY_R(0.240123178605013),
-	STRAY_R(0.240123178605013), STRAY_R(0.030757123967586),
-	STRAY_R(0.030757123967586), STRAY_R(0.000548268855972),
-	STRAY_R(0.000548268855972)
-};
-
-unsigned stray_detector_resid_nodes(const struct stray_detector *d,
-				    stray_real z[STRAY_DET_RESID_NODES],
-				    stray_real w[STRAY_DET_RESID_NODES])
-{
-	unsigned k;
-
-	if (!(d->bg_resid_rel > 0) || (d->kind != STRAY_DET_WINDOW &&
-				       d->kind != STRAY_DET_THRESHOLD)) {
-		z[0] = 0;
-		w[0] = 1;
-		return 1;
-	}
-	for (k = 0; k < STRAY_DET_RESID_NODES; k++) {
-		z[k] = gh_z[k];
-		w[k] = gh_w[k];
-	}
-	return STRAY_DET_RESID_NODES;
-}
-
 int stray_detector_log_false_rate(const struct stray_detector *d,
 				  const struct stray_fdr_model *m,
 				  stray_real alpha, stray_real *log_rate,

@@ -28,7 +28,8 @@
  * once the ADC's steps are modelled (tests/frames/test_detect_gap.c).
  * Freestanding: no heap, no recursion, every loop bounded.
  */
-#include "stray/detector.h"
+#include "stray/detector_blob.h"
+#include "stray/detector_pixel.h"
 #include "stray/tail.h"
 
 #define HALF 3			/* animal cells within +-3 of the seed */

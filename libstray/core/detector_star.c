@@ -8,7 +8,9 @@
  * pixel (SUB x SUB places over a quarter pixel: every detector is
  * symmetric).  Freestanding: no heap, every loop bounded.
  */
-#include "stray/detector.h"
+#include "stray/detector_blob.h"
+#include "stray/detector_pixel.h"
+#include "stray/detector_star.h"
 #include "stray/tail.h"
 
 #define SUB 4			/* places per axis over [0, 1/2) px */

@@ -244,3 +244,19 @@ void rig_daemon_work(struct rig_daemon *d)
 		rig_daemon_log_end(d, "complete");
 	}
 }
+
+/* The lab's safe state in words, each line read back (rig_lab_is_safe):
+ * what the daemon says at a stop, at `safe` and in `rig status`. */
+int rig_daemon_safe_line(const struct rig_daemon *d, char *buf, size_t size)
+{
+	char why[200];
+	int safe = rig_lab_is_safe(&d->lab, why, sizeof(why));
+
+	if (safe)
+		snprintf(buf, size, "lab safe (lamp off, beam blocked, "
+			 "shutter closed: each read back)");
+	else
+		snprintf(buf, size, "safe state NOT confirmed: %s; check the "
+			 "lamp, beam block and shutter by hand", why);
+	return safe;
+}

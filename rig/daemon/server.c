@@ -49,20 +49,6 @@ int rig_daemon_start(struct rig_daemon *d, struct rig_error *err)
 	return rc;
 }
 
-int rig_daemon_safe_line(const struct rig_daemon *d, char *buf, size_t size)
-{
-	char why[200];
-	int safe = rig_lab_is_safe(&d->lab, why, sizeof(why));
-
-	if (safe)
-		snprintf(buf, size, "lab safe (lamp off, beam blocked, "
-			 "shutter closed: each read back)");
-	else
-		snprintf(buf, size, "safe state NOT confirmed: %s; check the "
-			 "lamp, beam block and shutter by hand", why);
-	return safe;
-}
-
 void rig_daemon_stop(struct rig_daemon *d)
 {
 	struct rig_error err;

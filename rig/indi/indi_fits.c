@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "indi_lab.h"
+#include "indi_props.h"
 
 int rig_indi_fits_image(const unsigned char *data, size_t len,
 			const struct rig_camera_cfg *cam, const char *dev,

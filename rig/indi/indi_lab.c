@@ -18,7 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "indi_lab.h"
+#include "indi_props.h"
 #include "rig/lab.h"
 
 

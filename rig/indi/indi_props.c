@@ -1,5 +1,5 @@
 /*
- * indi_props.c - the INDI lab's conversation with its devices (indi_lab.h):
+ * indi_props.c - the INDI lab's conversation with its devices (indi_props.h):
  * the server reached, a device connected, a property defined, a number
  * vector or a switch set and the device's answer waited for.  Each names
  * the device and property in its one-line error; a device gone (deleted
@@ -9,7 +9,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "indi_lab.h"
+#include "indi_props.h"
 #include "rig/lab.h"
 
 int ilab_server(struct rig_lab *lab, const char *dev, struct rig_error *err)

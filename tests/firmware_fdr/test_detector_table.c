@@ -32,7 +32,7 @@ struct det_case {
 
 static const struct det_case cases[] = {
 	{ STRAY_DET_WINDOW, 0.0, STRAY_FAIL_LOST_STARS },
-	{ STRAY_DET_THRESHOLD, 0.0, STRAY_FAIL_FALSE_STARS },
+	{ STRAY_DET_THRESHOLD, 0.0, STRAY_FAIL_LOST_STARS },	/* the component model */
 	{ STRAY_DET_TETRA3, 3.0, STRAY_FAIL_LOST_STARS },
 	{ STRAY_DET_TETRA3, 5.0, STRAY_FAIL_LOST_STARS },
 };

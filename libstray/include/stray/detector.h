@@ -27,55 +27,12 @@
 #ifndef STRAY_DETECTOR_H
 #define STRAY_DETECTOR_H
 
-#include "stray/fdr.h"
-#include "stray/fdr_field.h"
+#include "stray/detector_blob.h"
+#include "stray/detector_pixel.h"
+#include "stray/detector_star.h"
+#include "stray/detector_types.h"
+#include "stray/error.h"
 
-enum stray_detector_kind {
-	STRAY_DET_THESIS = 0,
-	STRAY_DET_WINDOW = 1,
-	STRAY_DET_THRESHOLD = 2,
-	STRAY_DET_TETRA3 = 3
-};
-#define STRAY_DET_COUNT 4
-
-/* Window positions near a star searched by the WINDOW model. */
-#define STRAY_DET_POS_MAX 21
-
-/* THRESHOLD's lost-star model (detector_blob.c): the 8-connected lattice
- * animals of 1..min_px-1 cells through a pixel (1 + 8 + 60 + 440 = 509
- * for min_px 5), each with its 8-neighbour perimeter; cells and perimeter
- * as codes (dy + 4) * 9 + dx + 4 about that pixel. */
-#define STRAY_DET_BLOB_PX_MAX 5		/* min_px the table covers */
-#define STRAY_DET_ANIMALS_MAX 512
-#define STRAY_DET_PERIM_MAX 24
-struct stray_det_animal {
-	unsigned char n_cell, n_per;
-	unsigned char cell[STRAY_DET_BLOB_PX_MAX - 1];
-	unsigned char per[STRAY_DET_PERIM_MAX];
-};
-
-struct stray_detector {
-	enum stray_detector_kind kind;
-	stray_real sigma_k;		/* TETRA3: threshold in frame sigmas */
-	unsigned min_px;		/* THRESHOLD, TETRA3: least blob area */
-	stray_real psf_sigma_px;	/* Gaussian PSF sigma of a star */
-	stray_real window_r_px;		/* disk window radius (n_pps) */
-	/* Filled by stray_detector_setup from the model. */
-	stray_real i_sdt_e;		/* THESIS, WINDOW: eq. 2.16 */
-	stray_real pixel_t_e;		/* THRESHOLD: pixel threshold */
-	struct stray_window_corr win;	/* WINDOW: neighbour overlaps */
-	stray_real pos_rho;		/* WINDOW: mean overlap of positions */
-	/* WINDOW, THRESHOLD: rms of the error of the detector's background
-	 * estimate per pixel, in units of the mean stray level: the focal
-	 * map's structure its estimator cannot follow (stray frames: the map
-	 * against its 128 px tiles' bilinear, frames_mapterm.h).  0: none
-	 * (uniform light, or a region map without places). */
-	stray_real bg_resid_rel;
-	/* THRESHOLD, min_px <= STRAY_DET_BLOB_PX_MAX: the animals smaller
-	 * than min_px through a pixel (0: the Poisson-binomial rule). */
-	unsigned n_animal;
-	struct stray_det_animal animal[STRAY_DET_ANIMALS_MAX];
-};
 
 /* "thesis", "window", "threshold", "tetra3" (NULL outside the enum). */
 const char *stray_detector_name(enum stray_detector_kind k);
@@ -98,10 +55,6 @@ int stray_detector_setup(struct stray_detector *d,
 			 const struct stray_fdr_model *m,
 			 struct stray_error *err);
 
-/* Variance of one pixel's count at attenuation alpha: I_px + read^2 +
- * dark t (the model's detector noise; zero for the bare thesis). */
-stray_real stray_detector_pixel_var(const struct stray_fdr_model *m,
-				    stray_real alpha);
 
 /* ln false stars per image of m->n_tot pixels at alpha (map included,
  * and the background-error term: eq. R of detector.c). */
@@ -110,22 +63,7 @@ int stray_detector_log_false_rate(const struct stray_detector *d,
 				  stray_real alpha, stray_real *log_rate,
 				  struct stray_error *err);
 
-/*
- * Probability that a star of star_e photo-electrons at a uniformly random
- * place is detected at attenuation alpha (averaged over the map's regions
- * and over the star's place within a pixel).
- */
-int stray_detector_star_prob(const struct stray_detector *d,
-			     const struct stray_fdr_model *m, stray_real alpha,
-			     stray_real star_e, stray_real *p,
-			     struct stray_error *err);
 
-/* The photons a star needs to be detected with probability pr at alpha
- * (the limiting magnitude's flux); STRAY_ERANGE beyond 1e12 e-. */
-int stray_detector_limiting_e(const struct stray_detector *d,
-			      const struct stray_fdr_model *m,
-			      stray_real alpha, stray_real pr,
-			      stray_real *star_e, struct stray_error *err);
 
 enum stray_failure_mode {
 	STRAY_FAIL_FALSE_STARS = 0,
@@ -158,39 +96,5 @@ int stray_detector_alpha_required(const struct stray_detector *d,
 				  stray_real rate, stray_real pr_min,
 				  struct stray_detector_req *r,
 				  struct stray_error *err);
-
-/* Shared by detector.c and detector_star.c. */
-/* Fraction of a star's photons (Gaussian PSF of sigma s, pixel-
- * integrated) in pixel (i, j), the star at (ox, oy) from pixel (0, 0)'s
- * centre. */
-stray_real stray_detector_psf_pixel(stray_real s, stray_real ox,
-				    stray_real oy, int i, int j);
-/* The WINDOW model's positions near a star: offsets of pixel centres from
- * the star's pixel within sqrt(5) px; returns their number. */
-unsigned stray_detector_positions(int dx[STRAY_DET_POS_MAX],
-				  int dy[STRAY_DET_POS_MAX]);
-/* THRESHOLD's animals for d->min_px (n_animal 0 past
- * STRAY_DET_BLOB_PX_MAX); called by stray_detector_setup. */
-int stray_detector_blob_setup(struct stray_detector *d,
-			      struct stray_error *err);
-/* THRESHOLD: the chance that the 8-connected component of pixels above
- * d->pixel_t_e through one of the four pixels nearest a star of star e-
- * at (ox, oy) in [0, 1/2)^2 from pixel (0, 0)'s centre has >= min_px
- * pixels, under background variance b. */
-stray_real stray_detector_blob_prob(const struct stray_detector *d,
-				    stray_real b, stray_real star,
-				    stray_real ox, stray_real oy, stray_real t);
-/* The background-error term: STRAY_DET_RESID_NODES Gauss-Hermite nodes
- * (z, weight) of N(0, 1), the error at node k being z_k bg_resid_rel
- * I_px(alpha); n = 1 (z 0, weight 1) when bg_resid_rel is 0 or the
- * detector follows the frame (THESIS, TETRA3). */
-#define STRAY_DET_RESID_NODES 7
-unsigned stray_detector_resid_nodes(const struct stray_detector *d,
-				    stray_real z[STRAY_DET_RESID_NODES],
-				    stray_real w[STRAY_DET_RESID_NODES]);
-/* TETRA3's threshold above the background at alpha, e-. */
-stray_real stray_detector_tetra3_threshold(const struct stray_detector *d,
-					   const struct stray_fdr_model *m,
-					   stray_real alpha);
 
 #endif /* STRAY_DETECTOR_H */

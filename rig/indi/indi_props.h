@@ -1,9 +1,9 @@
 /*
- * indi_lab.h - private to rig/indi: the device conversation (indi_props.c)
+ * indi_props.h - private to rig/indi: the device conversation (indi_props.c)
  * and the FITS BLOB reader (indi_fits.c).
  */
-#ifndef RIG_INDI_LAB_H
-#define RIG_INDI_LAB_H
+#ifndef RIG_INDI_PROPS_H
+#define RIG_INDI_PROPS_H
 
 #include "rig/devices.h"
 
@@ -39,4 +39,4 @@ int rig_indi_fits_image(const unsigned char *data, size_t len,
 			struct rig_image *img, double *exptime_s,
 			struct rig_error *err);
 
-#endif /* RIG_INDI_LAB_H */
+#endif /* RIG_INDI_PROPS_H */
