@@ -63,10 +63,17 @@ static int fit_p0(const struct stray_visit *v, size_t n, struct p0_line *f,
 
 		if (!on_axis(&v[i]))
 			continue;
-		if (!(v[i].power > 0.0))
-			return stray_error_set_value(err, STRAY_EINVAL, "ANGLE",
-				"on-axis power P(0) is not positive",
-				v[i].power);
+		/* The on-axis power must stand clear of its own noise: a
+		 * sweep without source light (lamp off, beam blocked, a
+		 * simulator's sky) otherwise normalises noise by noise and
+		 * gives alpha > 1.  The value named is the power, not an
+		 * angle. */
+		if (!(v[i].power > 3.0 * sqrt(fmax(v[i].var_power, 0.0))))
+			return stray_error_set_value(err, STRAY_EINVAL,
+				"P(0)", "the on-axis visit's power (eq. 3.9, lit "
+				"minus ambient frames) is not above 3 times its "
+				"noise: no source light reached the camera at "
+				"0 deg", v[i].power);
 		sw += w;
 		swo += w * v[i].order;
 		swp += w * v[i].power;

@@ -163,6 +163,23 @@ static void test_sweep_through_simulators(void **state)
 		      (ms_now() - t0) / 1e3);
 	snprintf(cmd, sizeof(cmd), "%s/s", dir);
 	check_complete(cmd);
+	{
+		/* The simulator's frames hold no source light: `stray
+		 * reduce` reads the folder and refuses, naming the on-axis
+		 * power it found (not an angle of the sweep). */
+		const char *s = getenv("STRAY_BIN");
+		char err[2048];
+
+		snprintf(cmd, sizeof(cmd), "%s reduce %s/s --out %s/c.csv "
+			 "2>%s/rerr; test $? -eq 2", s ? s : "build/bin/stray",
+			 dir, dir, dir);
+		assert_int_equal(sh(cmd), 0);
+		snprintf(cmd, sizeof(cmd), "%s/rerr", dir);
+		get_file(cmd, err, sizeof(err));
+		assert_non_null(strstr(err, "P(0) "));
+		assert_non_null(strstr(err, "no source light reached"));
+		assert_null(strstr(err, "ANGLE"));
+	}
 	remove_tree(dir);
 	free(dir);
 }
