@@ -129,7 +129,16 @@ def _read_fits_u16(path):
 
 
 def test_frames_equal_cli_without_a_copy(cli_trace, tmp_path):
-    path, _ = cli_trace
+    # The bare baffle's light at 35 deg (alpha 1.4e-4) fills every pixel to
+    # the ADC's full scale, which `stray frames` refuses: a system curve,
+    # the baffle's off-axis alpha times 1e-3 (a lens), as a CSV of its own.
+    c = sl.read_curve(cli_trace[0])
+    path = tmp_path / "system.csv"
+    with open(path, "w") as fh:
+        fh.write("theta_deg,alpha,sigma\n")
+        for t, a, e in zip(c.theta_deg, c.alpha, c.sigma):
+            k = 1.0 if t == 0 else 1e-3
+            fh.write("%.17g,%.17g,%.17g\n" % (t, a * k, e * k))
     f = sl.frames(curve=path, theta=35, frames=2, window=96, seed=7)
     want = cli_json("frames", "--curve", path, "--theta", "35", "--frames",
                     "2", "--window", "96", "--seed", "7", "--out-dir",

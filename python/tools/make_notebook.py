@@ -58,9 +58,11 @@ cells = [
     md("## Frames with the Sun at 35°\n\n"
        "Rendered 256 × 256 windows (stray light, a synthetic star field, "
        "camera noise), the star detectors run on them, and false stars "
-       "against the FDR model.  `f.images` is a uint16 array over the "
-       "library's own buffer — no copy."),
-    code("f = sl.frames(curve=baffle, theta=35, frames=2, window=256, seed=7)\n"
+       "against the FDR model.  Through the system (baffle and lens): the "
+       "bare baffle's light at 35° would fill every pixel to the ADC's full "
+       "scale, which `stray frames` refuses.  `f.images` is a uint16 array "
+       "over the library's own buffer — no copy."),
+    code("f = sl.frames(curve=system, theta=35, frames=2, window=256, seed=7)\n"
          "print(f.images.shape, f.images.dtype, 'owns its data:',\n"
          "      f.images.flags.owndata)\n"
          "s = f.summary\n"
