@@ -87,8 +87,8 @@ build/fuzz/fuzz_sweep_manifest: tests/fuzz/fuzz_sweep_manifest.c \
 
 # The lab's log of `stray sweep import` (issue 26) alone.
 build/fuzz/fuzz_import_log: tests/fuzz/fuzz_import_log.c \
-		libstray/sweep/import_log.c libstray/sweep/format.c \
-		$(FUZZ_LIB_SRC)
+		libstray/sweep/import_log.c libstray/sweep/csv_line.c \
+		libstray/sweep/format.c $(FUZZ_LIB_A)
 	@mkdir -p $(dir $@)
 	$(CLANG) $(FUZZ_CFLAGS) -o $@ $^ $(STRAY_LDLIBS)
 
@@ -96,7 +96,7 @@ build/fuzz/fuzz_import_log: tests/fuzz/fuzz_import_log.c \
 # TIFF (libtiff), both from memory.
 build/fuzz/fuzz_import_frame: tests/fuzz/fuzz_import_frame.c \
 		libstray/sweep/import_frame.c libstray/sweep/import_tiff.c \
-		libstray/sweep/format.c $(FUZZ_LIB_SRC)
+		libstray/sweep/format.c $(FUZZ_LIB_A)
 	@mkdir -p $(dir $@)
 	$(CLANG) $(FUZZ_CFLAGS) -o $@ $^ $(STRAY_LDLIBS)
 

@@ -1,9 +1,10 @@
 /*
  * format.c - the names of a sweep folder (sweep_store.h): frame types
- * and frame file names.
+ * and frame file names, and a file listed twice.
  */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "stray/sweep_store.h"
@@ -90,5 +91,47 @@ int stray_sweep_utc_parse(const char *text, double *t)
 		return STRAY_EPARSE;
 	*t = (double)days_from_civil(y, mo, d) * 86400.0 + h * 3600.0 +
 	     mi * 60.0 + sec + frac;
+	return STRAY_OK;
+}
+
+struct file_key {
+	const char *file;
+	long line;
+	size_t index;
+};
+
+static int by_file(const void *a, const void *b)
+{
+	const struct file_key *x = a, *y = b;
+	int c = strcmp(x->file, y->file);
+
+	return c ? c : (x->line > y->line) - (x->line < y->line);
+}
+
+int stray_sweep_repeated_file(const void *rows, size_t n, size_t size,
+			      size_t name_off, size_t line_off, size_t *dup)
+{
+	const unsigned char *base = rows;
+	struct file_key *k = malloc((n ? n : 1) * sizeof(*k));
+	size_t i;
+
+	*dup = n;
+	if (!k)
+		return STRAY_ENOMEM;
+	for (i = 0; i < n; i++) {
+		const unsigned char *r = base + i * size;
+
+		k[i].file = (const char *)(r + name_off);
+		memcpy(&k[i].line, r + line_off, sizeof(long));
+		k[i].index = i;
+	}
+	qsort(k, n, sizeof(*k), by_file);
+	for (i = 1; i < n; i++)	/* sorted: a repeat follows its first */
+		if (strcmp(k[i].file, k[i - 1].file) == 0 &&
+		    (*dup == n || k[i].line < k[*dup].line))
+			*dup = i;
+	if (*dup < n)
+		*dup = k[*dup].index;
+	free(k);
 	return STRAY_OK;
 }

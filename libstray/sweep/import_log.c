@@ -4,19 +4,19 @@
  * frame file with its angle, frame type, exposure and ND transmission,
  * every value checked here so the import only compares.
  */
-#include <csv.h>
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
+#include "csv_line.h"
 #include "stray/errfmt.h"
 #include "stray/sweep_import.h"
+#include "stray/sweep_store.h"
 
-#define FIELDS_MAX 32
-#define FIELD_LEN_MAX 512
 
 /* The ND is one of two columns: its transmission or its optical
  * density. */
@@ -43,55 +43,6 @@ static const char *const aliases[N_COLS][4] = {
 	{ "readback", "angle_readback_deg", NULL },
 	{ NULL }, { "date", "date-obs", NULL }, { NULL }
 };
-
-struct fields {
-	size_t n;
-	char f[FIELDS_MAX][FIELD_LEN_MAX];
-	int overflow;
-};
-
-static void on_field(void *data, size_t len, void *ctx)
-{
-	struct fields *r = ctx;
-
-	if (r->n >= FIELDS_MAX || len >= FIELD_LEN_MAX) {
-		r->overflow = 1;
-		return;
-	}
-	memcpy(r->f[r->n], data ? data : "", len);
-	r->f[r->n][len] = '\0';
-	r->n++;
-}
-
-static void on_row(int c, void *ctx)
-{
-	(void)c;
-	(void)ctx;
-}
-
-static int split(const char *name, long line, const char *s, size_t len,
-		 struct fields *r, struct stray_error *err)
-{
-	struct csv_parser p;
-	int bad;
-
-	r->n = 0;
-	r->overflow = 0;
-	if (csv_init(&p, CSV_STRICT | CSV_STRICT_FINI | CSV_APPEND_NULL) != 0)
-		return stray_error_at(err, STRAY_ENOMEM, name, line, 0, 0);
-	bad = csv_parse(&p, s, len, on_field, on_row, r) != len ||
-	      csv_fini(&p, on_field, on_row, r) != 0;
-	if (bad)
-		stray_error_at(err, STRAY_EPARSE, name, line, "csv",
-			       csv_strerror(csv_error(&p)));
-	csv_free(&p);
-	if (bad)
-		return STRAY_EPARSE;
-	if (r->overflow)
-		return stray_error_at(err, STRAY_EPARSE, name, line, "csv",
-				      "too many or too long fields");
-	return STRAY_OK;
-}
 
 static int bad(const char *name, long line, const char *col,
 	       const char *reason, const char *text, struct stray_error *err)
@@ -150,12 +101,12 @@ static int frame_type(const char *name, long line, const char *s, int *type,
 }
 
 /* An optional cell: "" (or no cell) is absent. */
-static const char *cell(const struct fields *r, const int *idx, int c)
+static const char *cell(const struct csv_line *r, const int *idx, int c)
 {
 	return idx[c] >= 0 && (size_t)idx[c] < r->n ? r->f[idx[c]] : "";
 }
 
-static int optional(const char *name, long line, const struct fields *r,
+static int optional(const char *name, long line, const struct csv_line *r,
 		    const int *idx, struct stray_import_row *e,
 		    struct stray_error *err)
 {
@@ -193,7 +144,7 @@ static int optional(const char *name, long line, const struct fields *r,
 	return STRAY_OK;
 }
 
-static int take_row(const char *name, long line, const struct fields *r,
+static int take_row(const char *name, long line, const struct csv_line *r,
 		    const int *idx, struct stray_import_row *e,
 		    struct stray_error *err)
 {
@@ -245,7 +196,7 @@ static int is_name(const char *cell, int c)
 	return 0;
 }
 
-static int take_header(const char *name, long line, const struct fields *r,
+static int take_header(const char *name, long line, const struct csv_line *r,
 		       int *idx, struct stray_error *err)
 {
 	size_t k;
@@ -303,7 +254,7 @@ static int push(struct stray_import_log *log, const char *name, long line,
 
 static int take_line(const char *name, long line, const char *s, size_t len,
 		     struct stray_import_log *log, int *idx, int *have_header,
-		     struct fields *r, struct stray_error *err)
+		     struct csv_line *r, struct stray_error *err)
 {
 	size_t k = 0;
 	int rc;
@@ -314,7 +265,7 @@ static int take_line(const char *name, long line, const char *s, size_t len,
 		k++;
 	if (k == len || s[k] == '#')
 		return STRAY_OK;
-	if ((rc = split(name, line, s, len, r, err)) != STRAY_OK)
+	if ((rc = csv_line_split(name, line, s, len, r, err)) != STRAY_OK)
 		return rc;
 	if (!*have_header) {
 		*have_header = 1;
@@ -333,36 +284,20 @@ static int take_line(const char *name, long line, const char *s, size_t len,
 	return rc;
 }
 
-static int by_file(const void *a, const void *b)
-{
-	const struct stray_import_row *const *x = a, *const *y = b;
-	int c = strcmp((*x)->file, (*y)->file);
-
-	return c ? c : ((*x)->line > (*y)->line) - ((*x)->line < (*y)->line);
-}
-
 /* One row per file: a second row for it is named at its line. */
 static int no_duplicates(const char *name, const struct stray_import_log *log,
 			 struct stray_error *err)
 {
-	const struct stray_import_row **e = malloc((log->n ? log->n : 1) *
-						   sizeof(*e));
-	const struct stray_import_row *dup = NULL;
-	size_t i;
+	size_t dup;
 
-	if (!e)
+	if (stray_sweep_repeated_file(log->r, log->n, sizeof(*log->r),
+			offsetof(struct stray_import_row, file),
+			offsetof(struct stray_import_row, line), &dup))
 		return stray_error_at(err, STRAY_ENOMEM, name, 0, 0, 0);
-	for (i = 0; i < log->n; i++)
-		e[i] = &log->r[i];
-	qsort(e, log->n, sizeof(*e), by_file);
-	for (i = 1; i < log->n; i++)
-		if (strcmp(e[i]->file, e[i - 1]->file) == 0 &&
-		    (!dup || e[i]->line < dup->line))
-			dup = e[i];
-	free(e);
-	if (dup)
-		return bad(name, dup->line, names[C_FILE], "is logged twice "
-			   "(one row per frame file)", dup->file, err);
+	if (dup < log->n)
+		return bad(name, log->r[dup].line, names[C_FILE], "is logged "
+			   "twice (one row per frame file)", log->r[dup].file,
+			   err);
 	return STRAY_OK;
 }
 
@@ -370,7 +305,7 @@ int stray_import_log_parse(const char *name, const char *text, size_t len,
 			   struct stray_import_log *log,
 			   struct stray_error *err)
 {
-	struct fields *r = malloc(sizeof(*r));
+	struct csv_line *r = malloc(sizeof(*r));
 	int idx[N_COLS], have_header = 0, rc = STRAY_OK;
 	size_t pos = 0;
 	long line = 0;

@@ -2,23 +2,22 @@
  * manifest.c - manifest.csv of a sweep folder (sweep_store.h) read
  * through libcsv, and the rows of one (angle, type) counted.
  */
-#include <csv.h>
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "csv_line.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"
 #include "stray/sweep_store.h"
 #include "sweep_priv.h"
 
-#define FIELDS_MAX 32
-#define FIELD_LEN_MAX 512
 
 static const char *const columns[] = {
 	STRAY_SWEEP_COL_FILE, STRAY_SWEEP_COL_FRAMETYP, STRAY_SWEEP_COL_ANGLE,
@@ -27,55 +26,6 @@ static const char *const columns[] = {
 };
 enum { COL_FILE, COL_TYPE, COL_ANGLE, COL_EXP, COL_ND, COL_SEQ, COL_SHA,
        N_COLS, COL_DATE = N_COLS };	/* COL_DATE: optional, -1 absent */
-
-struct fields {
-	size_t n;
-	char f[FIELDS_MAX][FIELD_LEN_MAX];
-	int overflow;
-};
-
-static void on_field(void *data, size_t len, void *ctx)
-{
-	struct fields *r = ctx;
-
-	if (r->n >= FIELDS_MAX || len >= FIELD_LEN_MAX) {
-		r->overflow = 1;
-		return;
-	}
-	memcpy(r->f[r->n], data ? data : "", len);
-	r->f[r->n][len] = '\0';
-	r->n++;
-}
-
-static void on_row(int c, void *ctx)
-{
-	(void)c;
-	(void)ctx;
-}
-
-static int split(const char *name, long line, const char *s, size_t len,
-		 struct fields *r, struct stray_error *err)
-{
-	struct csv_parser p;
-	int bad;
-
-	r->n = 0;
-	r->overflow = 0;
-	if (csv_init(&p, CSV_STRICT | CSV_STRICT_FINI) != 0)
-		return stray_error_at(err, STRAY_ENOMEM, name, line, 0, 0);
-	bad = csv_parse(&p, s, len, on_field, on_row, r) != len ||
-	      csv_fini(&p, on_field, on_row, r) != 0;
-	if (bad)
-		stray_error_at(err, STRAY_EPARSE, name, line, "csv",
-			       csv_strerror(csv_error(&p)));
-	csv_free(&p);
-	if (bad)
-		return STRAY_EPARSE;
-	if (r->overflow)
-		return stray_error_at(err, STRAY_EPARSE, name, line, "csv",
-				      "too many or too long fields");
-	return STRAY_OK;
-}
 
 static int bad_cell(const char *name, long line, const char *col,
 		    const char *reason, const char *text,
@@ -132,7 +82,7 @@ static int check_file(const char *name, long line, const char *s,
 	return STRAY_OK;
 }
 
-static int take_entry(const char *name, long line, const struct fields *r,
+static int take_entry(const char *name, long line, const struct csv_line *r,
 		      const int *idx, struct stray_sweep_entry *e,
 		      struct stray_error *err)
 {
@@ -189,7 +139,7 @@ static int take_entry(const char *name, long line, const struct fields *r,
 	return STRAY_OK;
 }
 
-static int take_header(const char *name, long line, const struct fields *r,
+static int take_header(const char *name, long line, const struct csv_line *r,
 		       int *idx, struct stray_error *err)
 {
 	size_t c, k;
@@ -231,7 +181,7 @@ static int push(struct stray_sweep_manifest *m, size_t *cap, const char *name,
 /* One line: blank, comment, header or entry. */
 static int take_line(const char *name, long line, const char *s, size_t len,
 		     struct stray_sweep_manifest *m, int *idx, int *have_header,
-		     size_t *cap, struct fields *r, struct stray_error *err)
+		     size_t *cap, struct csv_line *r, struct stray_error *err)
 {
 	size_t k = 0;
 	int rc;
@@ -242,7 +192,7 @@ static int take_line(const char *name, long line, const char *s, size_t len,
 		k++;
 	if (k == len || s[k] == '#')
 		return STRAY_OK;
-	if ((rc = split(name, line, s, len, r, err)) != STRAY_OK)
+	if ((rc = csv_line_split(name, line, s, len, r, err)) != STRAY_OK)
 		return rc;
 	if (!*have_header) {
 		*have_header = 1;
@@ -259,38 +209,21 @@ static int take_line(const char *name, long line, const char *s, size_t len,
 	return rc;
 }
 
-static int by_file(const void *a, const void *b)
-{
-	const struct stray_sweep_entry *const *x = a, *const *y = b;
-	int c = strcmp((*x)->file, (*y)->file);
-
-	return c ? c : ((*x)->line > (*y)->line) - ((*x)->line < (*y)->line);
-}
-
 /* A frame listed twice would be counted twice: named with the line of
  * its second row (every reader of the folder sees it here). */
 static int no_duplicates(const char *name, const struct stray_sweep_manifest *m,
 			 struct stray_error *err)
 {
-	const struct stray_sweep_entry **e = malloc((m->n ? m->n : 1) *
-						    sizeof(*e));
-	const struct stray_sweep_entry *dup = NULL;
-	size_t i;
+	size_t dup;
 
-	if (!e)
+	if (stray_sweep_repeated_file(m->e, m->n, sizeof(*m->e),
+			offsetof(struct stray_sweep_entry, file),
+			offsetof(struct stray_sweep_entry, line), &dup))
 		return stray_error_at(err, STRAY_ENOMEM, name, 0, 0, 0);
-	for (i = 0; i < m->n; i++)
-		e[i] = &m->e[i];
-	qsort(e, m->n, sizeof(*e), by_file);
-	for (i = 1; i < m->n; i++)
-		if (strcmp(e[i]->file, e[i - 1]->file) == 0 &&
-		    (!dup || e[i]->line < dup->line))
-			dup = e[i];
-	free(e);
-	if (dup)
-		return bad_cell(name, dup->line, columns[COL_FILE],
-				"is listed twice (duplicate row)", dup->file,
-				err);
+	if (dup < m->n)
+		return bad_cell(name, m->e[dup].line, columns[COL_FILE],
+				"is listed twice (duplicate row)",
+				m->e[dup].file, err);
 	return STRAY_OK;
 }
 
@@ -304,7 +237,7 @@ int stray_sweep_manifest_parse_text(const char *name, const char *text,
 				    struct stray_sweep_manifest *m,
 				    struct stray_error *err)
 {
-	struct fields *r = malloc(sizeof(*r));
+	struct csv_line *r = malloc(sizeof(*r));
 	int idx[N_COLS + 1], have_header = 0, rc = STRAY_OK;
 	size_t pos = 0, cap = 0;
 	long line = 0;

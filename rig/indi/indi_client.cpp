@@ -274,6 +274,18 @@ static void fill(const Prop *q, struct rig_indi_prop *p)
 	p->gen = q ? q->gen : 0;
 }
 
+/* Our copy of a property for a read (the lock held): its state into p,
+ * RIG_EDISCONNECT without a live server, RIG_ESTATE when not defined. */
+static int lookup(struct rig_indi *c, const char *dev, const char *prop,
+		  struct rig_indi_prop *p, const Prop **q)
+{
+	*q = find(c, dev, prop);
+	fill(*q, p);
+	if (!c->cl || !c->m.alive)
+		return RIG_EDISCONNECT;
+	return *q ? RIG_OK : RIG_ESTATE;
+}
+
 /* The property defined with these elements, per our copy. */
 static int check_elems(struct rig_indi *c, const char *dev, const char *prop,
 		       int type, int n, const char *const *elems)
@@ -306,13 +318,11 @@ int rig_indi_number(struct rig_indi *c, const char *dev, const char *prop,
 		    struct rig_indi_prop *p)
 {
 	std::lock_guard<std::mutex> g(c->m.mu);
-	const Prop *q = find(c, dev, prop);
+	const Prop *q;
+	int rc = lookup(c, dev, prop, p, &q);
 
-	fill(q, p);
-	if (!c->cl || !c->m.alive)
-		return RIG_EDISCONNECT;
-	if (!q)
-		return RIG_ESTATE;
+	if (rc != RIG_OK)
+		return rc;
 	auto it = q->num.find(elem);
 	if (it == q->num.end())
 		return RIG_EINVAL;
@@ -329,13 +339,11 @@ int rig_indi_switch(struct rig_indi *c, const char *dev, const char *prop,
 		    const char *elem, int *on, struct rig_indi_prop *p)
 {
 	std::lock_guard<std::mutex> g(c->m.mu);
-	const Prop *q = find(c, dev, prop);
+	const Prop *q;
+	int rc = lookup(c, dev, prop, p, &q);
 
-	fill(q, p);
-	if (!c->cl || !c->m.alive)
-		return RIG_EDISCONNECT;
-	if (!q)
-		return RIG_ESTATE;
+	if (rc != RIG_OK)
+		return rc;
 	auto it = q->sw.find(elem);
 	if (it == q->sw.end())
 		return RIG_EINVAL;

@@ -80,6 +80,16 @@ int stray_sweep_utc_parse(const char *text, double *t);
 
 /* FRAMETYP text to enum; -1 when unknown. */
 int stray_sweep_frametyp_parse(const char *text);
+
+/*
+ * A frame file listed twice would be counted twice (a manifest, an import
+ * log): *dup is the index of the row that repeats an earlier row's file,
+ * the earliest such by line, or n when none.  rows: n records of size
+ * bytes, the file name a char array at name_off, the line a long at
+ * line_off.  STRAY_OK, or STRAY_ENOMEM.
+ */
+int stray_sweep_repeated_file(const void *rows, size_t n, size_t size,
+			      size_t name_off, size_t line_off, size_t *dup);
 /* Enum to FRAMETYP text; "?" when out of range. */
 const char *stray_sweep_frametyp_name(int type);
 
