@@ -33,7 +33,6 @@
 #include "stray/detector_types.h"
 #include "stray/error.h"
 
-
 /* "thesis", "window", "threshold", "tetra3" (NULL outside the enum). */
 const char *stray_detector_name(enum stray_detector_kind k);
 
@@ -55,15 +54,12 @@ int stray_detector_setup(struct stray_detector *d,
 			 const struct stray_fdr_model *m,
 			 struct stray_error *err);
 
-
 /* ln false stars per image of m->n_tot pixels at alpha (map included,
  * and the background-error term: eq. R of detector.c). */
 int stray_detector_log_false_rate(const struct stray_detector *d,
 				  const struct stray_fdr_model *m,
 				  stray_real alpha, stray_real *log_rate,
 				  struct stray_error *err);
-
-
 
 enum stray_failure_mode {
 	STRAY_FAIL_FALSE_STARS = 0,
