@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -19,7 +20,7 @@ struct cli_run {
 	int err_lines;
 };
 
-static void slurp(const char *path, char *buf, size_t size)
+static inline void slurp(const char *path, char *buf, size_t size)
 {
 	FILE *f = fopen(path, "rb");
 	size_t n = f ? fread(buf, 1, size - 1, f) : 0;
@@ -29,8 +30,12 @@ static void slurp(const char *path, char *buf, size_t size)
 		fclose(f);
 }
 
-/* argv[0] is ignored (replaced by $STRAY_BIN); NULL-terminated. */
-static int run_stray(struct cli_run *r, char *const argv[])
+/*
+ * argv[0] is ignored (replaced by $STRAY_BIN); NULL-terminated.  limited:
+ * a time limit (a hang is killed: status -1) and an address-space limit
+ * (a 1 GB allocation fails instead of swapping), for the hostile files.
+ */
+static inline int run_cli(struct cli_run *r, char *const argv[], int limited)
 {
 	const char *bin = getenv("STRAY_BIN") ? getenv("STRAY_BIN")
 					      : "build/bin/stray";
@@ -40,8 +45,15 @@ static int run_stray(struct cli_run *r, char *const argv[])
 	const char *p;
 
 	if (pid == 0) {
+		struct rlimit rl = { 768L << 20, 768L << 20 };
+
 		dup2(fo, 1);
 		dup2(fe, 2);
+		/* not under ASan: it reserves terabytes of address space */
+		if (limited && !strstr(bin, "/asan/"))
+			setrlimit(RLIMIT_AS, &rl);
+		if (limited)
+			alarm(20);	/* kept across execv */
 		execv(bin, argv);
 		_exit(127);
 	}
@@ -56,6 +68,16 @@ static int run_stray(struct cli_run *r, char *const argv[])
 	for (r->err_lines = 0, p = r->err; *p; p++)
 		r->err_lines += *p == '\n';
 	return r->status;
+}
+
+static inline int run_stray(struct cli_run *r, char *const argv[])
+{
+	return run_cli(r, argv, 0);
+}
+
+static inline int run_stray_limited(struct cli_run *r, char *const argv[])
+{
+	return run_cli(r, argv, 1);
 }
 
 #endif /* STRAY_TESTS_RUN_CLI_H */

@@ -16,34 +16,14 @@
 #include <cJSON.h>
 #include <erfa.h>
 
-#include "run_cli.h"
+#include "cli_fixture.h"
 
 #define CURVE "tests/vectors/fdrfw_curve.csv"
 #define VEC "tests/vectors/ccsds/"
 #define R2D (180.0 / 3.14159265358979323846)
 
-static struct cli_run r;
-static char dir[64], heads[128], d_oem[128], d_aem[128];
+static char heads[128], d_oem[128], d_aem[128];
 static cJSON *base;		/* the demo mission flown as written */
-
-#define STRAY(...) run_stray(&r, (char *[]){ "stray", __VA_ARGS__, NULL })
-
-static char *in_dir(const char *name)
-{
-	static char paths[16][128];
-	static int k;
-	char *p = paths[k++ % 16];
-
-	snprintf(p, 128, "%s/%s", dir, name);
-	return p;
-}
-
-static void expect_bad(const char *needle)
-{
-	if (r.status != 2 || r.err_lines != 1 || !strstr(r.err, needle))
-		fail_msg("status %d, stderr (%d lines): %s; wanted '%s'",
-			 r.status, r.err_lines, r.err, needle);
-}
 
 static cJSON *fly(const char *oem, const char *aem)
 {
@@ -56,14 +36,6 @@ static cJSON *fly(const char *oem, const char *aem)
 	j = cJSON_Parse(r.out);
 	assert_non_null(j);
 	return j;
-}
-
-static double num(const cJSON *j, const char *k)
-{
-	const cJSON *x = cJSON_GetObjectItem(j, k);
-
-	assert_non_null(x);
-	return x->valuedouble;
 }
 
 /* The same mission: the same epochs, albedo and availability. */
@@ -84,8 +56,8 @@ static void same_as_base(cJSON *j)
 static int setup(void **state)
 {
 	(void)state;
-	snprintf(dir, sizeof(dir), "/tmp/stray_ccli_%d", (int)getpid());
-	mkdir(dir, 0700);
+	if (cli_setup("ccli"))
+		return -1;
 	snprintf(heads, sizeof(heads), "%s/heads.json", dir);
 	snprintf(d_oem, sizeof(d_oem), "%s/d.oem", dir);
 	snprintf(d_aem, sizeof(d_aem), "%s/d.aem", dir);
@@ -109,12 +81,9 @@ static int setup(void **state)
 
 static int teardown(void **state)
 {
-	char cmd[128];
-
 	(void)state;
 	cJSON_Delete(base);
-	snprintf(cmd, sizeof(cmd), "rm -rf %s", dir);
-	return system(cmd) == 0 ? 0 : -1;
+	return cli_teardown();
 }
 
 /* The demo OEM rewritten in ITRF2014 (ERFA's IAU 2006/2000A, UT1 = UTC,

@@ -16,57 +16,9 @@
 #include <cmocka.h>
 #include <cJSON.h>
 
-#include "../scratch.h"
-#include "run_cli.h"
+#include "cli_fixture.h"
 
-static struct cli_run r;
-static char dir[64];
-
-#define STRAY(...) run_stray(&r, (char *[]){ "stray", __VA_ARGS__, NULL })
 #define CURVE "tests/vectors/fdrfw_curve.csv"
-
-static cJSON *json_out(void)
-{
-	cJSON *j = cJSON_Parse(r.out);
-
-	if (!j)
-		fprintf(stderr, "not JSON: %s\n%s", r.out, r.err);
-	assert_non_null(j);
-	return j;
-}
-
-static double num(const cJSON *o, const char *key)
-{
-	const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
-
-	if (!cJSON_IsNumber(v))
-		fprintf(stderr, "no number '%s'\n", key);
-	assert_true(cJSON_IsNumber(v));
-	return v->valuedouble;
-}
-
-static const char *str(const cJSON *o, const char *key)
-{
-	const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
-
-	assert_true(cJSON_IsString(v));
-	return v->valuestring;
-}
-
-static char *put_text(const char *name, const char *text)
-{
-	static char paths[8][128];
-	static int k;
-	char *p = paths[k++ % 8];
-	FILE *f;
-
-	snprintf(p, 128, "%s/%s", dir, name);
-	f = fopen(p, "w");
-	assert_non_null(f);
-	fputs(text, f);
-	fclose(f);
-	return p;
-}
 
 /* The default is the thesis, as before: eq. 2.18's alpha_required. */
 static void test_fdr_thesis_default(void **state)
@@ -324,14 +276,13 @@ static void test_sensor_detector_refused(void **state)
 static int setup(void **state)
 {
 	(void)state;
-	snprintf(dir, sizeof(dir), "/tmp/stray_det28_XXXXXX");
-	return mkdtemp(dir) ? 0 : -1;
+	return cli_setup("det28");
 }
 
 static int teardown(void **state)
 {
 	(void)state;
-	return scratch_remove(dir);
+	return cli_teardown();
 }
 
 int main(void)

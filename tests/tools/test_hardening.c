@@ -18,52 +18,8 @@
 #include <time.h>
 #include <cmocka.h>
 
-#include "../scratch.h"
 #include "../test_util.h"
-#include "run_cli.h"
-
-static struct cli_run r;
-static char dir[64];
-
-#define STRAY(...) run_stray(&r, (char *[]){ "stray", __VA_ARGS__, NULL })
-
-/* dir/name with the given bytes. */
-static char *put(const char *name, const char *text, size_t len)
-{
-	static char paths[16][128];
-	static int k;
-	char *p = paths[k++ % 16];
-	FILE *f;
-
-	snprintf(p, 128, "%s/%s", dir, name);
-	f = fopen(p, "wb");
-	assert_non_null(f);
-	assert_int_equal(fwrite(text, 1, len, f), len);
-	fclose(f);
-	return p;
-}
-
-static char *put_text(const char *name, const char *text)
-{
-	return put(name, text, strlen(text));
-}
-
-static char *in_dir(const char *name)
-{
-	static char paths[8][128];
-	static int k;
-	char *p = paths[k++ % 8];
-
-	snprintf(p, 128, "%s/%s", dir, name);
-	return p;
-}
-
-static int exists(const char *path)
-{
-	struct stat st;
-
-	return stat(path, &st) == 0;
-}
+#include "cli_fixture.h"
 
 /* No NAME.tmp.PID left in the folder. */
 static int temporaries(void)
@@ -79,27 +35,16 @@ static int temporaries(void)
 	return n;
 }
 
-/* Bad input: exit 2, nothing on stdout, one stderr line with needle. */
-static void expect_bad(const char *needle)
-{
-	if (r.status != 2 || r.err_lines != 1 || !strstr(r.err, needle))
-		fail_msg("status %d, stderr (%d lines): %s; wanted '%s'",
-			 r.status, r.err_lines, r.err, needle);
-	assert_string_equal(r.out, "");
-}
-
 static int setup(void **state)
 {
 	(void)state;
-	snprintf(dir, sizeof(dir), "/tmp/stray_hard_%d", (int)getpid());
-	mkdir(dir, 0700);
-	return 0;
+	return cli_setup("hard");
 }
 
 static int teardown(void **state)
 {
 	(void)state;
-	return scratch_remove(dir);
+	return cli_teardown();
 }
 
 static const char good[] = "theta_deg,alpha\n0,1\n10,0.1\n30,1e-4\n60,1e-8\n";
@@ -114,7 +59,7 @@ static void test_cr_lines_no_crash(void **state)
 	(void)state;
 	for (k = 0; k < 66; k++)
 		memcpy(text + 3 * k, "\r\r\n", 3);
-	p = put("cr.csv", text, sizeof(text));
+	p = put_bytes("cr.csv", text, sizeof(text));
 	STRAY("exclusion", "--curve", p);
 	expect_bad("no header row");
 	STRAY("fdr", "--map", p);
@@ -145,7 +90,7 @@ static char *long_curve(const char *name, size_t n)
 				       pow(10.0, -t / 10.0),
 				       0.05 * pow(10.0, -t / 10.0));
 	}
-	p = put(name, text, len);
+	p = put_bytes(name, text, len);
 	free(text);
 	return p;
 }

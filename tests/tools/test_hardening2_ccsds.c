@@ -13,38 +13,13 @@
 #include <cmocka.h>
 #include <erfa.h>
 
-#include "../scratch.h"
-#include "run_cli.h"
+#include "cli_fixture.h"
 
 #define CURVE "tests/vectors/fdrfw_curve.csv"
 #define MAKE_FLIGHT "build/tests/flightcheck/make_flight"
 
-static struct cli_run r;
-static char dir[64], heads[128], d_oem[128], d_aem[128];
+static char heads[128], d_oem[128], d_aem[128];
 static char *oem_text, *aem_text;	/* a 6 h demo mission, every 60 s */
-
-#define STRAY(...) run_stray(&r, (char *[]){ "stray", __VA_ARGS__, NULL })
-
-static char *in_dir(const char *name)
-{
-	static char paths[16][128];
-	static int k;
-	char *p = paths[k++ % 16];
-
-	snprintf(p, 128, "%s/%s", dir, name);
-	return p;
-}
-
-static char *put(const char *name, const char *text)
-{
-	char *p = in_dir(name);
-	FILE *f = fopen(p, "wb");
-
-	assert_non_null(f);
-	fputs(text, f);
-	fclose(f);
-	return p;
-}
 
 static char *slurp_all(const char *path)
 {
@@ -87,40 +62,23 @@ static char *edit(const char *text, const char *prefix, const char *with,
 	return out;
 }
 
-/* Bad input: exit 2, nothing on stdout, one stderr line with needle. */
-static void expect_bad(const char *needle)
-{
-	if (r.status != 2 || r.err_lines != 1 || !strstr(r.err, needle))
-		fail_msg("status %d, stderr (%d lines): %s; wanted '%s'",
-			 r.status, r.err_lines, r.err, needle);
-	assert_string_equal(r.out, "");
-}
-
 static void fly(const char *oem, const char *aem)
 {
 	STRAY("availability", "--oem", (char *)oem, "--aem", (char *)aem,
 	      "--heads", heads);
 }
-
-static int exists(const char *path)
-{
-	struct stat st;
-
-	return stat(path, &st) == 0;
-}
-
 static int setup(void **state)
 {
 	(void)state;
-	snprintf(dir, sizeof(dir), "/tmp/stray_h2c_%d", (int)getpid());
-	mkdir(dir, 0700);
+	if (cli_setup("h2c"))
+		return -1;
 	snprintf(heads, sizeof(heads), "%s/heads.json", dir);
 	snprintf(d_oem, sizeof(d_oem), "%s/d.oem", dir);
 	snprintf(d_aem, sizeof(d_aem), "%s/d.aem", dir);
 	if (STRAY("firmware-table", "--curve", CURVE, "--out-bin",
 		  in_dir("t.bin")) != 0)
 		return -1;
-	put("heads.json", "{\"heads\": [{\"name\": \"A\", \"boresight_body\": "
+	put_text("heads.json", "{\"heads\": [{\"name\": \"A\", \"boresight_body\": "
 	    "[0, 0.6428, -0.7660], \"up_body\": [1, 0, 0], \"table\": \"t.bin\"}]}");
 	if (STRAY("availability", "--write-oem", d_oem, "--write-aem", d_aem,
 		  "--hours", "6") != 0)
@@ -135,14 +93,14 @@ static int teardown(void **state)
 	(void)state;
 	free(oem_text);
 	free(aem_text);
-	return scratch_remove(dir);
+	return cli_teardown();
 }
 
 /* 1. Writing then flying flies what was just written, in one run (it
  * flew the old files, or failed "No such file" when there were none). */
 static void test_write_then_fly(void **state)
 {
-	char *o = put("w.oem", "not an OEM\n"), *a = put("w.aem", "old\n");
+	char *o = put_text("w.oem", "not an OEM\n"), *a = put_text("w.aem", "old\n");
 	char *o2 = in_dir("n.oem"), *a2 = in_dir("n.aem"), *t;
 
 	(void)state;
@@ -161,7 +119,7 @@ static void test_write_then_fly(void **state)
 	assert_true(exists(o2) && exists(a2));
 	/* all or nothing: a bad heads file writes neither */
 	STRAY("availability", "--write-oem", in_dir("x.oem"), "--write-aem",
-	      in_dir("x.aem"), "--heads", put("bad.json", "{\"heads\": 1}"));
+	      in_dir("x.aem"), "--heads", put_text("bad.json", "{\"heads\": 1}"));
 	expect_bad("bad.json");
 	assert_false(exists(in_dir("x.oem")) || exists(in_dir("x.aem")));
 }
@@ -182,7 +140,7 @@ static void test_gap_not_bridged(void **state)
 	free(h);
 	h = edit(g, "2026-06-21T04", "", 1);
 	free(g);
-	o = put("gap.oem", h);
+	o = put_text("gap.oem", h);
 	free(h);
 	STRAY("availability", "--oem", o, "--aem", d_aem, "--heads", heads,
 	      "--json");
@@ -198,7 +156,7 @@ static void test_gap_not_bridged(void **state)
 	g = edit(aem_text, "2026-06-21T01", "", 1);
 	h = edit(g, "2026-06-21T02", "", 1);
 	free(g);
-	o = put("gap.aem", h);
+	o = put_text("gap.aem", h);
 	free(h);
 	STRAY("availability", "--oem", d_oem, "--aem", o, "--heads", heads,
 	      "--json");
@@ -215,7 +173,7 @@ static void test_covariance_unclosed(void **state)
 		       "COV_REF_FRAME = RTN\n1.0\n", 0);
 
 	(void)state;
-	fly(put("cov.oem", t), d_aem);
+	fly(put_text("cov.oem", t), d_aem);
 	expect_bad("COVARIANCE_STOP");
 	assert_non_null(strstr(r.err, "COVARIANCE_START at line 27"));
 	free(t);
@@ -228,12 +186,12 @@ static void test_physical_bounds(void **state)
 		       "2026-06-21T00:10:00 7000 0 0 1e300 0 0\n", 0);
 
 	(void)state;
-	fly(put("v.oem", t), d_aem);
+	fly(put_text("v.oem", t), d_aem);
 	expect_bad("velocity over 25 km/s");
 	free(t);
 	t = edit(oem_text, "2026-06-21T00:10:00",
 		 "2026-06-21T00:10:00 0 0 0 0 7.5 0\n", 0);
-	fly(put("r.oem", t), d_aem);
+	fly(put_text("r.oem", t), d_aem);
 	expect_bad("inside the Earth");
 	free(t);
 }
@@ -251,7 +209,7 @@ static void test_leap_seconds(void **state)
 	assert_true(d0 == d1);
 	t = edit(oem_text, "2026-06-21T00:10:00",
 		 "2026-06-21T00:09:60 2906 -6082 0 -0.9 0.4 7.5\n", 0);
-	fly(put("leap.oem", t), d_aem);
+	fly(put_text("leap.oem", t), d_aem);
 	expect_bad("second 60 where no leap second is");
 	free(t);
 	assert_int_equal(eraDat(2016, 12, 31, 0.5, &d0), 0);
@@ -259,7 +217,7 @@ static void test_leap_seconds(void **state)
 	assert_true(d1 == d0 + 1.0);
 	t = edit(oem_text, "2026-06-21T00:10:00",
 		 "2026-06-21T23:59:60 2906 -6082 0 -0.9 0.4 7.5\n", 0);
-	fly(put("leap2.oem", t), d_aem);
+	fly(put_text("leap2.oem", t), d_aem);
 	expect_bad("second 60 where no leap second is");
 	free(t);
 }
@@ -271,11 +229,11 @@ static void test_heads_unknown_key(void **state)
 	fly(d_oem, d_aem);
 	assert_int_equal(r.status, 0);
 	STRAY("availability", "--oem", d_oem, "--aem", d_aem, "--heads",
-	      put("h1.json", "{\"heads\": [{\"name\": \"A\", \"boresight_body\": "
+	      put_text("h1.json", "{\"heads\": [{\"name\": \"A\", \"boresight_body\": "
 		  "[0, 0, 1], \"up_bdy\": [1, 0, 0], \"table\": \"t.bin\"}]}"));
 	expect_bad("'up_bdy'");
 	STRAY("availability", "--oem", d_oem, "--aem", d_aem, "--heads",
-	      put("h2.json", "{\"heads\": [{\"name\": \"A\", \"boresight_body\": "
+	      put_text("h2.json", "{\"heads\": [{\"name\": \"A\", \"boresight_body\": "
 		  "[0, 0, 1], \"table\": \"t.bin\"}], \"head\": []}"));
 	expect_bad("'head'");
 }
@@ -287,12 +245,12 @@ static void test_hex_float(void **state)
 		       "2026-06-21T00:10:00 0x1p13 -6082 0 -0.9 0.4 7.5\n", 0);
 
 	(void)state;
-	fly(put("hex.oem", t), d_aem);
+	fly(put_text("hex.oem", t), d_aem);
 	expect_bad("'0x1p13': not a number");
 	free(t);
 	t = edit(aem_text, "2026-06-21T00:10:00",
 		 "2026-06-21T00:10:00 0x1p-1 0.5 0.5 0.5\n", 0);
-	fly(d_oem, put("hex.aem", t));
+	fly(d_oem, put_text("hex.aem", t));
 	expect_bad("'0x1p-1': not a number");
 	free(t);
 }
@@ -313,7 +271,7 @@ static void test_flightcheck_outside_aem(void **state)
 	free(aem);
 	aem = edit(late, "2026-06-21T10:01", "", 0);
 	free(late);
-	put("late.aem", aem);
+	put_text("late.aem", aem);
 	free(aem);
 	STRAY("flightcheck", in_dir("fr"), "--aem", in_dir("late.aem"),
 	      "--model", in_dir("lens.csv"));

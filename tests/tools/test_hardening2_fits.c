@@ -22,82 +22,13 @@
 #include <cmocka.h>
 #include <cJSON.h>
 
-#include "../scratch.h"
-#include "run_cli.h"
+/* a hang is killed, a 1 GB allocation fails (run_cli.h) */
+#define STRAY(...) \
+	run_stray_limited(&r, (char *[]){ "stray", __VA_ARGS__, NULL })
+#include "cli_fixture.h"
 
 #define MAKE_FLIGHT "build/tests/flightcheck/make_flight"
 #define FRAME(k) "a+000.000_FULL_00" #k ".fits"
-
-static struct cli_run r;
-static char dir[64];
-
-/* run_stray with a time limit (a hang is killed: status -1) and an
- * address-space limit (a 1 GB allocation fails instead of swapping). */
-static int run_limited(char *const argv[])
-{
-	const char *bin = getenv("STRAY_BIN") ? getenv("STRAY_BIN")
-					      : "build/bin/stray";
-	char out[] = "/tmp/stray_out_XXXXXX", err[] = "/tmp/stray_err_XXXXXX";
-	int fo = mkstemp(out), fe = mkstemp(err), st;
-	pid_t pid = fork();
-	const char *p;
-
-	if (pid == 0) {
-		struct rlimit rl = { 768L << 20, 768L << 20 };
-
-		dup2(fo, 1);
-		dup2(fe, 2);
-		/* not under ASan: it reserves terabytes of address space */
-		if (!strstr(bin, "/asan/"))
-			setrlimit(RLIMIT_AS, &rl);
-		alarm(20);	/* kept across execv */
-		execv(bin, argv);
-		_exit(127);
-	}
-	waitpid(pid, &st, 0);
-	close(fo);
-	close(fe);
-	slurp(out, r.out, sizeof(r.out));
-	slurp(err, r.err, sizeof(r.err));
-	unlink(out);
-	unlink(err);
-	r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-	for (r.err_lines = 0, p = r.err; *p; p++)
-		r.err_lines += *p == '\n';
-	return r.status;
-}
-
-#define STRAY(...) run_limited((char *[]){ "stray", __VA_ARGS__, NULL })
-
-static char *in_dir(const char *name)
-{
-	static char paths[16][256];
-	static int k;
-	char *p = paths[k++ % 16];
-
-	snprintf(p, 256, "%s/%s", dir, name);
-	return p;
-}
-
-static int exists(const char *path)
-{
-	struct stat st;
-
-	return lstat(path, &st) == 0;
-}
-
-static void expect_bad(const char *needle)
-{
-	if (r.status != 2 || r.err_lines != 1 || !strstr(r.err, needle))
-		fail_msg("status %d, stderr (%d lines): %s; wanted '%s'",
-			 r.status, r.err_lines, r.err, needle);
-}
-
-static void expect_ok(void)
-{
-	if (r.status != 0)
-		fail_msg("status %d, stderr: %s", r.status, r.err);
-}
 
 static void sh(const char *fmt, ...)
 {
@@ -238,15 +169,15 @@ static void fits_file(const char *path, const char *const *cards,
 static int setup(void **state)
 {
 	(void)state;
-	snprintf(dir, sizeof(dir), "/tmp/stray_hard2_%d", (int)getpid());
-	mkdir(dir, 0700);
+	if (cli_setup("h2fits"))
+		return -1;
 	return 0;
 }
 
 static int teardown(void **state)
 {
 	(void)state;
-	return scratch_remove(dir);
+	return cli_teardown();
 }
 
 /* Four 768 x 768 flight frames of the truth generator (dir/fl, with

@@ -15,50 +15,8 @@
 #include <sys/stat.h>
 #include <cmocka.h>
 
-#include "../scratch.h"
 #include "../test_util.h"
-#include "run_cli.h"
-
-static struct cli_run r;
-static char dir[64];
-
-#define STRAY(...) run_stray(&r, (char *[]){ "stray", __VA_ARGS__, NULL })
-
-static char *in_dir(const char *name)
-{
-	static char paths[16][128];
-	static int k;
-	char *p = paths[k++ % 16];
-
-	snprintf(p, 128, "%s/%s", dir, name);
-	return p;
-}
-
-static char *put(const char *name, const char *text)
-{
-	char *p = in_dir(name);
-	FILE *f = fopen(p, "wb");
-
-	assert_non_null(f);
-	fputs(text, f);
-	fclose(f);
-	return p;
-}
-
-static char *slurp_file(const char *path)
-{
-	static char buf[1 << 16];
-
-	slurp(path, buf, sizeof(buf));
-	return buf;
-}
-
-static int exists(const char *path)
-{
-	struct stat st;
-
-	return stat(path, &st) == 0;
-}
+#include "cli_fixture.h"
 
 /* CPU seconds the finished child commands used: "refused before the
  * work" is a bound on work done, which a loaded machine's wall clock
@@ -72,25 +30,16 @@ static double children_cpu_s(void)
 	       1e-6 * (double)(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
 }
 
-static void expect_bad(const char *needle)
-{
-	if (r.status != 2 || r.err_lines != 1 || !strstr(r.err, needle))
-		fail_msg("status %d, stderr (%d lines): %s; wanted '%s'",
-			 r.status, r.err_lines, r.err, needle);
-}
-
 static int setup(void **state)
 {
 	(void)state;
-	snprintf(dir, sizeof(dir), "/tmp/stray_hard2_%d", (int)getpid());
-	mkdir(dir, 0700);
-	return 0;
+	return cli_setup("hard2");
 }
 
 static int teardown(void **state)
 {
 	(void)state;
-	return scratch_remove(dir);
+	return cli_teardown();
 }
 
 static const char lab[] = "theta_deg,alpha,sigma\n5,1e-3,1e-4\n"
@@ -101,7 +50,7 @@ static const char curve[] = "theta_deg,alpha\n0,1\n10,0.1\n30,1e-4\n60,1e-8\n";
  * file (exit 0): refused before the diagnosis, the data untouched. */
 static void test_output_replaces_input(void **state)
 {
-	char *m = put("m.csv", lab), *c = put("c.csv", curve);
+	char *m = put_text("m.csv", lab), *c = put_text("c.csv", curve);
 	double cpu0 = children_cpu_s();
 
 	(void)state;
@@ -129,7 +78,7 @@ static void test_output_replaces_input(void **state)
 /* Two outputs of one name: the second overwrote the first (exit 0). */
 static void test_output_named_twice(void **state)
 {
-	char *c = put("c.csv", curve);
+	char *c = put_text("c.csv", curve);
 	char dotted[160];
 
 	(void)state;
@@ -143,7 +92,7 @@ static void test_output_named_twice(void **state)
 	expect_bad("is named twice as an output");
 	assert_false(exists(in_dir("p.png")));
 	/* diagnose --write-model S.json also writes S.obj */
-	STRAY("diagnose", put("m.csv", lab), "--scene", "ref4",
+	STRAY("diagnose", put_text("m.csv", lab), "--scene", "ref4",
 	      "--write-model", in_dir("s.json"), "--plot", in_dir("s.obj"));
 	expect_bad("is named twice as an output");
 }
@@ -152,7 +101,7 @@ static void test_output_named_twice(void **state)
  * when the output is opened, nothing written. */
 static void test_library_guard(void **state)
 {
-	char *m = put("m.csv", lab);
+	char *m = put_text("m.csv", lab);
 
 	(void)state;
 	STRAY("diagnose", m, "--scene", "ref4", "--write-mod", m);
@@ -171,7 +120,7 @@ static int is_dev_full(void)
 /* A full disk: a plot said nothing and exited 0 (PLplot ignores it). */
 static void test_full_disk_named(void **state)
 {
-	char *c = put("c.csv", curve);
+	char *c = put_text("c.csv", curve);
 
 	(void)state;
 	if (!is_dev_full())
@@ -203,7 +152,7 @@ static void test_mesh_counted_first(void **state)
 	for (i = 0; i < 6000000; i++)
 		fputs("f 1 2 3\n", f);
 	fclose(f);
-	put("big.json", "{ \"meshes\": [ { \"file\": \"big.obj\" } ],"
+	put_text("big.json", "{ \"meshes\": [ { \"file\": \"big.obj\" } ],"
 	    " \"materials\": { \"dead\": { \"type\": \"absorber\" } },"
 	    " \"default_material\": \"dead\","
 	    " \"detector\": { \"shape\": \"disk\", \"center\": [0, 0, -40],"
@@ -221,17 +170,17 @@ static void test_mesh_counted_first(void **state)
 /* Sensors of 1e10 pixels asked for 2^63 bytes; half pixels were taken. */
 static void test_sensor_pixels(void **state)
 {
-	char *c = put("c.csv", curve);
+	char *c = put_text("c.csv", curve);
 
 	(void)state;
 	STRAY("frames", "--alpha", "1e-6", "--sensor",
-	      put("big.json", "{ \"pixels_x\": 1e5, \"pixels_y\": 1e5 }"));
+	      put_text("big.json", "{ \"pixels_x\": 1e5, \"pixels_y\": 1e5 }"));
 	expect_bad("big.json: pixels_x 100000: must be <= 65536");
 	STRAY("exclusion", "--curve", c, "--sensor",
-	      put("half.json", "{ \"pixels_x\": 2592.5 }"));
+	      put_text("half.json", "{ \"pixels_x\": 2592.5 }"));
 	expect_bad("half.json: pixels_x 2592.5: must be a whole number");
 	STRAY("exclusion", "--curve", c, "--sensor",
-	      put("area.json", "{ \"pixels_x\": 60000, \"pixels_y\": 60000 }"));
+	      put_text("area.json", "{ \"pixels_x\": 60000, \"pixels_y\": 60000 }"));
 	expect_bad("pixels_x * pixels_y must be <= 1e8");
 }
 

@@ -18,47 +18,13 @@
 #include <time.h>
 #include <cmocka.h>
 
-#include "../scratch.h"
-#include "run_cli.h"
+#include "cli_fixture.h"
 
 #define VEC "tests/vectors/import/"
 #define FOREIGN VEC "foreign/"
 #define LIGHT1 "CCD_Simulator_Light_001.fits"
 #define LIGHT2 "CCD_Simulator_Light_002.fits"
 #define HEAD "file,angle_deg,frametyp,exptime_s,ndtrans"
-
-static struct cli_run r;
-static char dir[64];
-
-#define STRAY(...) run_stray(&r, (char *[]){ "stray", __VA_ARGS__, NULL })
-
-static char *in_dir(const char *name)
-{
-	static char paths[8][160];
-	static int k;
-	char *p = paths[k++ % 8];
-
-	snprintf(p, 160, "%s/%s", dir, name);
-	return p;
-}
-
-static char *put_text(const char *name, const char *text)
-{
-	char *p = in_dir(name);
-	FILE *f = fopen(p, "w");
-
-	assert_non_null(f);
-	fputs(text, f);
-	fclose(f);
-	return p;
-}
-
-static int exists(const char *path)
-{
-	struct stat st;
-
-	return stat(path, &st) == 0;
-}
 
 /* Bad input: exit 2, nothing on stdout, n stderr lines, each needle in
  * them, and no output folder (nor its temporary) left. */
@@ -410,15 +376,15 @@ static void test_output_not_empty(void **state)
 static int setup(void **state)
 {
 	(void)state;
-	snprintf(dir, sizeof(dir), "/tmp/stray_import_%d", (int)getpid());
-	mkdir(dir, 0700);
+	if (cli_setup("import"))
+		return -1;
 	return 0;
 }
 
 static int teardown(void **state)
 {
 	(void)state;
-	return scratch_remove(dir);
+	return cli_teardown();
 }
 
 int main(void)
