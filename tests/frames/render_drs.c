@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "frames/frames_io.h"
+#include "star_grid.h"
 #include "stray/fdr.h"
 #include "stray/frames.h"
 #include "stray/photometry_io.h"
@@ -53,21 +54,9 @@ int main(int argc, char **argv)
 	if (argc == 6) {
 		struct stray_region_map map;
 		char path[4096];
-		double sum = 0;
 		unsigned k;
-		int x, y;
 
-		for (y = 0; y < W; y++)
-			for (x = 0; x < W; x++) {
-				double v = (0.7 + 0.6 * (x + 0.5) / W) *
-					(1 + 0.005 * sin(2 * 3.14159265358979 * (x + 0.5) / 256) *
-					 sin(2 * 3.14159265358979 * (y + 0.5) / 256));
-
-				wmap[y * W + x] = (float)v;
-				sum += v;
-			}
-		for (x = 0; x < W * W; x++)
-			wmap[x] = (float)(wmap[x] / (sum / (W * W)));
+		star_grid_map(wmap, W, 0.005);
 		c.weight = wmap;
 		frames_map_regions(wmap, (size_t)W * W, &map);
 		snprintf(path, sizeof(path), "%s.regions.csv", argv[4]);

@@ -31,6 +31,7 @@
 #include "frames/frames_run.h"
 #include "stray/photometry_io.h"
 #include "stray/sensor.h"
+#include "star_grid.h"
 
 #define W 480
 #define GRID 48
@@ -94,26 +95,9 @@ static void run(double alpha, double star_e, double gain, struct gap *g)
 	c.dark_e = fm.dark_e;
 	c.read_noise_e = fm.read_noise_e;
 	c.psf_sigma_px = 1.5;
-	memset(&a, 0, sizeof(a));
-	a.tiles = tiles;
-	a.tiles_x = a.tiles_y = 4;
-	a.tile_px = 128;
-	a.cols = a.rows = W;
-	a.stray_e = fm.stray_e;
-	a.dark_e = fm.dark_e;
-	a.read_noise_e = fm.read_noise_e;
-	a.gain_e_per_dn = gain;
+	star_grid_adc(&a, tiles, W, &fm, NULL, gain);
 	for (fr = 0; fr < FRAMES; fr++) {
-		for (i = 0; i < NS; i++) {
-			r = r * 6364136223846793005ull + 1442695040888963407ull;
-			st[i].x = (i % (W / GRID)) * GRID + GRID / 2 +
-				  (double)(r >> 40) / (1 << 24);
-			r = r * 6364136223846793005ull + 1442695040888963407ull;
-			st[i].y = (i / (W / GRID)) * GRID + GRID / 2 +
-				  (double)(r >> 40) / (1 << 24);
-			st[i].mag = 6;
-			st[i].photons_e = star_e;
-		}
+		star_grid_place(st, W, GRID, star_e, &r);
 		stray_frame_expect(&c, st, NS, e);
 		stray_frame_sample(&c, e, stray_frame_seed(5, (uint64_t)fr), dn);
 		assert_int_equal(frames_detect(dn, W, W, &dc, FRAMES_DET_THESIS |

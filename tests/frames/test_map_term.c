@@ -20,6 +20,7 @@
 #include "frames/frames_run.h"
 #include "stray/photometry_io.h"
 #include "stray/sensor.h"
+#include "star_grid.h"
 
 #define W 512
 #define FRAMES 16
@@ -28,26 +29,6 @@
 static float wmap[W * W], e[W * W], tiles[16];
 static uint16_t dn[W * W];
 static struct frames_detection det[2][65536];
-
-/* A ramp 0.7-1.3 along columns times 1 + amp sin sin of 256 px period,
- * mean 1. */
-static void make_map(double amp)
-{
-	double sum = 0;
-	int x, y;
-
-	for (y = 0; y < W; y++)
-		for (x = 0; x < W; x++) {
-			double v = (0.7 + 0.6 * (x + 0.5) / W) *
-				   (1 + amp * sin(2 * 3.14159265358979 * (x + 0.5) / 256) *
-				    sin(2 * 3.14159265358979 * (y + 0.5) / 256));
-
-			wmap[y * W + x] = (float)v;
-			sum += v;
-		}
-	for (x = 0; x < W * W; x++)
-		wmap[x] = (float)(wmap[x] / (sum / (W * W)));
-}
 
 struct counts { double meas[2], with[2], without[2], resid; };
 
@@ -66,7 +47,7 @@ static void run(double alpha, double amp, struct counts *c)
 	char msg[128];
 	int fr, k;
 
-	make_map(amp);
+	star_grid_map(wmap, W, amp);
 	frames_map_regions(wmap, (size_t)W * W, &map);
 	assert_int_equal(stray_reference_fluxes(s, &f, NULL), STRAY_OK);
 	assert_int_equal(frames_model_init(&fm, s, f.sun, f.drs, KPX, alpha, W,

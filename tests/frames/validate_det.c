@@ -21,6 +21,7 @@
 #include "frames/frames_run.h"
 #include "stray/photometry_io.h"
 #include "stray/sensor.h"
+#include "star_grid.h"
 
 #define W 480
 #define GRID 48
@@ -31,24 +32,6 @@ static struct frames_detection det[2][16384];
 static float e[W * W], tiles[16], wmap[W * W];
 static uint16_t dn[W * W];
 static struct stray_detector d[2];
-
-static void make_map(void)
-{
-	double sum = 0;
-	int x, y;
-
-	for (y = 0; y < W; y++)
-		for (x = 0; x < W; x++) {
-			double v = (0.7 + 0.6 * (x + 0.5) / W) *
-				   (1 + 0.005 * sin(2 * 3.14159265358979 * (x + 0.5) / 256) *
-				    sin(2 * 3.14159265358979 * (y + 0.5) / 256));
-
-			wmap[y * W + x] = (float)v;
-			sum += v;
-		}
-	for (x = 0; x < W * W; x++)
-		wmap[x] = (float)(wmap[x] / (sum / (W * W)));
-}
 
 static void point(double alpha, double star_e, int mapped, int frames)
 {
@@ -94,27 +77,9 @@ static void point(double alpha, double star_e, int mapped, int frames)
 	c.dark_e = fm.dark_e;
 	c.read_noise_e = fm.read_noise_e;
 	c.psf_sigma_px = 1.5;
-	memset(&a, 0, sizeof(a));
-	a.tiles = tiles;
-	a.tiles_x = a.tiles_y = 4;
-	a.tile_px = 128;
-	a.cols = a.rows = W;
-	a.weight = c.weight;
-	a.stray_e = fm.stray_e;
-	a.dark_e = fm.dark_e;
-	a.read_noise_e = fm.read_noise_e;
-	a.gain_e_per_dn = STRAY_FRAMES_GAIN_E_PER_DN;
+	star_grid_adc(&a, tiles, W, &fm, c.weight, STRAY_FRAMES_GAIN_E_PER_DN);
 	for (fr = 0; fr < frames; fr++) {
-		for (i = 0; i < NS; i++) {
-			r = r * 6364136223846793005ull + 1442695040888963407ull;
-			st[i].x = (i % (W / GRID)) * GRID + GRID / 2 +
-				  (double)(r >> 40) / (1 << 24);
-			r = r * 6364136223846793005ull + 1442695040888963407ull;
-			st[i].y = (i / (W / GRID)) * GRID + GRID / 2 +
-				  (double)(r >> 40) / (1 << 24);
-			st[i].mag = 6;
-			st[i].photons_e = star_e;
-		}
+		star_grid_place(st, W, GRID, star_e, &r);
 		stray_frame_expect(&c, st, NS, e);
 		stray_frame_sample(&c, e, stray_frame_seed(r, (uint64_t)fr), dn);
 		if (frames_detect(dn, W, W, &dc, FRAMES_DET_THESIS |
@@ -167,7 +132,7 @@ int main(int argc, char **argv)
 	int frames = argc > 1 ? atoi(argv[1]) : 12, mapped;
 	unsigned i;
 
-	make_map();
+	star_grid_map(wmap, W, 0.005);
 	printf("| detector | light | alpha | star e- | stars | found | model (this frame) | model - found | pass (0.05) | nominal model | nominal - found |\n");
 	printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
 	for (mapped = 0; mapped < 2; mapped++)
