@@ -30,7 +30,7 @@ $(B)/tests/tools/test_hardening2_fits: $(B)/tests/flightcheck/make_flight
 # Parsers under libFuzzer (clang), run by scripts/fuzz.sh two at a time
 # (FUZZ_JOBS), each on tests/fuzz/corpus/<target> and tests/fuzz/seeds/<target>:
 #   make fuzz-ci     in `make test`: each target FUZZ_CI_SECONDS (15 s for
-#                    23 targets; issue 14's double free took 7-22 s from the
+#                    24 targets; issue 14's double free took 7-22 s from the
 #                    seeds alone, 1 s from the kept corpus), fails on any
 #                    crash
 #   make fuzz        the long campaign: FUZZ_RUNS runs (10^7) per target,
@@ -111,6 +111,10 @@ build/fuzz/fuzz_focal_map: tests/fuzz/fuzz_focal_map.c \
 	@mkdir -p $(dir $@)
 	$(CLANG) $(FUZZ_CFLAGS) -Iframes/include -Itracer/include -o $@ $^ \
 		$(STRAY_LDLIBS)
+# A library call's options object (tools/api_args.c, issue 32) alone.
+build/fuzz/fuzz_api_options: tests/fuzz/fuzz_api_options.c tools/api_args.c
+	@mkdir -p $(dir $@)
+	$(CLANG) $(FUZZ_CFLAGS) -Itools -Itools/include -o $@ $^ -lcjson -lm
 # The heads file of `stray availability` (issue 31): its parser alone.
 build/fuzz/fuzz_heads: tests/fuzz/fuzz_heads.c mission/avail_heads.c $(FUZZ_LIB_A)
 	@mkdir -p $(dir $@)

@@ -6,13 +6,13 @@
  * implementation: Python's numbers are the command's numbers.
  */
 #include <getopt.h>
-#include <math.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
+#include "api_args.h"
 #include "cli_capture.h"
 #include "dispatch.h"
 #include "stray/errfmt.h"
@@ -30,132 +30,6 @@ struct stray_api_result {
  * process's: one command at a time. */
 static pthread_mutex_t api_lock = PTHREAD_MUTEX_INITIALIZER;
 
-/* The argument list being built: strings owned by the list. */
-struct args {
-	char **v;
-	int n, cap;
-};
-
-static int push(struct args *a, const char *s)
-{
-	if (a->n + 2 > a->cap) {
-		int cap = a->cap ? 2 * a->cap : 32;
-		char **v = realloc(a->v, (size_t)cap * sizeof(char *));
-
-		if (!v)
-			return -1;
-		a->v = v;
-		a->cap = cap;
-	}
-	if (!(a->v[a->n] = strdup(s)))
-		return -1;
-	a->v[++a->n] = NULL;
-	return 0;
-}
-
-static void args_free(struct args *a)
-{
-	int i;
-
-	for (i = 0; i < a->n; i++)
-		free(a->v[i]);
-	free(a->v);
-}
-
-/* One JSON value as option text: a string as is, a number %.17g (reads
- * back to the same double). 1: not a scalar. */
-static int scalar_text(const cJSON *v, char *buf, size_t size)
-{
-	if (cJSON_IsString(v)) {
-		snprintf(buf, size, "%s", v->valuestring);
-		return 0;
-	}
-	if (cJSON_IsNumber(v)) {
-		double d = v->valuedouble;
-
-		if (d == floor(d) && fabs(d) < 1e15)
-			snprintf(buf, size, "%.0f", d);
-		else
-			snprintf(buf, size, "%.17g", d);
-		return 0;
-	}
-	return 1;
-}
-
-/* A value that is not an option's: the caller's mistake, bad input. */
-static int bad_option(struct stray_api_result *r, const char *cmd,
-		      const char *key, const char *why)
-{
-	snprintf(r->cap.err, sizeof(r->cap.err), "stray %s: option '--%s': %s",
-		 cmd, key, why);
-	return CLI_USAGE;
-}
-
-/* opts (a JSON object) onto a: operands first, then --key value pairs. */
-static int build_args(struct stray_api_result *r, const char *cmd,
-		      const char *opts_json, struct args *a)
-{
-	char text[4096], opt[256];
-	const cJSON *o, *it, *e;
-	cJSON *root = NULL;
-	int rc = CLI_OK;
-
-	if (push(a, cmd))
-		return CLI_FAIL;
-	if (!opts_json || !*opts_json)
-		return CLI_OK;
-	root = cJSON_Parse(opts_json);
-	if (!cJSON_IsObject(root)) {
-		cJSON_Delete(root);
-		snprintf(r->cap.err, sizeof(r->cap.err),
-			 "stray %s: options are not a JSON object", cmd);
-		return CLI_USAGE;
-	}
-	o = root;
-	if ((it = cJSON_GetObjectItemCaseSensitive(o, "args"))) {
-		cJSON_ArrayForEach(e, it) {
-			if (scalar_text(e, text, sizeof(text))) {
-				rc = bad_option(r, cmd, "args", "not text");
-				goto out;
-			}
-			if (push(a, text)) {
-				rc = CLI_FAIL;
-				goto out;
-			}
-		}
-	}
-	cJSON_ArrayForEach(it, o) {
-		const cJSON *one = it;
-		int many = cJSON_IsArray(it);
-
-		if (strcmp(it->string, "args") == 0 || cJSON_IsFalse(it) ||
-		    cJSON_IsNull(it))
-			continue;
-		snprintf(opt, sizeof(opt), "--%s", it->string);
-		if (cJSON_IsTrue(it)) {
-			if (push(a, opt))
-				rc = CLI_FAIL;
-			if (rc)
-				goto out;
-			continue;
-		}
-		for (e = many ? it->child : one; e; e = many ? e->next : NULL) {
-			if (scalar_text(e, text, sizeof(text))) {
-				rc = bad_option(r, cmd, it->string,
-						"not a string or a number");
-				goto out;
-			}
-			if (push(a, opt) || push(a, text)) {
-				rc = CLI_FAIL;
-				goto out;
-			}
-		}
-	}
-out:
-	cJSON_Delete(root);
-	return rc;
-}
-
 static struct stray_api_result *result_new(void)
 {
 	return calloc(1, sizeof(struct stray_api_result));
@@ -163,7 +37,7 @@ static struct stray_api_result *result_new(void)
 
 /* The command, as `stray` runs it, under the lock. */
 static int run_locked(struct stray_api_result *r, const struct cmd *c,
-		      struct args *a)
+		      struct api_args *a)
 {
 	char **full = malloc((size_t)(a->n + 3) * sizeof(char *));
 	int rc;
@@ -194,7 +68,7 @@ int stray_api_run(const char *cmd, const char *opts_json,
 		  struct stray_api_result **out)
 {
 	struct stray_api_result *r = result_new();
-	struct args a = { NULL, 0, 0 };
+	struct api_args a = { NULL, 0, 0 };
 	const struct cmd *c;
 	int rc;
 
@@ -208,7 +82,8 @@ int stray_api_run(const char *cmd, const char *opts_json,
 			 cmd ? cmd : "");
 		return CLI_USAGE;
 	}
-	rc = build_args(r, cmd, opts_json, &a);
+	rc = api_build_args(cmd, opts_json, &a, r->cap.err,
+			    sizeof(r->cap.err));
 	if (rc == CLI_FAIL)	/* building the argument list: memory */
 		snprintf(r->cap.err, sizeof(r->cap.err),
 			 "stray %s: out of memory", cmd);
@@ -218,7 +93,7 @@ int stray_api_run(const char *cmd, const char *opts_json,
 		rc = run_locked(r, c, &a);
 		pthread_mutex_unlock(&api_lock);
 	}
-	args_free(&a);
+	api_args_free(&a);
 	/* a failure that said why on stderr only (a warning-style line) */
 	if (rc != CLI_OK && !r->cap.err[0])
 		snprintf(r->cap.err, sizeof(r->cap.err), "stray %s: failed "
