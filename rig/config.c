@@ -386,3 +386,19 @@ int rig_config_load(struct rig_config *cfg, const char *path,
 	free(text);
 	return rc;
 }
+
+int rig_config_env(struct rig_config *cfg, struct rig_error *err)
+{
+	const char *v = getenv("STRAYRIGD_INDI_PORT");
+	char *end;
+	long port;
+
+	if (!v)
+		return RIG_OK;
+	port = strtol(v, &end, 10);
+	if (end == v || *end || port < 1 || port > 65535)
+		return rig_error_set(err, RIG_EINVAL, "STRAYRIGD_INDI_PORT: "
+				     "'%s' is not a port (1-65535)", v);
+	cfg->indi.port = (int)port;
+	return RIG_OK;
+}

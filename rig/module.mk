@@ -42,7 +42,7 @@ RIG_CFLAGS += -Irig/sim/include
 RIG_TESTS := $(patsubst tests/rig/%.c,$(B)/tests/rig/%,\
 	$(wildcard tests/rig/test_*.c))
 # test_sigma: eight demo sweeps and 25 kills, ~25 s (minutes under ASan).
-# test_indi_sweep: seven sweeps through indiserver's simulators, ~80 s,
+# test_indi_sweep: seven sweeps and two probes through indiserver's simulators, ~80 s,
 # the simulators' own timers (issue 26).
 RIG_TESTS_SLOW := $(B)/tests/rig/test_sigma $(B)/tests/rig/test_indi_sweep
 TESTS += $(filter-out $(RIG_TESTS_SLOW),$(RIG_TESTS))
@@ -139,12 +139,14 @@ $(B)/tests/rig/testbed_sweep: tests/rig/testbed/test_testbed.sh $(RIG_BIN) \
 TESTS_SLOW += $(B)/tests/rig/testbed_sweep
 
 # strayrig-probe (`stray rig probe`): what the real backend finds, and one
-# exchange with each device (rig/probe/probe.c).
+# exchange with each device (rig/probe/probe.c; an INDI lab through the
+# daemon's INDI lab, rig/probe/probe_indi.c).
 RIG_PROBE_BIN := $(B)/bin/strayrig-probe
-$(B)/obj/rig/probe/probe.o: EXTRA_CFLAGS += $(RIG_CFLAGS)
-$(RIG_PROBE_BIN): $(B)/obj/rig/probe/probe.o $(RIG_LIB) $(STRAY_LIB)
+RIG_PROBE_OBJ := $(B)/obj/rig/probe/probe.o $(B)/obj/rig/probe/probe_indi.o
+$(RIG_PROBE_OBJ): EXTRA_CFLAGS += $(RIG_CFLAGS)
+$(RIG_PROBE_BIN): $(RIG_PROBE_OBJ) $(RIG_LIB) $(STRAY_LIB)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_BASE) -o $@ $< $(RIG_LIB) $(RIG_LDLIBS)
+	$(CC) $(CFLAGS_BASE) -o $@ $(RIG_PROBE_OBJ) $(RIG_LIB) $(RIG_LDLIBS)
 all: $(RIG_PROBE_BIN)
 install-rig: install-rig-probe
 install-rig-probe: $(RIG_PROBE_BIN)

@@ -178,19 +178,9 @@ int main(int argc, char **argv)
 	if (getenv("STRAYRIGD_LOCK_DIR"))
 		snprintf(d.cfg.lock_dir, sizeof(d.cfg.lock_dir), "%s",
 			 getenv("STRAYRIGD_LOCK_DIR"));
-	/* scripts/rig-indi.sh starts indiserver on a free port and says
-	 * which here. */
-	if (getenv("STRAYRIGD_INDI_PORT")) {
-		const char *v = getenv("STRAYRIGD_INDI_PORT");
-		char *end;
-		long port = strtol(v, &end, 10);
-
-		if (end == v || *end || port < 1 || port > 65535) {
-			fprintf(stderr, "strayrigd: STRAYRIGD_INDI_PORT: '%s' "
-				"is not a port (1-65535)\n", v);
-			return 2;
-		}
-		d.cfg.indi.port = (int)port;
+	if ((rc = rig_config_env(&d.cfg, &err)) != RIG_OK) {
+		fprintf(stderr, "strayrigd: %s\n", err.msg);
+		return 2;
 	}
 	install_signals();
 	own_name(d.owner, sizeof(d.owner));

@@ -9,8 +9,10 @@
  *   wheel    one QUERY report round trip
  *   monitor  one photocurrent reading (when enabled)
  *   camera   window set, one 10 ms frame, CRC checked (shutter closed)
- * One line per device, "ok" or the driver's error; exit 0 when every
- * device answered, 1 otherwise, 2 for a bad config.
+ * A lab on INDI ("backend": "indi") is probed through the daemon's INDI
+ * lab instead (probe_indi.c).  One line per device, "ok" or the driver's
+ * error; exit 0 when every device answered, 1 otherwise, 2 for a bad
+ * config.
  */
 #include <gpiod.h>
 #include <hidapi.h>
@@ -19,14 +21,15 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "probe.h"
 #include "rig/config.h"
 #include "rig/devices.h"
 #include "rig/wheel_report.h"
 
 static int failures;
 
-static void result(const char *dev, int rc, const struct rig_error *err,
-		   const char *what)
+void probe_result(const char *dev, int rc, const struct rig_error *err,
+		  const char *what)
 {
 	if (rc == RIG_OK) {
 		printf("%-8s ok: %s\n", dev, what);
@@ -120,7 +123,7 @@ static void talk_gpio(const struct rig_hal *hal, const struct rig_config *c)
 		rc = rig_lines_safe(&l, &err);
 		rig_lines_close(&l);
 	}
-	result("gpio", rc, &err, "lamp off, beam blocked, shutter closed, "
+	probe_result("gpio", rc, &err, "lamp off, beam blocked, shutter closed, "
 	       "each read back");
 }
 
@@ -140,7 +143,7 @@ static void talk_stage(const struct rig_hal *hal, const struct rig_config *c)
 	}
 	snprintf(what, sizeof(what), "position counter reads %.3f deg",
 		 theta);
-	result("stage", rc, &err, what);
+	probe_result("stage", rc, &err, what);
 }
 
 static void talk_wheel(const struct rig_hal *hal, const struct rig_config *c)
@@ -157,7 +160,7 @@ static void talk_wheel(const struct rig_hal *hal, const struct rig_config *c)
 	rig_error_clear(&err);
 	rc = rig_wheel_open(&w, hal, &c->wheel, &err);
 	if (rc != RIG_OK) {
-		result("wheel", rc, &err, "");
+		probe_result("wheel", rc, &err, "");
 		return;
 	}
 	rig_wheel_out_encode(&o, buf);
@@ -173,7 +176,7 @@ static void talk_wheel(const struct rig_hal *hal, const struct rig_config *c)
 		snprintf(what, sizeof(what), "slot %u of %u, flags 0x%02x",
 			 in.slot, in.n_slots, in.flags);
 	rig_wheel_close(&w);
-	result("wheel", rc, &err, what);
+	probe_result("wheel", rc, &err, what);
 }
 
 static void talk_monitor(const struct rig_hal *hal,
@@ -192,7 +195,7 @@ static void talk_monitor(const struct rig_hal *hal,
 		rig_monitor_close(&m);
 	}
 	snprintf(what, sizeof(what), "lamp level %.4f of nominal", level);
-	result("monitor", rc, &err, what);
+	probe_result("monitor", rc, &err, what);
 }
 
 static void talk_camera(const struct rig_hal *hal,
@@ -208,7 +211,7 @@ static void talk_camera(const struct rig_hal *hal,
 	memset(&img, 0, sizeof(img));
 	rc = rig_camera_open(&cam, hal, &c->camera, &err);
 	if (rc != RIG_OK) {
-		result("camera", rc, &err, "");
+		probe_result("camera", rc, &err, "");
 		return;
 	}
 	img.px = calloc((size_t)c->camera.n_rows * (size_t)c->camera.n_cols,
@@ -220,7 +223,7 @@ static void talk_camera(const struct rig_hal *hal,
 		 img.n_rows, img.n_cols);
 	free(img.px);
 	rig_camera_close(&cam);
-	result("camera", rc, &err, what);
+	probe_result("camera", rc, &err, what);
 }
 
 int main(int argc, char **argv)
@@ -235,9 +238,14 @@ int main(int argc, char **argv)
 	}
 	rig_error_clear(&err);
 	rig_config_defaults(&cfg);
-	if (rig_config_load(&cfg, argv[2], &err) != RIG_OK) {
+	if (rig_config_load(&cfg, argv[2], &err) != RIG_OK ||
+	    rig_config_env(&cfg, &err) != RIG_OK) {
 		fprintf(stderr, "strayrig-probe: %s\n", err.msg);
 		return 2;
+	}
+	if (strcmp(cfg.backend, "indi") == 0) {
+		probe_indi(&cfg);
+		goto done;
 	}
 	if (rig_hal_real_init(&hal) != RIG_OK) {
 		fprintf(stderr, "strayrig-probe: cannot initialise libusb "
@@ -256,6 +264,7 @@ int main(int argc, char **argv)
 		talk_monitor(&hal, &cfg);
 	talk_camera(&hal, &cfg);
 	rig_hal_real_fini(&hal);
+done:
 	printf("%s\n", failures ? "probe: some devices did not answer"
 				: "probe: every device answered");
 	return failures ? 1 : 0;

@@ -7,7 +7,8 @@
  * filter, exposure and lamp in each header); a daemon killed mid-sweep,
  * and separately indiserver killed, resume with no frame lost or taken
  * twice; a camera disconnected mid-exposure and its driver restarted
- * mid-sweep cost no frame.  About a minute (TESTS_SLOW: not under ASan
+ * mid-sweep cost no frame; `stray rig probe` talks to each device without
+ * moving it.  About a minute (TESTS_SLOW: not under ASan
  * in `make test`).  Where indiserver cannot run, one SKIP line and no test
  * counted as passed.
  */
@@ -290,6 +291,62 @@ static void test_camera_faults_lose_nothing(void **state)
 	free(dir);
 }
 
+static const char *probe_bin(void)
+{
+	static char bin[600];
+	const char *b = getenv("STRAY_BUILD");
+
+	snprintf(bin, sizeof(bin), "%s/bin/strayrig-probe", b ? b : "build");
+	return bin;
+}
+
+/* `stray rig probe` of an INDI lab: every device through the daemon's
+ * INDI lab, nothing moved; a property misnamed in the config fails its
+ * device (exit 1) with the key to fix, the others still answer. */
+static void test_probe_through_simulators(void **state)
+{
+	char *dir = setup(0.05), cmd[4096], out[4096], bad[1200];
+	char *at;
+
+	(void)state;
+	at = strstr(cfg_text, "\"indi\":{");
+	assert_non_null(at);
+	snprintf(bad, sizeof(bad), "%.*s\"indi\":{\"stage\":{\"property\":"
+		 "\"ABS_ROTATOR_ANGL\"},%s", (int)(at - cfg_text), cfg_text,
+		 at + strlen("\"indi\":{"));
+	snprintf(cmd, sizeof(cmd), "%s/bad.json", dir);
+	put_file(cmd, bad);
+	snprintf(cmd, sizeof(cmd), "scripts/rig-indi.sh sh -c '"
+		 "%s --config %s/c.json >%s/ok.txt 2>/dev/null; echo $? >%s/ok.rc;"
+		 " %s --config %s/bad.json >%s/bad.txt 2>/dev/null;"
+		 " echo $? >%s/bad.rc'", probe_bin(), dir, dir, dir,
+		 probe_bin(), dir, dir, dir);
+	assert_int_equal(sh(cmd), 0);
+	snprintf(cmd, sizeof(cmd), "%s/ok.txt", dir);
+	get_file(cmd, out, sizeof(out));
+	print_message("%s", out);
+	assert_non_null(strstr(out, "stage    ok: 'Rotator Simulator' "
+			       "ABS_ROTATOR_ANGLE at "));
+	assert_non_null(strstr(out, "wheel    ok: 'Filter Simulator'"));
+	assert_non_null(strstr(out, "camera   ok: 'CCD Simulator': one 10 ms "
+			       "dark frame, 4 x 64 px"));
+	assert_non_null(strstr(out, "probe: every device answered"));
+	snprintf(cmd, sizeof(cmd), "%s/ok.rc", dir);
+	get_file(cmd, out, sizeof(out));
+	assert_string_equal(out, "0\n");
+	snprintf(cmd, sizeof(cmd), "%s/bad.txt", dir);
+	get_file(cmd, out, sizeof(out));
+	assert_non_null(strstr(out, "stage    FAILED: indi: 'Rotator Simulator'"
+			       " has no property ABS_ROTATOR_ANGL; check "
+			       "indi.stage.property"));
+	assert_non_null(strstr(out, "camera   ok:"));
+	snprintf(cmd, sizeof(cmd), "%s/bad.rc", dir);
+	get_file(cmd, out, sizeof(out));
+	assert_string_equal(out, "1\n");
+	remove_tree(dir);
+	free(dir);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -297,6 +354,7 @@ int main(void)
 		cmocka_unit_test(test_daemon_killed_resumes),
 		cmocka_unit_test(test_indiserver_killed_resumes),
 		cmocka_unit_test(test_camera_faults_lose_nothing),
+		cmocka_unit_test(test_probe_through_simulators),
 	};
 	int rc = sh("scripts/rig-indi.sh true 2>/dev/null");
 

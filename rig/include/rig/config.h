@@ -67,4 +67,9 @@ int rig_config_parse(struct rig_config *cfg, const char *name,
 int rig_config_load(struct rig_config *cfg, const char *path,
 		    struct rig_error *err);
 
+/* The environment's overrides for a lab on one machine: the INDI port
+ * from STRAYRIGD_INDI_PORT (scripts/rig-indi.sh starts indiserver on a
+ * free port and says which there).  RIG_EINVAL naming a bad value. */
+int rig_config_env(struct rig_config *cfg, struct rig_error *err);
+
 #endif /* RIG_CONFIG_H */
