@@ -116,6 +116,11 @@ const char *stray_api_error(const struct stray_api_result *r)
 	return r ? r->cap.err : "out of memory";
 }
 
+const char *stray_api_notes(const struct stray_api_result *r)
+{
+	return r ? r->cap.notes : "";
+}
+
 const char *stray_api_command(const struct stray_api_result *r)
 {
 	return r && r->command ? r->command : "";

@@ -46,6 +46,34 @@ int cli_fail(const char *cmd, const struct stray_error *err)
 	return stray_status_is_bad_input(err->code) ? CLI_USAGE : CLI_FAIL;
 }
 
+int cli_fail_line(const char *cmd, int code, const char *fmt, ...)
+{
+	char msg[1024], full[1400];
+	va_list ap;
+
+	va_start(ap, fmt);
+	vsnprintf(msg, sizeof(msg), fmt, ap);
+	va_end(ap);
+	snprintf(full, sizeof(full), "%s %s: %s", cli.prog, cmd, msg);
+	error_line(full);
+	return code;
+}
+
+void cli_note(const char *cmd, const char *fmt, ...)
+{
+	char msg[1024], full[1400];
+	va_list ap;
+
+	va_start(ap, fmt);
+	vsnprintf(msg, sizeof(msg), fmt, ap);
+	va_end(ap);
+	snprintf(full, sizeof(full), "%s %s: %s", cli.prog, cmd, msg);
+	if (cli_capture)
+		cli_capture_note(full);
+	else
+		fprintf(stderr, "%s\n", full);
+}
+
 int cli_usage_error(const char *cmd, const char *fmt, ...)
 {
 	char msg[1024], full[1400];

@@ -21,6 +21,18 @@ extern struct cli_global cli;
 /* Print err as one line on stderr, "stray <cmd>: ...", and return 1 or 2. */
 int cli_fail(const char *cmd, const struct stray_error *err);
 
+/* A failure whose reason is text, not a stray_error: the one line
+ * "stray <cmd>: <msg>" (stderr, or the library call's error); returns
+ * code (1 or 2). */
+int cli_fail_line(const char *cmd, int code, const char *fmt, ...)
+	__attribute__((format(printf, 3, 4)));
+
+/* A note the caller should see beside a result (not an error: the
+ * command goes on), "stray <cmd>: <msg>": on stderr, or kept among the
+ * library call's notes (stray_api_notes; Python warns with each). */
+void cli_note(const char *cmd, const char *fmt, ...)
+	__attribute__((format(printf, 2, 3)));
+
 /* A usage error: print "stray <cmd>: <msg>" and a hint; return 2. */
 int cli_usage_error(const char *cmd, const char *fmt, ...)
 	__attribute__((format(printf, 2, 3)));

@@ -88,6 +88,23 @@ int cli_capture_frame(const uint16_t *dn, int cols, int rows, size_t index,
 	return STRAY_OK;
 }
 
+void cli_capture_note(const char *line)
+{
+	static const char more[] = "(more notes than fit)\n";
+	char *n = cli_capture->notes;
+	size_t len = strlen(n), cap = sizeof(cli_capture->notes);
+	size_t need = strlen(line) + 1;
+
+	if (len + need + sizeof(more) > cap) {
+		if (!strstr(n, more) && len + sizeof(more) <= cap)
+			memcpy(n + len, more, sizeof(more));
+		return;
+	}
+	memcpy(n + len, line, need - 1);
+	n[len + need - 1] = '\n';
+	n[len + need] = '\0';
+}
+
 void cli_capture_free(struct cli_capture *c)
 {
 	cJSON_Delete(c->json);

@@ -22,6 +22,7 @@ struct cli_capture {
 	char err[1400];		/* the line stray prints on failure */
 	struct stray_curve curve;	/* the curve written (trace, reduce) */
 	int has_curve;
+	char notes[4096];	/* cli_note lines, each ending '\n' */
 	uint16_t *frames;	/* n_frames x rows x cols, malloc'd */
 	size_t n_frames, max_frames;
 	int rows, cols;
@@ -40,6 +41,10 @@ int cli_capture_curve(const struct stray_curve *c, struct stray_error *err);
  * frame buffer (allocated at the first frame); STRAY_OK or ENOMEM. */
 int cli_capture_frame(const uint16_t *dn, int cols, int rows, size_t index,
 		      size_t total, struct stray_error *err);
+
+/* line kept among the call's notes (a last line says when more did
+ * not fit). */
+void cli_capture_note(const char *line);
 
 /* Free what c holds (the frame buffer too, unless taken: NULL). */
 void cli_capture_free(struct cli_capture *c);

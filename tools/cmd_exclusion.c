@@ -329,9 +329,9 @@ int cmd_exclusion(int argc, char **argv)
 	fflush(stdout);
 	for (i = 0; i < nb; i++)	/* a result, not an error: exit 0 */
 		if (!b[i].excluded)
-			fprintf(stderr, "stray exclusion: %s: %s not excluded within the curve (alpha_required %.3g): %s\n",
-				a.curve, b[i].name, b[i].alpha_req,
-				b[i].ex.reason);
+			cli_note("exclusion", "%s: %s not excluded within the "
+				 "curve (alpha_required %.3g): %s", a.curve,
+				 b[i].name, b[i].alpha_req, b[i].ex.reason);
 	return rc;
 }
 

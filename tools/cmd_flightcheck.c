@@ -313,9 +313,8 @@ int cmd_flightcheck(int argc, char **argv)
 		/* no number is printed for frames that cannot be calibrated */
 		free(f);
 		free(p);
-		fprintf(stderr, "stray flightcheck: %s: cannot be calibrated: %s\n",
-			a.dir, c.why);
-		return 1;
+		return cli_fail_line("flightcheck", CLI_FAIL, "%s: cannot be "
+				     "calibrated: %s", a.dir, c.why);
 	}
 	rc = STRAY_OK;
 	if (a.out) {

@@ -243,7 +243,7 @@ int cmd_reduce(int argc, char **argv)
 				"folder with manifest.csv)");
 			return cli_fail("reduce", &err);
 		}
-		reduce_warn_partial(stderr, a.dirs[i]);
+		reduce_warn_partial(a.dirs[i]);
 	}
 	stray_file_defer();	/* every output renamed at the end, or none */
 	rc = a.n_dirs == 1 ? stray_reduce_sweep(a.dir, &o, &r, &err)

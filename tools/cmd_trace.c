@@ -390,7 +390,7 @@ int cmd_trace(int argc, char **argv, const struct tracer_runner *runner)
 	stray_file_defer();	/* every output renamed at the end, or none */
 	rc = load_scene(&a, &s, &err);
 	if (!rc && s.note[0]) {	/* a CAD mesh put right: say what */
-		fprintf(stderr, "stray trace: %s: %s\n", a.job.scene, s.note);
+		cli_note("trace", "%s: %s", a.job.scene, s.note);
 		a.job.scene_note = s.note;
 	}
 	if (!rc && (a.out || cli.json || a.paths_out || a.top || a.plot ||

@@ -17,6 +17,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include "cli.h"
 #include "reduce_report.h"
 #include "stray/errfmt.h"
 #include "stray/file.h"
@@ -87,7 +88,7 @@ static void missing(const cJSON *plan, const struct stray_sweep_manifest *m,
 	free(ang);
 }
 
-void reduce_warn_partial(FILE *out, const char *dir)
+void reduce_warn_partial(const char *dir)
 {
 	struct stray_sweep_manifest m;
 	struct stray_error err;
@@ -99,9 +100,9 @@ void reduce_warn_partial(FILE *out, const char *dir)
 	double first = 0;
 
 	if (live(dir))
-		fprintf(out, "stray reduce: %s: the sweep is live (strayrigd "
-			"is writing it): the curve covers the frames taken "
-			"so far\n", dir);
+		cli_note("reduce", "%s: the sweep is live (strayrigd is "
+			 "writing it): the curve covers the frames taken so "
+			 "far", dir);
 	snprintf(path, sizeof(path), "%s/plan.json", dir);
 	stray_error_clear(&err);
 	if (stray_file_read(path, &text, &len, &err) != STRAY_OK)
@@ -113,11 +114,11 @@ void reduce_warn_partial(FILE *out, const char *dir)
 	if (stray_sweep_manifest_load(dir, &m, &err) == STRAY_OK) {
 		missing(plan, &m, &n_miss, &n_plan, &first);
 		if (n_miss > 0)
-			fprintf(out, "stray reduce: %s: partial sweep: %ld "
-				"of %ld planned visits not complete (the "
-				"first at %g deg); the curve covers what is "
-				"there (resume: strayrigd --resume)\n", dir, n_miss, n_plan,
-				first);
+			cli_note("reduce", "%s: partial sweep: %ld of %ld "
+				 "planned visits not complete (the first at %g "
+				 "deg); the curve covers what is there (resume: "
+				 "strayrigd --resume)", dir, n_miss, n_plan,
+				 first);
 		stray_sweep_manifest_free(&m);
 	}
 	cJSON_Delete(plan);

@@ -35,7 +35,7 @@ cJSON *reduce_json(const struct stray_reduce_sweep_result *r,
 /* Human-readable summary on out. */
 /* One line on out when the sweep in dir is live or unfinished
  * (reduce_partial.c); the reduction goes on. */
-void reduce_warn_partial(FILE *out, const char *dir);
+void reduce_warn_partial(const char *dir);
 
 void reduce_print(FILE *out, const struct stray_reduce_sweep_result *r,
 		  const char *out_path);

@@ -14,6 +14,7 @@ import ctypes
 import json
 import os
 import threading
+import warnings
 from ctypes import (POINTER, byref, c_char_p, c_double, c_int, c_size_t,
                     c_uint16, c_void_p)
 from pathlib import Path
@@ -29,6 +30,12 @@ class Error(Exception):
 class InputError(Error, ValueError):
     """Bad input (what `stray` exits 2 for); the message is the line
     `stray` prints on stderr."""
+
+
+class StrayWarning(UserWarning):
+    """A note `stray` prints on stderr beside its result and goes on (a
+    scene put right, a body not excluded within the curve, a partial
+    sweep): raised as a warning, the result still returned."""
 
 
 def _load() -> ctypes.CDLL:
@@ -53,6 +60,7 @@ _run = _fn("stray_api_run", c_int, [c_char_p, c_char_p, POINTER(c_void_p)])
 _json = _fn("stray_api_json", c_char_p, [c_void_p])
 _error = _fn("stray_api_error", c_char_p, [c_void_p])
 _command = _fn("stray_api_command", c_char_p, [c_void_p])
+_notes = _fn("stray_api_notes", c_char_p, [c_void_p])
 _rows = _fn("stray_api_curve_rows", c_size_t, [c_void_p])
 _ncols = _fn("stray_api_curve_columns", c_size_t, [c_void_p])
 _colname = _fn("stray_api_curve_name", c_char_p, [c_void_p, c_size_t])
@@ -100,6 +108,10 @@ class Result:
     @property
     def error(self) -> str:
         return _text(_error(self.handle))
+
+    @property
+    def notes(self) -> List[str]:
+        return _text(_notes(self.handle)).splitlines()
 
     @property
     def command(self) -> str:
@@ -215,7 +227,11 @@ def call(cmd: str, opts: Dict[str, Any],
             if handle:
                 _result_free(handle)
             raise
-    return Result(handle, box["rc"]).check()
+    result = Result(handle, box["rc"])
+    for line in result.notes:
+        # stacklevel 3: the user's line that called straylight.<cmd>
+        warnings.warn(line, StrayWarning, stacklevel=3)
+    return result.check()
 
 
 def curve_read(path: str) -> Result:

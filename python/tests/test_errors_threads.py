@@ -116,3 +116,17 @@ def test_a_call_in_a_thread_does_not_block_python():
     assert "c" in done
     # the main thread kept running through the foreign call
     assert took > 0.1 and ticks > 0.3 * took / 0.0011, (ticks, took)
+
+
+def test_note_is_a_warning(tmp_path):
+    """A note `stray` prints on stderr beside its result (here: the Sun
+    not excluded within a curve that ends above alpha_required) is a
+    StrayWarning with the same line; the result is still returned."""
+    flat = tmp_path / "flat.csv"
+    flat.write_text("theta_deg,alpha\n0,1\n30,1e-3\n90,1e-3\n")
+    rc, _, err = cli("exclusion", "--curve", str(flat), check=False)
+    assert rc == 0 and "sun not excluded within the curve" in err
+    with pytest.warns(sl.StrayWarning) as got:
+        r = sl.exclusion(str(flat))
+    assert [str(w.message) for w in got] == [err.strip()]
+    assert r["sun_deg"] is None and r["sun"]["excluded_within_curve"] is False

@@ -68,6 +68,33 @@ static void json_and_errors(void **state)
 	stray_api_result_free(r);
 }
 
+/* A note `stray` prints beside its result is kept, not printed: the Sun
+ * not excluded within a curve that ends above alpha_required. */
+static void notes_kept(void **state)
+{
+	struct stray_api_result *r;
+	char path[96], opts[200];
+	FILE *f;
+
+	(void)state;
+	snprintf(path, sizeof(path), "%s/flat.csv", dir);
+	f = fopen(path, "w");
+	assert_non_null(f);
+	fputs("theta_deg,alpha\n0,1\n30,1e-3\n90,1e-3\n", f);
+	fclose(f);
+	snprintf(opts, sizeof(opts), "{\"curve\": \"%s\"}", path);
+	assert_int_equal(stray_api_run("exclusion", opts, &r), 0);
+	assert_string_equal(stray_api_error(r), "");
+	assert_non_null(strstr(stray_api_notes(r), "stray exclusion: "));
+	assert_non_null(strstr(stray_api_notes(r), "flat.csv: sun not "
+			       "excluded within the curve"));
+	assert_int_equal(strchr(stray_api_notes(r), '\n')[1], '\0');
+	stray_api_result_free(r);
+	assert_int_equal(stray_api_run("photometry", NULL, &r), 0);
+	assert_string_equal(stray_api_notes(r), "");
+	stray_api_result_free(r);
+}
+
 static void trace_curve_and_frames(void **state)
 {
 	struct stray_api_result *r;
@@ -180,6 +207,7 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(json_and_errors),
+		cmocka_unit_test(notes_kept),
 		cmocka_unit_test(trace_curve_and_frames),
 		cmocka_unit_test(bad_curve_file),
 		cmocka_unit_test(cancel_stops_a_trace),

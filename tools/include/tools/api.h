@@ -40,6 +40,11 @@ const char *stray_api_json(const struct stray_api_result *r);
 /* The line `stray` prints on stderr when the call failed, or "". */
 const char *stray_api_error(const struct stray_api_result *r);
 
+/* The notes the command gave beside its result (what `stray` prints on
+ * stderr and goes on: a scene put right, a body not excluded, a partial
+ * sweep), one per line, each ending '\n'; "" when none. */
+const char *stray_api_notes(const struct stray_api_result *r);
+
 /* The command line the call is equivalent to (provenance). */
 const char *stray_api_command(const struct stray_api_result *r);
 
