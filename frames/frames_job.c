@@ -23,6 +23,7 @@
 #include "stray/errfmt.h"
 #include "stray/file.h"
 #include "stray/sensor_geom.h"
+#include "tracer/cancel.h"
 
 /* Solid angle of the rendered frame, through the ideal lens the focal
  * maps use (stray_sensor_pixel_deg). */
@@ -362,6 +363,11 @@ static int run_frames(struct frames_job *st, struct stray_error *err)
 		return rc;
 	for (i = 0; i < (int)st->a.frames; i++) {
 		uint64_t seed = stray_frame_seed((uint64_t)st->a.seed, (uint64_t)i);
+
+		/* a library caller's Ctrl-C (tracer/cancel.h): a frame at most */
+		if (tracer_cancelled())
+			return stray_error_set(err, STRAY_EIO, "frames",
+					       "interrupted");
 
 		if (!st->a.has_att)	/* else the catalogue's, every frame */
 			stray_star_field_draw(&f, st->cols, st->rows, seed,

@@ -7,7 +7,7 @@ values of the command's ``--json`` output, and bad input raises
 :class:`InputError` with the line ``stray`` prints; a note ``stray``
 prints beside its result (a body not excluded within the curve, a
 partial sweep) is a :class:`StrayWarning`.  Long calls release
-the GIL; Ctrl-C stops a long trace within a second.  See docs/python.md.
+the GIL; Ctrl-C stops a long trace or frames within a second.  See docs/python.md.
 
 >>> import straylight as sl
 >>> c = sl.trace("ref4", angles="0:30:5,30:90:0.5", rays=200_000, seed=1)

@@ -5,7 +5,7 @@ the numbers and messages are the CLI's).  ctypes releases the GIL for
 the whole foreign call, so other Python threads run meanwhile.  From the
 main thread the call runs in a helper thread while the main thread
 waits in short joins: a Ctrl-C then raises KeyboardInterrupt there, the
-library's cancel flag stops the trace (within a second), and the
+library's cancel flag stops the trace or the frames (within a second), and the
 KeyboardInterrupt is raised once the call has returned.
 """
 from __future__ import annotations

@@ -98,6 +98,27 @@ def test_ctrl_c_stops_a_long_trace_within_a_second():
     assert c.alpha[0] == 1.0
 
 
+def test_ctrl_c_stops_long_frames():
+    """Rendering stops at the next frame too (not only traces)."""
+    sent = {}
+
+    def interrupt():
+        time.sleep(0.5)
+        sent["t"] = time.monotonic()
+        os.kill(os.getpid(), signal.SIGINT)
+
+    threading.Thread(target=interrupt, daemon=True).start()
+    t0 = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        sl.frames(alpha=1e-7, frames=400, window=256, seed=1)
+    stopped = time.monotonic()
+    assert "t" in sent
+    assert stopped - sent["t"] < 1.0, stopped - sent["t"]
+    assert stopped - t0 < 5.0
+    f = sl.frames(alpha=1e-7, frames=1, window=64, seed=1)
+    assert f.images.shape == (1, 64, 64)
+
+
 def test_a_call_in_a_thread_does_not_block_python():
     done = {}
 
