@@ -23,6 +23,8 @@ FW_TABLE_C := $(FW_B)/flight_table.c
 FW_CURVE := tests/vectors/fdrfw_curve.csv
 FW_FOOTPRINT := $(FW_B)/fdrfw_footprint.elf
 FW_VECTORS := $(FW_B)/fdrfw_vectors.elf
+FW_DET_TABLE_C := $(FW_B)/det_table.c
+FW_DET := $(FW_B)/fdrfw_detector.elf
 
 # Everything on the target is single precision (libstray's core with
 # STRAY_REAL_FLOAT) and built with -Wdouble-promotion to keep it so.
@@ -42,6 +44,16 @@ $(FW_B)/obj/flight_table.o: $(FW_TABLE_C)
 	@mkdir -p $(dir $@)
 	$(ARM_CC) $(ARM_CFLAGS) -Wdouble-promotion -c $< -o $@
 
+# A detector table (tetra3, issue 28) for the emulated run of its grid.
+$(FW_DET_TABLE_C): $(FW_CURVE) $(STRAY_BIN)
+	@mkdir -p $(dir $@)
+	$(STRAY_BIN) firmware-table --curve $(FW_CURVE) --detector tetra3 \
+		--out-c $@ --name fdrfw_det_table >/dev/null
+
+$(FW_B)/obj/det_table.o: $(FW_DET_TABLE_C)
+	@mkdir -p $(dir $@)
+	$(ARM_CC) $(ARM_CFLAGS) -Wdouble-promotion -c $< -o $@
+
 $(FW_FOOTPRINT): $(FW_START_OBJ) $(FW_B)/obj/firmware_fdr/target/footprint_main.o \
 		$(FW_B)/obj/flight_table.o $(FW_FLIGHT_OBJ) $(FW_STRAY_OBJ)
 	$(ARM_CC) $(ARM_LDFLAGS) -Wl,-Map,$@.map -o $@ $^ -lm
@@ -52,18 +64,25 @@ $(FW_VECTORS): $(FW_START_OBJ) $(FW_B)/obj/firmware_fdr/target/semihost.o \
 		$(FW_B)/obj/flight_table.o $(FW_FLIGHT_OBJ) $(FW_STRAY_OBJ)
 	$(ARM_CC) $(ARM_LDFLAGS) -o $@ $^ -lm
 
-$(FW_B)/obj/tests/firmware_fdr/%.o: FW_EXTRA := -Itests/firmware_fdr
+$(FW_DET): $(FW_START_OBJ) $(FW_B)/obj/firmware_fdr/target/semihost.o \
+		$(FW_B)/obj/tests/firmware_fdr/target_detector.o \
+		$(FW_B)/obj/det_table.o $(FW_FLIGHT_OBJ) $(FW_STRAY_OBJ)
+	$(ARM_CC) $(ARM_LDFLAGS) -o $@ $^ -lm
+
+$(FW_B)/obj/tests/firmware_fdr/%.o: FW_EXTRA := -Itests/firmware_fdr \
+	-Ifirmware_fdr
 
 .PHONY: firmware
-firmware: $(FW_FOOTPRINT) $(FW_VECTORS)
-	@firmware_fdr/target/footprint.sh $(FW_B) $(FW_FOOTPRINT) $(FW_VECTORS)
+firmware: $(FW_FOOTPRINT) $(FW_VECTORS) $(FW_DET)
+	@firmware_fdr/target/footprint.sh $(FW_B) $(FW_FOOTPRINT) $(FW_VECTORS) \
+		$(FW_DET)
 
 # The emulated run and the footprint are tests: their drivers need the
 # images built (explicit rules, so make never takes the images for
 # intermediates of the pattern rule and skips them).
 $(B)/tests/firmware_fdr/test_vectors: \
 		$(B)/obj/tests/firmware_fdr/test_vectors.o $(FDRFW_TEST_DEPS) \
-		$(FW_VECTORS)
+		$(FW_VECTORS) $(FW_DET)
 	$(FDRFW_TEST_LINK)
 $(B)/tests/firmware_fdr/test_footprint: \
 		$(B)/obj/tests/firmware_fdr/test_footprint.o $(FDRFW_TEST_DEPS) \

@@ -24,6 +24,10 @@
 
 #define N_VEC (sizeof(fdrfw_vectors) / sizeof(fdrfw_vectors[0]))
 #define TARGET_ELF "build/firmware/fdrfw_vectors.elf"
+#define TARGET_DET_ELF "build/firmware/fdrfw_detector.elf"
+#define QEMU "timeout 120 qemu-system-arm -M mps2-an386 -nographic " \
+	"-monitor none -serial none " \
+	"-semihosting-config enable=on,target=native -icount shift=0 -kernel "
 
 /* The vectors' curve file is the fixture's curve (make_vectors.c). */
 static void test_curve_file_is_the_fixture(void **state)
@@ -87,10 +91,7 @@ static void test_emulated_cortex_m4(void **state)
 	int status, agreed = 0;
 
 	(void)state;
-	p = popen("timeout 120 qemu-system-arm -M mps2-an386 -nographic "
-		  "-monitor none -serial none "
-		  "-semihosting-config enable=on,target=native "
-		  "-icount shift=0 -kernel " TARGET_ELF " 2>&1", "r");
+	p = popen(QEMU TARGET_ELF " 2>&1", "r");
 	assert_non_null(p);
 	while (fgets(line, sizeof(line), p)) {
 		unsigned ok, n;
@@ -107,12 +108,42 @@ static void test_emulated_cortex_m4(void **state)
 		fail_msg("emulated run failed (status %d): %s", status, all);
 }
 
+/* A detector table (tetra3, version 3) on the emulated Cortex-M4F: its
+ * 72 grid nodes answered in float as the table says, the Sun's flag
+ * turning at the table's exclusion angle (target_detector.c). */
+static void test_emulated_detector_table(void **state)
+{
+	char line[256], all[2048] = "";
+	unsigned nodes = 0, failures = 1;
+	FILE *p;
+	int status;
+
+	(void)state;
+	p = popen(QEMU TARGET_DET_ELF " 2>&1", "r");
+	assert_non_null(p);
+	while (fgets(line, sizeof(line), p)) {
+		const char *f = strstr(line, " deg, ");
+
+		fputs(line, stdout);
+		if (strlen(all) + strlen(line) < sizeof(all))
+			strcat(all, line);
+		if (sscanf(line, "fdrfw-det-target: tetra3 table, %u nodes",
+			   &nodes) == 1 && f)
+			sscanf(f, " deg, %u failures", &failures);
+	}
+	status = pclose(p);
+	if (status != 0 || nodes != FDRFW_DET_MAX || failures != 0)
+		fail_msg("emulated detector run failed (status %d, %u nodes, "
+			 "%u failures): %s", status, nodes, failures, all);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_curve_file_is_the_fixture),
 		cmocka_unit_test(test_host_reproduces_vectors),
 		cmocka_unit_test(test_emulated_cortex_m4),
+		cmocka_unit_test(test_emulated_detector_table),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
