@@ -134,6 +134,10 @@ int main(void)
 	sh_put_uint(insns2);
 	sh_puts(" instructions, stack ");
 	sh_put_uint(stack2);
-	sh_puts(" bytes\n");
+	sh_puts(" bytes (flags ");
+	sh_put_hex(out.flags);
+	sh_puts(", Earth limb ");
+	sh_put_double((double)out.theta_deg[FDRFW_EARTH]);
+	sh_puts(" deg)\n");
 	sh_exit(failures == 0 && nodes > 0);
 }
