@@ -14,6 +14,7 @@
 #ifndef TRACER_LIGHT_H
 #define TRACER_LIGHT_H
 
+#include "tracer/batches.h"
 #include "worker.h"
 
 /* B samples per batch and angle in the pilot pass (its statistics size
@@ -27,7 +28,9 @@
  * casts, then per grid ratio q the sum of e^2 / (cA pA/pB + cB), cA =
  * 1/(1+q), cB = q/(1+q): the second moment of the balance heuristic's
  * mixture (light_alloc.c). */
-#define TRACER_LIGHT_STATS (3 + TRACER_LIGHT_GRID)
+#if TRACER_LIGHT_STATS != 3 + TRACER_LIGHT_GRID
+#error "batches.h's TRACER_LIGHT_STATS is 3 + TRACER_LIGHT_GRID"
+#endif
 
 /* Grid ratio k. */
 double tracer_light_grid_q(int k);
@@ -65,13 +68,7 @@ struct light_out {
 void tracer_light_batch(struct worker_ctx *w, int b, uint64_t n_a,
 			struct light_out *out);
 
-/*
- * The main pass's B ratio per angle from the pilot's result (strategy A,
- * unguided) and B statistics light_pilot [batch][theta][STATS] (merged
- * in batch order): the ratios that minimise the predicted time to a
- * given error at the worst angle (see light_alloc.c).  q[n_theta].
- */
-void tracer_light_alloc(const struct tracer_result *pilot,
-			const double *light_pilot, double *q);
+/* tracer_light_alloc (batches.h): the main pass's B ratio per angle from
+ * the pilot's result and B statistics (light_alloc.c). */
 
 #endif /* TRACER_LIGHT_H */

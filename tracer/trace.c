@@ -392,6 +392,18 @@ int tracer_trace_batches(const struct tracer_scene *s,
 			 int n_batches, double *pilot_s2,
 			 struct tracer_result *res, struct stray_error *err)
 {
+	return tracer_trace_batches_light(s, o, guide, first_batch, n_batches,
+					  pilot_s2, NULL, res, err);
+}
+
+int tracer_trace_batches_light(const struct tracer_scene *s,
+			       const struct tracer_trace_opts *o,
+			       const struct tracer_guide *guide,
+			       int first_batch, int n_batches,
+			       double *pilot_s2, double *light_pilot,
+			       struct tracer_result *res,
+			       struct stray_error *err)
+{
 	double t0 = now_s();
 	int rc = check_opts(s, o, err);
 
@@ -406,7 +418,7 @@ int tracer_trace_batches(const struct tracer_scene *s,
 	    n_batches > o->n_batches - first_batch)
 		return stray_error_set_value(err, STRAY_EINVAL, "batches",
 			"range outside the trace's batches", first_batch);
-	rc = run_pass(s, o, res, guide, pilot_s2, NULL, first_batch,
+	rc = run_pass(s, o, res, guide, pilot_s2, light_pilot, first_batch,
 		      n_batches, err);
 	if (!rc)
 		res->seconds = now_s() - t0;

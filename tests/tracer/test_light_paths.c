@@ -246,7 +246,8 @@ static void test_light_threads_identical(void **state)
 
 /* Batches [b0, b0 + nb) at angles [j0, j0 + nj) of the pass o. */
 static void piece(const struct tracer_scene *s,
-		  const struct tracer_trace_opts *o, size_t j0, size_t nj,
+		  const struct tracer_trace_opts *o,
+		  const struct tracer_guide *g, size_t j0, size_t nj,
 		  int b0, int nb, struct tracer_result *r)
 {
 	struct tracer_trace_opts po = *o;
@@ -256,8 +257,37 @@ static void piece(const struct tracer_scene *s,
 	po.theta_deg = o->theta_deg + j0;
 	po.light_ratio = o->light_ratio + j0;
 	po.n_theta = nj;
-	assert_int_equal(tracer_trace_batches(s, &po, NULL, b0, nb, NULL, r,
+	assert_int_equal(tracer_trace_batches(s, &po, g, b0, nb, NULL, r,
 					      &err), 0);
+}
+
+/* The pieces of a pass (4 batches x 2 angle subsets) against whole. */
+static void assert_pieces(const struct tracer_scene *s,
+			  const struct tracer_trace_opts *o,
+			  const struct tracer_guide *g,
+			  const struct tracer_result *whole)
+{
+	int b0;
+
+	for (b0 = 0; b0 < 8; b0 += 4) {
+		size_t j0, j, b;
+
+		for (j0 = 0; j0 < 5; j0 += 3) {
+			size_t nj = j0 ? 2 : 3;
+			struct tracer_result p;
+
+			piece(s, o, g, j0, nj, b0, 4, &p);
+			for (b = (size_t)b0; b < (size_t)b0 + 4; b++)
+				for (j = 0; j < nj; j++)
+					assert_memory_equal(
+						p.power + (b * nj + j) *
+						TRACER_ORDERS,
+						whole->power + (b * 5 + j0 + j) *
+						TRACER_ORDERS,
+						TRACER_ORDERS * sizeof(double));
+			tracer_result_free(&p);
+		}
+	}
 }
 
 /* Pieces (batch ranges x angle subsets) give the whole pass's bits, as
@@ -268,9 +298,8 @@ static void test_light_pieces_identical(void **state)
 	const double ratio[] = { 0, 0.1, 0.2, 0.3, 0.5 };
 	struct tracer_trace_opts o;
 	struct tracer_scene s;
-	struct tracer_result whole, p;
+	struct tracer_result whole;
 	struct stray_error err;
-	int b0;
 
 	(void)state;
 	load("ref4", NULL, 0, &s);
@@ -284,25 +313,56 @@ static void test_light_pieces_identical(void **state)
 	stray_error_clear(&err);
 	assert_int_equal(tracer_trace_batches(&s, &o, NULL, 0, 8, NULL,
 					      &whole, &err), 0);
-	for (b0 = 0; b0 < 8; b0 += 4) {
-		size_t j0, j, b;
-
-		for (j0 = 0; j0 < 5; j0 += 3) {
-			size_t nj = j0 ? 2 : 3;
-
-			piece(&s, &o, j0, nj, b0, 4, &p);
-			for (b = (size_t)b0; b < (size_t)b0 + 4; b++)
-				for (j = 0; j < nj; j++)
-					assert_memory_equal(
-						p.power + (b * nj + j) *
-						TRACER_ORDERS,
-						whole.power + (b * 5 + j0 + j) *
-						TRACER_ORDERS,
-						TRACER_ORDERS * sizeof(double));
-			tracer_result_free(&p);
-		}
-	}
+	assert_pieces(&s, &o, NULL, &whole);
 	tracer_result_free(&whole);
+	tracer_scene_free(&s);
+}
+
+/*
+ * What mpi/'s farm would do with light_paths: the pilot with B's
+ * statistics (tracer_trace_batches_light), the guide and the ratios from
+ * it, the main pass in pieces: bit-identical to tracer_trace().
+ */
+static void test_light_farm_flow(void **state)
+{
+	const double th[] = { 0, 80, 88.5, 89, 89.5 };
+	struct tracer_trace_opts o, po;
+	struct tracer_scene s;
+	struct tracer_result whole, pilot;
+	struct tracer_guide g;
+	struct stray_error err;
+	double ratio[5], *s2, *lp;
+
+	(void)state;
+	load("ref4", NULL, 0, &s);
+	tracer_trace_defaults(&o);
+	o.theta_deg = th;
+	o.n_theta = 5;
+	o.n_paths = 20000;
+	o.n_batches = 8;
+	o.light_paths = 1;
+	stray_error_clear(&err);
+	assert_int_equal(tracer_trace(&s, &o, &whole, &err), 0);
+	assert_true(tracer_pilot_wanted(&o));
+	tracer_pilot_opts(&o, &po);
+	s2 = calloc((size_t)po.n_batches * TRACER_GUIDE_CELLS * 5,
+		    sizeof(double));
+	lp = calloc((size_t)po.n_batches * 5 * TRACER_LIGHT_STATS,
+		    sizeof(double));
+	assert_non_null(s2);
+	assert_non_null(lp);
+	assert_int_equal(tracer_trace_batches_light(&s, &po, NULL, 0,
+		po.n_batches, s2, lp, &pilot, &err), 0);
+	assert_int_equal(tracer_guide_from_pilot(&g, &pilot, s2), 0);
+	tracer_light_alloc(&pilot, lp, ratio);
+	assert_true(ratio[4] > 0.0);	/* B at 89.5 deg */
+	assert_true(ratio[0] == 0.0);	/* none where nothing scatters */
+	o.light_ratio = ratio;
+	assert_pieces(&s, &o, &g, &whole);
+	tracer_result_free(&pilot);
+	tracer_result_free(&whole);
+	free(s2);
+	free(lp);
 	tracer_scene_free(&s);
 }
 
@@ -333,6 +393,7 @@ int main(void)
 		cmocka_unit_test(test_light_vanes_mis_equals_a),
 		cmocka_unit_test(test_light_threads_identical),
 		cmocka_unit_test(test_light_pieces_identical),
+		cmocka_unit_test(test_light_farm_flow),
 		cmocka_unit_test(test_light_off_is_a),
 	};
 
