@@ -233,6 +233,8 @@ static cJSON *summary_json(const struct trace_args *a,
 					a->job.cutoff_deg);
 	cJSON_AddNumberToObject(o, "paths", (double)r->n_paths);
 	cJSON_AddNumberToObject(o, "threads", a->job.o.threads);
+	if (a->job.o.light_paths)	/* absent when off: the old summary */
+		cJSON_AddBoolToObject(o, "light_paths", 1);
 	cJSON_AddItemToObject(o, "seconds", cli_json_number(r->seconds));
 	cJSON_AddItemToObject(o, "paths_per_s",
 			      cli_json_number(r->n_paths / r->seconds));
