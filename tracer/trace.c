@@ -52,6 +52,11 @@ static int check_opts(const struct tracer_scene *s,
 			return stray_error_set_value(err, STRAY_EINVAL,
 				"beam_shift_z", "must be finite",
 				o->beam_shift_z[j]);
+	for (j = 0; o->light_ratio && j < o->n_theta; j++)
+		if (!(o->light_ratio[j] >= 0.0 && o->light_ratio[j] <= 64.0))
+			return stray_error_set_value(err, STRAY_EINVAL,
+				"light_ratio", "must be in [0, 64]",
+				o->light_ratio[j]);
 	if (o->n_batches < 2 || o->n_paths < (uint64_t)o->n_batches)
 		return stray_error_set_value(err, STRAY_EINVAL, "rays",
 			"need at least one path per batch (and 2 batches)",

@@ -366,6 +366,29 @@ static void test_light_farm_flow(void **state)
 	tracer_scene_free(&s);
 }
 
+/* A ratio out of range is refused, naming the field. */
+static void test_light_bad_ratio(void **state)
+{
+	const double th[] = { 0, 89.5 }, bad[] = { 0, NAN }, big[] = { 0, 65 };
+	struct tracer_trace_opts o;
+	struct tracer_scene s;
+	struct tracer_result r;
+	struct stray_error err;
+
+	(void)state;
+	load("ref4", NULL, 0, &s);
+	tracer_trace_defaults(&o);
+	o.theta_deg = th;
+	o.n_theta = 2;
+	o.light_ratio = bad;
+	stray_error_clear(&err);
+	assert_int_equal(tracer_trace(&s, &o, &r, &err), STRAY_EINVAL);
+	assert_string_equal(err.field, "light_ratio");
+	o.light_ratio = big;
+	assert_int_equal(tracer_trace(&s, &o, &r, &err), STRAY_EINVAL);
+	tracer_scene_free(&s);
+}
+
 /* No B sample anywhere (ratios 0) is the detector-side estimator, bit
  * for bit: the MIS hook leaves A alone. */
 static void test_light_off_is_a(void **state)
@@ -395,6 +418,7 @@ int main(void)
 		cmocka_unit_test(test_light_pieces_identical),
 		cmocka_unit_test(test_light_farm_flow),
 		cmocka_unit_test(test_light_off_is_a),
+		cmocka_unit_test(test_light_bad_ratio),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
