@@ -8,7 +8,7 @@
  * path (strategy A) that makes the same single-scatter path has
  * pA = (1/A_det) pdf_dir(w) cos_x / r^2, pdf_dir = cos_p / (proj g(w)).
  * Both are combined by the balance heuristic (Veach 1997, PhD thesis,
- * Stanford, ch. 9): weights n pB / (nA pA + nB pB) and the like, nA and nB
+ * Stanford, ch. 9): weights nB pB / (nA pA + nB pB) and nA pA / (...), nA, nB
  * the samples of a batch.  Paths of two and more scatters stay A's.
  */
 #ifndef TRACER_LIGHT_H
