@@ -53,6 +53,9 @@ static const char usage[] =
 	"  --seed K          random seed (default 1); same seed, same output\n"
 	"  --threads T       worker threads (default: online CPUs)\n"
 	"  --batches B       independent batches for sigma (default 64)\n"
+	"  --light-paths     add light-side single-scatter samples where the\n"
+	"                    pilot finds they pay (MIS; grazing angles)\n"
+	"  --no-light-paths  detector-side paths alone (the default)\n"
 	"  --lens L.csv      lens transmission vs incidence (curve CSV)\n"
 	"  --set key=value   override a scene parameter (repeatable; keys\n"
 	"                    below, units and limits in docs/scene.md)\n"
@@ -108,6 +111,8 @@ static const struct option trace_opts[] = {
 	{ "map-size", required_argument, NULL, 'Z' },
 	{ "spectrum", required_argument, NULL, 1001 },
 	{ "response", required_argument, NULL, 1002 },
+	{ "light-paths", no_argument, NULL, 1003 },
+	{ "no-light-paths", no_argument, NULL, 1004 },
 	FOCAL_MAP_LONG_OPTIONS,
 	{ "json", no_argument, NULL, 'j' },
 	{ "help", no_argument, NULL, 'h' },
@@ -131,6 +136,9 @@ static int parse_number(int opt, const char *text, struct trace_args *a,
 		a->map_size = (int)v; return 0;
 	case 'T': *rc = cli_parse_count("trace", "top", text, 1, 1000, &v);
 		a->top = (int)v; return 0;
+	case 1003: case 1004:	/* strategy B (tracer/light.h) */
+		a->job.o.light_paths = opt == 1003;
+		return 0;
 	default:
 		return trace_run_option("trace", opt, text, &a->job.o, rc);
 	}
@@ -225,6 +233,8 @@ static cJSON *summary_json(const struct trace_args *a,
 					a->job.cutoff_deg);
 	cJSON_AddNumberToObject(o, "paths", (double)r->n_paths);
 	cJSON_AddNumberToObject(o, "threads", a->job.o.threads);
+	if (a->job.o.light_paths)	/* absent when off: the old summary */
+		cJSON_AddBoolToObject(o, "light_paths", 1);
 	cJSON_AddItemToObject(o, "seconds", cli_json_number(r->seconds));
 	cJSON_AddItemToObject(o, "paths_per_s",
 			      cli_json_number(r->n_paths / r->seconds));

@@ -62,6 +62,16 @@ struct vec3 tracer_detector_sample_dir(const struct tracer_detector *d,
 	return frame_to_world(&f, v3(x, y, z2 > 0.0 ? sqrt(z2) : 0.0));
 }
 
+void tracer_detector_dir_inverse(const struct tracer_detector *d,
+				 struct vec3 w, double *u1, double *u2)
+{
+	struct frame f = frame_from_normal(d->normal);
+	struct vec3 l = frame_to_local(&f, w);
+	double k = 1.0 / sqrt(sin2_accept(d));
+
+	tracer_sample_disk_inverse(l.x * k, l.y * k, u1, u2);
+}
+
 int tracer_detector_accepts(const struct tracer_detector *d, struct vec3 w)
 {
 	double c = v3_dot(w, d->normal);

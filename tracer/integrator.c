@@ -12,7 +12,7 @@
 #include "tracer/guide.h"
 #include "tracer/integrator.h"
 #include "tracer/rng.h"
-#include "worker.h"
+#include "light.h"
 
 /* Per-path state threaded through the vertex loop. */
 struct path_state {
@@ -32,6 +32,9 @@ struct path_state {
 	size_t *touched, n_touched;
 	int cell;		/* pilot: guide cell of the path's direction */
 	int failed;
+	uint64_t n_a;		/* MIS with B (light.h): batch's paths, */
+	struct vec3 det_p;	/* detector point, proj g / cos_p, and */
+	double f_start, f_a;	/* proj g r^2 / (cos_p cos_x) at depth 1 */
 	double rho_prod;
 	uint64_t casts, connections;
 };
@@ -70,8 +73,7 @@ static void add_to_focal(const struct worker_ctx *w, struct path_state *ps,
 		ps->focal[cell] += c;
 }
 
-/* Map pixel of detector point x (detector frame), or -1 outside. */
-static long pixel_of(const struct worker_ctx *w, struct vec3 x)
+long tracer_map_pixel(const struct worker_ctx *w, struct vec3 x)
 {
 	const struct tracer_result *r = w->res;
 	struct frame f = frame_from_normal(w->s->det.normal);
@@ -314,6 +316,9 @@ static void connect_vertex(struct worker_ctx *w, struct path_state *ps,
 				continue;
 			jj[n] = j;
 			cs[n] = T * fv * cos_d;
+			if (depth == 1 && w->light_ratio)	/* MIS with B */
+				cs[n] *= tracer_light_weight_a(w, j, ps->n_a,
+						cos_d, ps->f_a);
 			dirs[n++] = d;
 		}
 		if (n < BLOCK && j0 + m < nt)
@@ -386,7 +391,7 @@ static double start_path(struct worker_ctx *w, struct path_state *ps,
 	ps->u_first[0] = u[4];
 	ps->u_first[1] = u[5];
 	x = tracer_detector_sample_point(&s->det, u[0], u[1]);
-	ps->pixel = ps->map ? pixel_of(w, x) : -1;
+	ps->pixel = ps->map ? tracer_map_pixel(w, x) : -1;
 	ps->dump = NULL;
 	if (index < w->res->n_dump) {
 		ps->dump = w->res->dump + index * TRACER_DUMP_DEPTH;
@@ -403,6 +408,8 @@ static double start_path(struct worker_ctx *w, struct path_state *ps,
 		ps->focal_cell = tracer_focal_cell(w->o->focal,
 						   &w->focal_frame, *dir);
 	*o = tracer_offset_origin(x, s->det.normal);
+	ps->det_p = x;
+	ps->f_start = g * proj / v3_dot(*dir, s->det.normal);
 	if (!w->o->lens)	/* transmission 1 */
 		return g * proj;
 	c = fmin(1.0, v3_dot(*dir, s->det.normal));
@@ -459,6 +466,9 @@ static void trace_path(struct worker_ctx *w, struct path_state *ps,
 		}
 		if (depth <= TRACER_SEQ_MAX)
 			ps->seq[depth - 1] = h.group;
+		if (depth == 1 && w->light_ratio)	/* r^2 / cos_x */
+			ps->f_a = ps->f_start * v3_dot(v3_sub(h.p, ps->det_p),
+				  v3_sub(h.p, ps->det_p)) / -v3_dot(dir, h.ng);
 		ps->rho_prod *= mat->rho;
 		f = frame_from_normal(h.ng);
 		wo = frame_to_local(&f, v3_scale(dir, -1.0));
@@ -516,6 +526,7 @@ static void run_batch(struct worker_ctx *w, int b, uint64_t *casts,
 	ps.acc = r->power + (size_t)b * r->n_theta * TRACER_ORDERS;
 	ps.table = w->o->record_paths ? &w->batch_tables[b] : NULL;
 	ps.batch_first = tracer_batch_start(r, b);
+	ps.n_a = end - ps.batch_first;
 	ps.map = r->map ? w->batch_maps + (size_t)b * r->map_n * r->map_n :
 		 NULL;
 	ps.focal = r->focal_batch ? r->focal_batch + (size_t)b * r->focal_slots
@@ -541,6 +552,15 @@ static void run_batch(struct worker_ctx *w, int b, uint64_t *casts,
 	free(ps.path_c);
 	free(ps.touched);
 	r->batch_paths[b] = end - tracer_batch_start(r, b);
+	if (w->light_ratio || w->light_pilot) {
+		struct light_out lo = { .acc = ps.acc, .map = ps.map,
+					.focal = ps.focal, .table = ps.table };
+
+		tracer_light_batch(w, b, r->batch_paths[b], &lo);
+		ps.casts += lo.casts;
+		ps.connections += lo.connections;
+		ps.failed |= lo.failed;
+	}
 	*casts += ps.casts;
 	if (ps.failed)
 		w->failed = 1;

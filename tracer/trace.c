@@ -15,7 +15,7 @@
 #include "tracer/cancel.h"
 #include "tracer/guide.h"
 #include "tracer/integrator.h"
-#include "worker.h"
+#include "light.h"
 
 void tracer_trace_defaults(struct tracer_trace_opts *o)
 {
@@ -52,6 +52,11 @@ static int check_opts(const struct tracer_scene *s,
 			return stray_error_set_value(err, STRAY_EINVAL,
 				"beam_shift_z", "must be finite",
 				o->beam_shift_z[j]);
+	for (j = 0; o->light_ratio && j < o->n_theta; j++)
+		if (!(o->light_ratio[j] >= 0.0 && o->light_ratio[j] <= 64.0))
+			return stray_error_set_value(err, STRAY_EINVAL,
+				"light_ratio", "must be in [0, 64]",
+				o->light_ratio[j]);
 	if (o->n_batches < 2 || o->n_paths < (uint64_t)o->n_batches)
 		return stray_error_set_value(err, STRAY_EINVAL, "rays",
 			"need at least one path per batch (and 2 batches)",
@@ -220,7 +225,8 @@ static struct vec3 beam_center(const struct tracer_scene *s,
 static int run_pass(const struct tracer_scene *s,
 		    const struct tracer_trace_opts *o, struct tracer_result *res,
 		    const struct tracer_guide *guide, double *pilot_s2,
-		    int b0, int nb, struct stray_error *err)
+		    double *light_pilot, int b0, int nb,
+		    struct stray_error *err)
 {
 	struct worker_ctx w;
 	size_t j;
@@ -232,6 +238,8 @@ static int run_pass(const struct tracer_scene *s,
 	w.res = res;
 	w.guide = guide;
 	w.pilot_s2 = pilot_s2;
+	w.light_pilot = light_pilot;
+	w.light_ratio = o->light_ratio;
 	w.focal_frame = frame_from_normal(s->det.normal);
 	w.next_batch = b0;
 	w.end_batch = b0 + nb;
@@ -307,6 +315,7 @@ void tracer_pilot_opts(const struct tracer_trace_opts *o,
 	po->n_batches = TRACER_PILOT_BATCHES;
 	po->n_paths = o->n_paths / 10 > 200000 ? 200000 : o->n_paths / 10;
 	po->seed = o->seed ^ 0x5DEECE66Dull;
+	po->light_ratio = NULL;	/* the pilot measures B alone */
 	po->record_paths = 0;
 	po->dump_paths = 0;
 	po->map_n = 0;
@@ -342,27 +351,36 @@ int tracer_guide_from_pilot(struct tracer_guide *g,
 	return STRAY_OK;
 }
 
+/* The pilot: the guide, and with o->light_paths B's ratios light_q. */
 static int build_guide(const struct tracer_scene *s,
 		       const struct tracer_trace_opts *o,
-		       struct tracer_guide *g, struct stray_error *err)
+		       struct tracer_guide *g, double *light_q,
+		       struct stray_error *err)
 {
 	struct tracer_trace_opts po;
 	struct tracer_result pr;
-	double *s2;
+	double *s2, *lp = NULL;
 	int rc;
 
 	tracer_pilot_opts(o, &po);
 	s2 = calloc(TRACER_GUIDE_CELLS * o->n_theta * po.n_batches,
 		    sizeof(double));
-	rc = s2 ? run_pass(s, &po, &pr, NULL, s2, 0, po.n_batches, err) :
+	if (light_q)
+		lp = calloc(TRACER_LIGHT_STATS * o->n_theta * po.n_batches,
+			    sizeof(double));
+	rc = s2 && (lp || !light_q) ?
+	     run_pass(s, &po, &pr, NULL, s2, lp, 0, po.n_batches, err) :
 	     stray_error_set(err, STRAY_ENOMEM, "guide", "out of memory");
 	if (!rc) {
 		if (tracer_guide_from_pilot(g, &pr, s2))
 			rc = stray_error_set(err, STRAY_ENOMEM, "guide",
 					     "out of memory");
+		if (light_q)
+			tracer_light_alloc(&pr, lp, light_q);
 		tracer_result_free(&pr);
 	}
 	free(s2);
+	free(lp);
 	return rc;
 }
 
@@ -379,6 +397,18 @@ int tracer_trace_batches(const struct tracer_scene *s,
 			 int n_batches, double *pilot_s2,
 			 struct tracer_result *res, struct stray_error *err)
 {
+	return tracer_trace_batches_light(s, o, guide, first_batch, n_batches,
+					  pilot_s2, NULL, res, err);
+}
+
+int tracer_trace_batches_light(const struct tracer_scene *s,
+			       const struct tracer_trace_opts *o,
+			       const struct tracer_guide *guide,
+			       int first_batch, int n_batches,
+			       double *pilot_s2, double *light_pilot,
+			       struct tracer_result *res,
+			       struct stray_error *err)
+{
 	double t0 = now_s();
 	int rc = check_opts(s, o, err);
 
@@ -393,8 +423,8 @@ int tracer_trace_batches(const struct tracer_scene *s,
 	    n_batches > o->n_batches - first_batch)
 		return stray_error_set_value(err, STRAY_EINVAL, "batches",
 			"range outside the trace's batches", first_batch);
-	rc = run_pass(s, o, res, guide, pilot_s2, first_batch, n_batches,
-		      err);
+	rc = run_pass(s, o, res, guide, pilot_s2, light_pilot, first_batch,
+		      n_batches, err);
 	if (!rc)
 		res->seconds = now_s() - t0;
 	return rc;
@@ -405,20 +435,26 @@ int tracer_trace(const struct tracer_scene *s,
 		 struct stray_error *err)
 {
 	struct tracer_guide *g = NULL;
-	double t0 = now_s();
+	struct tracer_trace_opts mo = *o;	/* the main pass's */
+	double t0 = now_s(), *light_q = NULL;
 	int rc = check_opts(s, o, err);
 
 	if (rc)
 		return rc;
 	if (tracer_pilot_wanted(o)) {
 		g = malloc(sizeof(*g));
-		rc = g ? build_guide(s, o, g, err) :
+		if (o->light_paths)	/* B sized by the pilot */
+			mo.light_ratio = light_q = calloc(o->n_theta,
+							  sizeof(double));
+		rc = g && (light_q || !o->light_paths) ?
+		     build_guide(s, o, g, light_q, err) :
 		     stray_error_set(err, STRAY_ENOMEM, "guide", "out of memory");
 	}
 	if (!rc)
-		rc = run_pass(s, o, res, g, NULL, 0, o->n_batches, err);
+		rc = run_pass(s, &mo, res, g, NULL, NULL, 0, o->n_batches, err);
 	if (!rc)
 		res->seconds = now_s() - t0;
 	free(g);
+	free(light_q);
 	return rc;
 }

@@ -122,8 +122,9 @@ static int add_meta(struct stray_curve *c, const struct tracer_job *j,
 	if (!rc && j->scene_note)
 		rc = stray_curve_add_meta(c, "mesh", j->scene_note, err);
 	snprintf(buf, sizeof(buf), "stray trace, adjoint Monte Carlo with "
-		 "next-event connections; %llu paths, seed %llu",
-		 (unsigned long long)j->o.n_paths,
+		 "next-event connections%s; %llu paths, seed %llu",
+		 j->o.light_paths ? " and light-side single scatter (MIS)" :
+		 "", (unsigned long long)j->o.n_paths,
 		 (unsigned long long)j->o.seed);
 	if (!rc)
 		rc = stray_curve_add_meta(c, "source", buf, err);

@@ -24,6 +24,10 @@ struct worker_ctx {
 	struct frame focal_frame;	/* the pupil's frame (focal cells) */
 	const struct tracer_guide *guide;	/* main pass: sample by it */
 	double *pilot_s2;		/* pilot pass: [batch][cell][theta] */
+	/* strategy B (light.c): B samples per path per angle, or NULL;
+	 * pilot pass: [batch][theta][TRACER_LIGHT_STATS] B's statistics */
+	const double *light_ratio;
+	double *light_pilot;
 	pthread_mutex_t lock;
 	int next_batch, end_batch, done_batches;	/* batches [first, end) */
 	int n_run;			/* end - first, for progress */
@@ -32,6 +36,9 @@ struct worker_ctx {
 
 /* Trace batches until none is left (a pthread start routine). */
 void *tracer_worker(void *arg);
+
+/* Map pixel of detector point x (detector frame), or -1 outside. */
+long tracer_map_pixel(const struct worker_ctx *w, struct vec3 x);
 
 /* First path index of batch b. */
 uint64_t tracer_batch_start(const struct tracer_result *r, int b);

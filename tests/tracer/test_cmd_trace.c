@@ -72,6 +72,72 @@ static void test_cmd_trace_curve_csv(void **state)
 	unlink(b);
 }
 
+/* The two files differ only in their command line (diff -I). */
+static int same_but_command(const char *a, const char *b)
+{
+	char *argv[] = { "diff", "-q", "-I", "^# command: ", (char *)a,
+			 (char *)b, NULL };
+	pid_t pid = fork();
+	int st;
+
+	if (pid == 0) {
+		execvp("diff", argv);
+		_exit(127);
+	}
+	waitpid(pid, &st, 0);
+	return WIFEXITED(st) && WEXITSTATUS(st) == 0;
+}
+
+static void trace_light(const char *out, const char *flag)
+{
+	char *argv[] = { "stray", "trace", "--scene", "ref4", "--angles",
+			 "0,88,89.5", "--rays", "20000", "--threads", "2",
+			 "--out", (char *)out, (char *)flag, NULL };
+	struct cli_run r;
+
+	assert_int_equal(run_stray(&r, argv), 0);
+	assert_string_equal(r.err, "");
+}
+
+/* --light-paths: said in the CSV, the same curve within 4 sigma;
+ * --no-light-paths is the default, byte for byte. */
+static void test_cmd_trace_light_paths(void **state)
+{
+	char a[] = "/tmp/trace_aXXXXXX", b[] = "/tmp/trace_bXXXXXX",
+	     c[] = "/tmp/trace_cXXXXXX";
+	struct stray_curve ca, cb;
+	char line[512];
+	int said = 0;
+	FILE *f;
+
+	(void)state;
+	close(mkstemp(a));
+	close(mkstemp(b));
+	close(mkstemp(c));
+	trace_light(a, NULL);
+	trace_light(b, "--no-light-paths");
+	trace_light(c, "--light-paths");
+	assert_true(same_but_command(a, b));
+	assert_false(same_but_command(a, c));
+	f = fopen(c, "r");
+	assert_non_null(f);
+	while (fgets(line, sizeof(line), f))
+		said |= strstr(line, "# source:") &&
+			strstr(line, "light-side single scatter");
+	fclose(f);
+	assert_true(said);
+	assert_int_equal(stray_curve_load(a, &ca, NULL), 0);
+	assert_int_equal(stray_curve_load(c, &cb, NULL), 0);
+	assert_near(cb.alpha[2], ca.alpha[2],
+		    4.0 * hypot(ca.sigma[2], cb.sigma[2]));
+	assert_true(cb.sigma[2] < ca.sigma[2]);	/* B took part */
+	stray_curve_free(&ca);
+	stray_curve_free(&cb);
+	unlink(a);
+	unlink(b);
+	unlink(c);
+}
+
 static void test_cmd_trace_json_and_export(void **state)
 {
 	char obj[] = "/tmp/trace_objXXXXXX";
@@ -172,6 +238,7 @@ int main(void)
 		cmocka_unit_test(test_cmd_trace_help),
 		cmocka_unit_test(test_cmd_trace_curve_csv),
 		cmocka_unit_test(test_cmd_trace_json_and_export),
+		cmocka_unit_test(test_cmd_trace_light_paths),
 		cmocka_unit_test(test_cmd_trace_extras),
 		cmocka_unit_test(test_cmd_trace_bad_input),
 	};

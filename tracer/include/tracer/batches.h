@@ -48,6 +48,28 @@ int tracer_trace_batches(const struct tracer_scene *s,
 			 struct tracer_result *res, struct stray_error *err);
 
 /*
+ * Strategy B (light-side single scatter, opts.light_paths; tracer/light.h)
+ * in pieces: the pilot pass also scores B at every angle, light_pilot
+ * [o->n_batches][o->n_theta][TRACER_LIGHT_STATS] zeroed by the caller
+ * (NULL: not scored; the main pass: NULL), otherwise as
+ * tracer_trace_batches.  tracer_light_alloc() turns the complete pilot
+ * (all angles, rows merged in batch order) into the main pass's
+ * opts.light_ratio[n_theta]; a piece at angles [j0, j0 + n) passes
+ * light_ratio + j0, as theta_deg + j0.  The pieces are then bit-identical
+ * to tracer_trace() with light_paths (tests/tracer/test_light_paths.c).
+ */
+#define TRACER_LIGHT_STATS 19
+int tracer_trace_batches_light(const struct tracer_scene *s,
+			       const struct tracer_trace_opts *o,
+			       const struct tracer_guide *guide,
+			       int first_batch, int n_batches,
+			       double *pilot_s2, double *light_pilot,
+			       struct tracer_result *res,
+			       struct stray_error *err);
+void tracer_light_alloc(const struct tracer_result *pilot,
+			const double *light_pilot, double *ratio);
+
+/*
  * The main pass's guide from a complete pilot result over all angles and
  * its s2 tallies (layout as above), merged in batch order; STRAY_ENOMEM.
  */

@@ -65,5 +65,7 @@ double tracer_cosine_hemisphere_pdf(double cos_theta);
 
 /* Uniform point on the unit disk (concentric map, Shirley-Chiu 1997). */
 void tracer_sample_disk(double u1, double u2, double *x, double *y);
+/* Its inverse: the (u1, u2) that tracer_sample_disk maps to (x, y). */
+void tracer_sample_disk_inverse(double x, double y, double *u1, double *u2);
 
 #endif /* TRACER_BRDF_H */

@@ -48,6 +48,12 @@ struct vec3 tracer_detector_sample_dir(const struct tracer_detector *d,
 				       double u1, double u2,
 				       double *proj_solid_angle);
 
+/* The (u1, u2) that tracer_detector_sample_dir maps to direction w (a
+ * direction the detector accepts): where a path arriving along w lies in
+ * primary-sample space, for the guide's density of it. */
+void tracer_detector_dir_inverse(const struct tracer_detector *d,
+				 struct vec3 w, double *u1, double *u2);
+
 /* Whether light arriving from direction w (away from the detector) counts. */
 int tracer_detector_accepts(const struct tracer_detector *d, struct vec3 w);
 

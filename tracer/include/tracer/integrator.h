@@ -34,6 +34,8 @@
 /* Scatter orders kept apart: direct, 1st, 2nd, 3rd and above (fig. 5.5). */
 #define TRACER_ORDERS 4
 
+enum tracer_light_weights { TRACER_LIGHT_BALANCE, TRACER_LIGHT_ONLY };
+
 enum tracer_energy { TRACER_ABSORBED, TRACER_ESCAPED, TRACER_LOST,
 		     TRACER_ENERGY_N };
 
@@ -55,6 +57,17 @@ struct tracer_trace_opts {
 	 * shadow rays (the diagnosis's pivot-offset nodes); mpi/'s farm
 	 * carries it to every rank. */
 	const double *beam_shift_z;
+	/* Strategy B, light-side single scatter (light.h), combined with
+	 * the detector-side paths by multiple importance sampling:
+	 * light_paths = 1 asks tracer_trace() to size it from its pilot
+	 * (light_ratio is then its own); light_ratio, per angle or NULL,
+	 * is that size: B samples per detector path at each angle (0:
+	 * none), what tracer_trace_batches() uses as given.
+	 * light_weights = TRACER_LIGHT_ONLY (tests) gives single scatter
+	 * at those angles to B alone. */
+	int light_paths;
+	const double *light_ratio;
+	int light_weights;
 	int record_paths;	/* fill tracer_result.paths */
 	int guide;		/* pilot-guided detector directions (guide.h);
 				 * used from 10000 paths on (pilot: a tenth) */
