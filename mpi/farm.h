@@ -37,6 +37,8 @@ struct farm_stats {
 	uint64_t remote_pilot;	/* pilot pieces done by other ranks */
 	uint64_t scene_builds;	/* scenes built by other ranks (jobs sent) */
 	uint64_t local_builds;	/* scenes built by rank 0's own thread */
+	double done_s;		/* rank 0: in the caller's per-trace work */
+	double local_build_s;	/* rank 0's thread: building scenes */
 };
 
 extern struct farm_stats farm_last;

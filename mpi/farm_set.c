@@ -278,6 +278,7 @@ int farm_set_collect(struct farm_set *fs,
 {
 	size_t i;
 	int r, rc = STRAY_OK;
+	double t0;
 
 	for (i = fs->first_live; !rc && i < fs->n_open; i++) {
 		struct farm_trace *t = &fs->t[i];
@@ -291,7 +292,9 @@ int farm_set_collect(struct farm_set *fs,
 		/* the caller's work (a design's curve) while ranks trace */
 		stray_error_clear(&e);
 		t->pass[PIECE_MAIN].r.seconds = t->seconds;
+		t0 = farm_now();
 		rc = fs->done(fs->user, i, &t->pass[PIECE_MAIN].r, &e);
+		farm_last.done_s += farm_now() - t0;
 		for (r = 1; r < fs->size; r++)
 			if (fs->held[(size_t)r * fs->n + i] & HELD_JOB)
 				drop(ctx, r, i);
@@ -316,6 +319,7 @@ int farm_set_collect(struct farm_set *fs,
 /* Rank 0's thread: the scene of trace t, built on first use. */
 static int local_scene(struct farm_trace *t, struct stray_error *err)
 {
+	double t0 = farm_now();
 	int rc;
 
 	if (t->scene)
@@ -328,6 +332,7 @@ static int local_scene(struct farm_trace *t, struct stray_error *err)
 	}
 	t->own_built = 1;	/* freed with the trace, even half built */
 	farm_last.local_builds++;	/* this thread's alone */
+	farm_last.local_build_s += farm_now() - t0;
 	if (!rc)
 		t->scene = &t->own;
 	return rc;

@@ -118,7 +118,8 @@ static void print_stats(const struct farm_run *fr, double seconds)
 	fprintf(stderr, "stray-mpi: stats: ranks %d pieces %llu "
 		"remote_pieces %llu bytes_per_remote_piece %.1f "
 		"pilot_pieces %llu pilot_bytes_per_remote_piece %.1f "
-		"job_bytes %llu scene_builds %llu seconds %.4f\n", size,
+		"job_bytes %llu scene_builds %llu rank0_build_s %.4f "
+		"rank0_done_s %.4f seconds %.4f\n", size,
 		(unsigned long long)farm_last.tasks,
 		(unsigned long long)farm_last.remote_tasks,
 		farm_last.remote_tasks ? (double)farm_last.task_bytes /
@@ -129,7 +130,7 @@ static void print_stats(const struct farm_run *fr, double seconds)
 		(unsigned long long)farm_last.job_bytes,
 		(unsigned long long)(farm_last.scene_builds +
 				     farm_last.local_builds),
-		seconds);
+		farm_last.local_build_s, farm_last.done_s, seconds);
 }
 
 /* The runner: the farm. */
