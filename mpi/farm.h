@@ -39,6 +39,7 @@ struct farm_stats {
 	uint64_t local_builds;	/* scenes built by rank 0's own thread */
 	double done_s;		/* rank 0: in the caller's per-trace work */
 	double local_build_s;	/* rank 0's thread: building scenes */
+	double start_s;		/* rank 0: a set's checks before farming */
 };
 
 extern struct farm_stats farm_last;

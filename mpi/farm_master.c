@@ -324,6 +324,16 @@ static void drop_scene(void *ctx, int rank, size_t trace)
 	}
 }
 
+/* Pieces the other ranks hold. */
+static int held(const struct rank_state *ranks, int size)
+{
+	int r, n = 0;
+
+	for (r = 1; r < size; r++)
+		n += ranks[r].n;
+	return n;
+}
+
 /* Rank 0's loop: feed, collect, hand finished traces on, watch the clock. */
 static int serve(struct farm_set *fs, struct rank_state *ranks,
 		 struct stray_error *err)
@@ -332,7 +342,7 @@ static int serve(struct farm_set *fs, struct rank_state *ranks,
 	struct drop_ctx drop = { STRAY_OK, &ob, err };
 	double *buf = NULL;
 	size_t cap = 0;
-	int rc = STRAY_OK, finished;
+	int rc = STRAY_OK, finished, failed;
 
 	memset(&ob, 0, sizeof(ob));
 	for (;;) {
@@ -348,15 +358,17 @@ static int serve(struct farm_set *fs, struct rank_state *ranks,
 			   &st);
 		rc = flag ? receive(fs, ranks, &st, &buf, &cap, err) :
 		     check_silence(ranks, fs->size, err);
-		if (!rc && farm_set_collect(fs, drop_scene, &drop))
-			rc = STRAY_EIO;	/* fs->err says what */
+		if (!rc)	/* the caller's refusal fails the set (fs->err) */
+			farm_set_collect(fs, drop_scene, &drop);
 		if (!rc)
 			rc = drop.rc;
 		pthread_mutex_lock(&fs->lock);
 		finished = farm_set_finished(fs);
+		failed = fs->failed;
 		pthread_mutex_unlock(&fs->lock);
-		if (rc || finished)
-			break;
+		if (rc || (finished && (!failed || !held(ranks, fs->size))))
+			break;	/* a failed set: the ranks finish what they hold
+				 * first, and the job ends with one line */
 		if (!flag)
 			farm_nap();
 	}
@@ -393,8 +405,9 @@ static int run_set(struct farm_set *fs, struct stray_error *err)
 	}
 	pthread_mutex_unlock(&fs->lock);
 	pthread_join(tid, NULL);
-	if (fs->failed) {
-		broken = 1;	/* ranks may still hold pieces: abort the job */
+	if (rc)		/* ranks may still hold pieces: abort the job */
+		broken = 1;
+	if (fs->failed) {	/* else (a bad design): every piece came back */
 		*err = fs->err;
 		rc = err->code ? err->code : STRAY_EIO;
 	}
@@ -478,24 +491,12 @@ int farm_trace_set(const struct tracer_trace_item *items, size_t n,
 
 	MPI_Comm_size(MPI_COMM_WORLD, &size);
 	memset(&farm_last, 0, sizeof(farm_last));
-	/* each scene checked here (no commit: ~0.4 ms for ref4), so a bad
-	 * design is named as `stray` names it, before any rank is bothered */
-	for (i = 0; !rc && i < n; i++) {
-		struct tracer_scene s;
-
-		tracer_scene_init(&s);
-		rc = tracer_scene_load(items[i].spec.scene, items[i].spec.sets,
-				       items[i].spec.n_sets, &s, err);
-		if (!rc && i == 0)	/* the options, once: they need a scene */
-			rc = tracer_scene_commit(&s, err);
-		if (!rc && i == 0)
-			rc = tracer_trace_check(&s, items[i].o, err);
-		tracer_scene_free(&s);
-		if (!rc && (items[i].o->record_paths || items[i].o->dump_paths ||
-			    items[i].o->map_n || items[i].o->focal))
+	/* each trace's scene is checked as it opens (farm_set.c) */
+	for (i = 0; !rc && i < n; i++)
+		if (items[i].o->record_paths || items[i].o->dump_paths ||
+		    items[i].o->map_n || items[i].o->focal)
 			rc = stray_error_set(err, STRAY_EINVAL, "mpi",
 				"a set of traces records no paths, dumps or maps");
-	}
 	if (rc || n == 0)
 		return rc;
 	rc = farm_set_init(&fs, items, n, NULL, size, hand_on, &u, err);

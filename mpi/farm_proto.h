@@ -51,7 +51,8 @@ int farm_job_unpack(char *buf, size_t len, struct farm_job *j,
 /* Monotonic seconds. */
 double farm_now(void);
 
-/* Sleep between polls: long enough to leave the core to the tracer. */
+/* Rank 0's sleep between polls: long enough to leave the core to its
+ * own tracing thread (the other ranks block in MPI_Probe). */
 void farm_nap(void);
 
 #endif /* STRAY_MPI_FARM_PROTO_H */

@@ -13,7 +13,9 @@ struct farm_stats farm_last;
 
 /* Angle chunks of a pass: one (the paths serve every angle; a chunk
  * retraces them) unless all the traces' batches cannot give each rank
- * about 4 pieces. */
+ * about 2 pieces (the cost model, bench/mpi_model.awk: 2 rather than 4
+ * retraces less and balances as well; 64-design sweep at 256 ranks 0.91
+ * against 0.87, the curve at 16 ranks 0.76 against 0.69). */
 static int chunks_for(const struct tracer_trace_opts *po, size_t n_traces,
 		      int size)
 {
@@ -21,7 +23,7 @@ static int chunks_for(const struct tracer_trace_opts *po, size_t n_traces,
 	int c = farm_config.angle_chunks;
 
 	if (c <= 0)
-		c = (int)((4 * (size_t)size + batches - 1) / batches);
+		c = (int)((2 * (size_t)size + batches - 1) / batches);
 	if ((size_t)c > po->n_theta)
 		c = (int)po->n_theta;
 	return c < 1 ? 1 : c;
@@ -135,8 +137,41 @@ static int open_pass(struct farm_set *fs, struct farm_trace *t, int pass)
 	return STRAY_OK;
 }
 
+/* A set's trace is checked as it opens, on rank 0 (its scene loaded, no
+ * commit: ~0.4 ms for ref4; the first one committed and the options
+ * checked too): a bad design is named as `stray sweep` names it, and
+ * the set stops before any rank is handed its pieces. */
+static int check_trace(struct farm_set *fs, struct farm_trace *t)
+{
+	struct tracer_scene s;
+	struct stray_error e;
+	double t0 = farm_now();
+	int rc;
+
+	stray_error_clear(&e);
+	tracer_scene_init(&s);
+	rc = tracer_scene_load(t->spec.scene, t->spec.sets, t->spec.n_sets,
+			       &s, &e);
+	if (!rc && t == fs->t) {
+		tracer_scene_spec_edit(&t->spec, &s);
+		rc = tracer_scene_commit(&s, &e);
+		if (!rc)
+			rc = tracer_trace_check(&s, t->o, &e);
+		farm_last.start_s = farm_now() - t0;
+	}
+	tracer_scene_free(&s);
+	if (rc && !fs->failed) {
+		fs->err = e;
+		fs->failed = 1;
+		pthread_cond_broadcast(&fs->wake);
+	}
+	return rc;
+}
+
 static int open_trace(struct farm_set *fs, struct farm_trace *t)
 {
+	if (!t->scene && check_trace(fs, t))
+		return STRAY_EINVAL;
 	t->t0 = farm_now();
 	if (tracer_pilot_wanted(t->o)) {
 		t->phase = FT_PILOT;
@@ -172,21 +207,40 @@ static void give(struct farm_set *fs, int rank, size_t i, int pass,
 	*h |= HELD_JOB | (pass == PIECE_MAIN && fs->t[i].g ? HELD_GUIDE : 0);
 }
 
-/* The first live trace (from round 0: that rank holds its scene) with a
- * piece free; its pass in *pass, or -1. */
+/* Pieces of trace t free now. */
+static size_t n_free(const struct farm_trace *t)
+{
+	int pass = free_pass_of(t);
+
+	return pass < 0 ? 0 : t->pass[pass].n_plan - t->pass[pass].next;
+}
+
+/* held_only: the oldest live trace whose scene this rank built with a
+ * piece free; else the trace with the most pieces free (the rank then
+ * stays long on the scene it builds).  Its pass in *pass; -1: none. */
 static long first_free(const struct farm_set *fs, int rank, int held_only,
 		       int *pass)
 {
-	size_t i;
+	size_t i, most = 0;
+	long pick = -1;
 
 	for (i = fs->first_live; i < fs->n_open; i++) {
+		size_t k;
+
 		if (held_only &&
 		    !(fs->held[(size_t)rank * fs->n + i] & HELD_JOB))
 			continue;
-		if ((*pass = free_pass_of(&fs->t[i])) >= 0)
-			return (long)i;
+		k = n_free(&fs->t[i]);
+		if (k > most) {
+			most = k;
+			pick = (long)i;
+			if (held_only)
+				break;
+		}
 	}
-	return -1;
+	if (pick >= 0)
+		*pass = free_pass_of(&fs->t[pick]);
+	return pick;
 }
 
 int farm_set_take(struct farm_set *fs, int rank, struct farm_take *out)
@@ -198,7 +252,8 @@ int farm_set_take(struct farm_set *fs, int rank, struct farm_take *out)
 		return 0;
 	/* a trace whose scene this rank built (the oldest first); else a new
 	 * trace (one scene build, as joining another would cost, and the
-	 * ranks spread over the designs); else join any trace in flight */
+	 * ranks spread over the designs); else join the trace in flight with
+	 * the most pieces free */
 	i = first_free(fs, rank, 1, &pass);
 	if (i < 0 && fs->n_open < fs->n) {
 		i = (long)fs->n_open++;
@@ -260,6 +315,8 @@ int farm_set_apply(struct farm_set *fs, const struct farm_take *tk,
 	struct farm_pass *p = &t->pass[tk->pass];
 	const struct piece *pc = &p->plan[tk->k];
 
+	if (fs->failed)		/* the set stops: pieces still out are dropped */
+		return STRAY_OK;
 	piece_apply(pc, payload, &p->r, p->s2);
 	if (p->tables && piece_apply_paths(pc, payload, p->tables))
 		return fail(fs, STRAY_ENOMEM, "out of memory recording paths");
@@ -280,6 +337,8 @@ int farm_set_collect(struct farm_set *fs,
 	int r, rc = STRAY_OK;
 	double t0;
 
+	if (fs->failed)
+		return STRAY_OK;
 	for (i = fs->first_live; !rc && i < fs->n_open; i++) {
 		struct farm_trace *t = &fs->t[i];
 		struct stray_error e;

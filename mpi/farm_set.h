@@ -6,8 +6,8 @@
  * pieces (piece.h) join one queue, its main pass waiting only for its own
  * pilot and guide.  A rank is given pieces of the traces whose scene it
  * already built, oldest trace first; only when none of those has a piece
- * free does it open the next trace, and once all are open it joins any
- * trace in flight.  So a rank builds about (designs / ranks) scenes plus
+ * free does it open the next trace, and once all are open it joins the
+ * trace in flight with the most pieces free.  So a rank builds about (designs / ranks) scenes plus
  * one or two at the end, a trace is opened only when a rank has nothing
  * else to do (few are open at once), and the last traces are finished
  * by all ranks together.  Every piece lands in its own rows and each trace's
@@ -86,7 +86,7 @@ struct farm_take {
 /*
  * n traces; scene: rank 0's scene of a single trace (NULL: rank 0's
  * thread builds the scenes of the traces it works on).  The angle chunks
- * give the ranks about 4 pieces each in each pass over all traces.
+ * give the ranks about 2 pieces each in each pass over all traces.
  */
 int farm_set_init(struct farm_set *fs, const struct tracer_trace_item *items,
 		  size_t n, const struct tracer_scene *scene, int size,

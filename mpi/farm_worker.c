@@ -176,13 +176,14 @@ int farm_serve(void)
 	memset(&w, 0, sizeof(w));
 	for (;;) {
 		MPI_Status st;
-		int flag = 0, len, id = -1;
+		int len, id = -1;
 
-		MPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
-		if (!flag) {
-			farm_nap();
-			continue;
-		}
+		/* a blocking wait, not a poll with 1 ms naps: measured on 2
+		 * ranks (64-design sweep, 4 alternating pairs) 0.975 of the
+		 * wall and 0.977 of the CPU time.  Rank 0 still polls: it
+		 * must also hear its own thread, which cannot call MPI
+		 * (MPI_THREAD_FUNNELED) */
+		MPI_Probe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &st);
 		MPI_Get_count(&st, MPI_BYTE, &len);
 		switch (st.MPI_TAG) {
 		case TAG_JOB:

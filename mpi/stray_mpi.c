@@ -119,7 +119,7 @@ static void print_stats(const struct farm_run *fr, double seconds)
 		"remote_pieces %llu bytes_per_remote_piece %.1f "
 		"pilot_pieces %llu pilot_bytes_per_remote_piece %.1f "
 		"job_bytes %llu scene_builds %llu rank0_build_s %.4f "
-		"rank0_done_s %.4f seconds %.4f\n", size,
+		"rank0_done_s %.4f rank0_start_s %.4f seconds %.4f\n", size,
 		(unsigned long long)farm_last.tasks,
 		(unsigned long long)farm_last.remote_tasks,
 		farm_last.remote_tasks ? (double)farm_last.task_bytes /
@@ -130,7 +130,8 @@ static void print_stats(const struct farm_run *fr, double seconds)
 		(unsigned long long)farm_last.job_bytes,
 		(unsigned long long)(farm_last.scene_builds +
 				     farm_last.local_builds),
-		farm_last.local_build_s, farm_last.done_s, seconds);
+		farm_last.local_build_s, farm_last.done_s, farm_last.start_s,
+		seconds);
 }
 
 /* The runner: the farm. */

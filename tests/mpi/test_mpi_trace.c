@@ -120,6 +120,22 @@ static void test_mpi_refuses_path_records(void **state)
 	assert_true(file_has("top.err", "need one rank"));
 }
 
+/* A bad design in the middle of a farmed sweep: the line `stray sweep`
+ * gives, exit 2, and the job ends without MPI_Abort (the ranks hand back
+ * what they hold first). */
+static void test_mpi_sweep_bad_design(void **state)
+{
+	(void)state;
+	assert_int_equal(shell("timeout 90 mpirun --oversubscribe -n 3 %s "
+			       SWEEP_ARGS " --grid edge_radius=0,0.01,abc "
+			       "--state bad > bad.out 2> bad.err",
+			       bin("stray-mpi")), 2);
+	assert_true(file_has("bad.err", "stray-mpi sweep: --set"));
+	assert_true(file_has("bad.err", "edge_radius=abc"));
+	assert_true(file_has("bad.err", "value is not a finite number"));
+	assert_false(file_has("bad.err", "MPI_ABORT"));
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -127,6 +143,7 @@ int main(void)
 		cmocka_unit_test(test_mpi_trace_seed_matters),
 		cmocka_unit_test(test_mpi_sweep_identical),
 		cmocka_unit_test(test_mpi_refuses_path_records),
+		cmocka_unit_test(test_mpi_sweep_bad_design),
 	};
 
 	return mpi_run_group(tests);
