@@ -4,10 +4,10 @@
 #    one-process tracer, 1 and 2 threads, as baseline), from ALTERNATING
 #    runs (t1, mpi1, mpi2, t2, t1, ...; BENCH_PAIRS rounds, default 3):
 #    median ratio and min-max, so load from others hits both sides.
-# 2. The cost model's inputs (bench/mpi_model.awk): fixed cost and
-#    per-path costs from 1-rank runs at R/4 (1 and 4 angle chunks), the
-#    latency of a remote piece from a tiny many-piece trace at 1 and 2
-#    ranks, and a 64-design sweep (its designs farmed together) at 1 and
+# 2. The cost model's inputs (bench/mpi_model.awk): fixed, per-piece and
+#    per-path costs fitted to five 1-rank runs (R, R/4 with 1 and 4 angle
+#    chunks, 12 800 paths, a 1152-piece trace), the latency of a remote
+#    piece from that many-piece trace at 1 and 2 ranks, and a 64-design sweep (its designs farmed together) at 1 and
 #    2 ranks, alternated: its --stats line gives the scene builds, rank
 #    0's start and per-design work (curve kept), bytes per piece.
 # 3. The model's prediction for 2 ranks against the measurement (curve
@@ -83,20 +83,18 @@ echo "messages (2 ranks): $(stat n2 bytes_per_remote_piece) bytes per main piece
 	"$(stat n2 pilot_bytes_per_remote_piece) bytes per piece, job + guide $(stat n2 job_bytes) bytes"
 
 # --- the model's inputs ---------------------------------------------
-# T(R, K) = Ts + 1.1 R (alpha K + beta) at 1 rank (the pilot is a tenth
-# of the paths): Ts from a tiny trace (12800 paths) against the full one,
-# alpha from 1 against 4 angle chunks at R/4.  The message cost of a
-# remote piece mm from a tiny trace of many pieces (6400 paths, no
-# pilot, 16 chunks: 1024 pieces of 6 paths x 8 angles) at 1 and 2 ranks:
-# rank 1's time per piece beyond a piece's compute.  All alternated.
+# 1-rank traces of R and R/4 paths (1 and 4 angle chunks), 12 800 paths,
+# and 64 000 paths cut in 1152 pieces (16 chunks of 8 angles): the fit
+# below; the last also at 2 ranks, for the latency of a remote piece.
+# All alternated.
 q=$((rays / 4))
 a1=(trace --scene ref4 --angles "$angles" --seed 3 --json)
 for ((i = 0; i < pairs; i++)); do
 	run ts1 mpirun -n 1 "$smpi" "${a1[@]}" --rays 12800
 	run qk1 mpirun -n 1 "$smpi" "${a1[@]}" --rays "$q"
 	run qk4 mpirun -n 1 "$smpi" --angle-chunks 4 "${a1[@]}" --rays "$q"
-	run tn1 mpirun -n 1 "$smpi" --stats --angle-chunks 16 "${a1[@]}" --rays 6400
-	run tn2 mpirun -n 2 "$smpi" --stats --angle-chunks 16 "${a1[@]}" --rays 6400
+	run tn1 mpirun -n 1 "$smpi" --stats --angle-chunks 16 "${a1[@]}" --rays 64000
+	run tn2 mpirun -n 2 "$smpi" --stats --angle-chunks 16 "${a1[@]}" --rays 64000
 done
 # --- the 64-design sweep --------------------------------------------
 grid=(--grid edge_radius=0,0.005,0.01,0.015,0.02,0.03,0.04,0.05
@@ -121,20 +119,43 @@ sweep() {	# sweep TAG N: one 64-design sweep on N ranks, fresh state
 	done
 }
 for ((i = 0; i < pairs; i++)); do sweep s1 1; sweep s2 2; done
-Ta=$(med n1); T0=$(med ts1); Tb=$(med qk1); Tc=$(med qk4)
-read -r Ts ab < <(awk -v a="$Ta" -v z="$T0" -v r="$rays" 'BEGIN {
-	ab = (a - z) / (1.1 * (r - 12800)); ts = z - 1.1 * 12800 * ab;
-	printf "%.6g %.6g\n", (ts > 0 ? ts : 0), ab }')
-alpha=$(awk -v b="$Tb" -v c="$Tc" -v q="$q" 'BEGIN {
-	a = (c - b) / (1.1 * q * 3); printf "%.6g", (a > 0 ? a : 0) }')
-beta=$(sub "$ab" "$alpha")
-# rank 1 did pr of the tiny trace's 1024 pieces in about (T2 - Ts): per
-# piece that, less a piece's compute (T1 - Ts) / 1024: the latency of a
-# remote piece (rank 0's 1 ms polling naps, the messages).
+# The 1-rank runs fit T = Ts + c0 A + alpha X + beta Y (least squares,
+# 5 runs, 4 unknowns): A pieces, X path tracings (every angle chunk
+# retraces its paths), Y paths connected to all the angles; the pilot
+# is min(R / 10, 200000) paths in 8 batches when R / 10 >= 1000.  c0 is
+# a piece's fixed cost (tracer_trace_batches sets up a pass: ~1 ms).
+T0=$(med ts1)
+read -r Ts c0 alpha beta < <(awk -v r="$rays" -v q="$q" \
+	-v t="$(med n1) $T0 $(med qk1) $(med qk4) $(med tn1)" '
+	function row(i, R, K, y) { p = R / 10 >= 1000 ? (R / 10 > 200000 ? 200000 : R / 10) : 0;
+		a[i, 1] = 1; a[i, 2] = (64 + (p ? 8 : 0)) * K; a[i, 3] = K * (R + p);
+		a[i, 4] = R + p; rhs[i] = y }
+	BEGIN { split(t, T, " ");
+	row(1, r, 1, T[1]); row(2, 12800, 1, T[2]); row(3, q, 1, T[3]);
+	row(4, q, 4, T[4]); row(5, 64000, 16, T[5]);
+	for (i = 1; i <= 4; i++) { for (j = 1; j <= 4; j++) { s = 0;
+		for (k = 1; k <= 5; k++) s += a[k, i] * a[k, j] / (a[k, 4] + 1) ^ 2;
+		n[i, j] = s }	# rows weighted by 1/paths: relative errors
+		s = 0; for (k = 1; k <= 5; k++) s += a[k, i] * rhs[k] / (a[k, 4] + 1) ^ 2;
+		n[i, 5] = s }
+	for (i = 1; i <= 4; i++) { for (k = i + 1; k <= 4; k++) { f = n[k, i] / n[i, i];
+		for (j = i; j <= 5; j++) n[k, j] -= f * n[i, j] } }
+	for (i = 4; i >= 1; i--) { s = n[i, 5]; for (j = i + 1; j <= 4; j++) s -= n[i, j] * x[j];
+		x[i] = s / n[i, i] }
+	for (i = 1; i <= 4; i++) if (x[i] < 0) x[i] = 0;
+	printf "%.6g %.6g %.6g %.6g\n", x[1], x[2], x[3], x[4] }')
+# rank 1 did pr of the many-piece trace's 1024 main pieces (64000 paths,
+# 64 batches x 16 chunks, and 128 pilot pieces) in about (T2 - Ts - b):
+# per piece that, less a piece's own cost on rank 0 (T1 - Ts) / 1152:
+# the latency of a remote piece (rank 0's 1 ms polling naps, its tracing
+# thread on the same core, the messages).
 bw=${BENCH_MPI_BW:-1e9}
 Tt1=$(med tn1); Tt2=$(med tn2); pr=$(stat tn2 remote_pieces)
-mm=$(awk -v t1="$Tt1" -v t2="$Tt2" -v s="$Ts" -v pr="$pr" 'BEGIN {
-	x = (t2 - s) / (pr > 0 ? pr : 1) - (t1 - s) / 1024;
+sb0=$(awk -v n="$(med s1 scene_builds)" -v t="$(med s1 rank0_build_s)" \
+	'BEGIN { printf "%.6g", t / (n > 0 ? n : 1) }')
+mm=$(awk -v t1="$Tt1" -v t2="$Tt2" -v s="$Ts" -v pr="$pr" -v b="$sb0" 'BEGIN {
+	pr *= 1152 / 1024;	# its pilot pieces (8 x 16) in the same share
+	x = (t2 - s - b) / (pr > 0 ? pr : 1) - (t1 - s) / 1152;
 	printf "%.6g", (x > 0 ? x : 0) }')
 # mpirun and MPI_Init: the 1- and 2-rank commands' wall beyond the trace
 up1=$(sub "$(med n1 w)" "$(med n1)"); up2=$(sub "$(med n2 w)" "$(med n2)")
@@ -150,12 +171,12 @@ bm=$(stat n2 bytes_per_remote_piece); bp=$(stat n2 pilot_bytes_per_remote_piece)
 sbm=$(med s2 bytes_per_remote_piece); sbp=$(med s2 pilot_bytes_per_remote_piece)
 echo "model inputs (medians; bench/mpi_model.awk, mpi/README.md):"
 printf '  fixed farm cost per trace Ts %.3f s (12800-path trace: %.3f s)\n' "$Ts" "$T0"
-printf '  per path: tracing alpha %.3g s (repeated per angle chunk), connections to 127 angles beta %.3g s\n' "$alpha" "$beta"
-printf '  latency of a remote piece m %.3g s (1024-piece trace: 1 rank %.3f s, 2 ranks %.3f s, %d remote)\n' "$mm" "$Tt1" "$Tt2" "$pr"
+printf '  per piece c0 %.3g s; per path: tracing alpha %.3g s (repeated per angle chunk), connections to 127 angles beta %.3g s\n' "$c0" "$alpha" "$beta"
+printf '  latency of a remote piece m %.3g s (1152-piece trace: 1 rank %.3f s, 2 ranks %.3f s, %d main pieces remote)\n' "$mm" "$Tt1" "$Tt2" "$pr"
 printf '  bytes per piece: curve main %s, pilot %s; sweep main %s, pilot %s; rank 0 receives at %.3g bytes/s (assumed)\n' "$bm" "$bp" "$sbm" "$sbp" "$bw"
 printf '  sweep, per design: scene build b %.4f s, curve kept Tc %.4f s; rank 0 start S %.3f s; command start-up %.2f s (1 rank), %.2f s (2)\n' "$sb" "$sTc" "$sS" "$up1" "$up2"
 
-model() { awk -f bench/mpi_model.awk -v S="$Ts" -v alpha="$alpha" \
+model() { awk -f bench/mpi_model.awk -v S="$Ts" -v c0="$c0" -v alpha="$alpha" \
 	-v beta="$beta" -v m="$mm" -v b=0 -v Tc=0 -v bm="$bm" -v bp="$bp" \
 	-v bw="$bw" -v B=64 -v D=1 -v angles=127 -v R="$rays" "$@"; }
 pred2=$(model -v ranks=2 | awk 'NR == 2 { print $2 }')
@@ -202,10 +223,10 @@ echo "  2-rank table identical to the 1-rank table: $same;" \
 # the sweep's traces at 67 angles: connections scale with the angles;
 # alpha and beta then scaled to the sweep's own 1-rank time per design
 read -r salpha sbeta < <(awk -v a="$alpha" -v b="$beta" -v t="$(med s1)" \
-	-v s="$sS" -v bb="$sb" -v tc="$sTc" -v r="$srays" 'BEGIN { b *= 67 / 127;
-	f = ((t - s) / 64 - bb - tc) / (1.1 * r * (a + b)); if (f <= 0) f = 1;
+	-v s="$sS" -v bb="$sb" -v tc="$sTc" -v r="$srays" -v c0="$c0" 'BEGIN { b *= 67 / 127;
+	f = ((t - s) / 64 - bb - tc - 72 * c0) / (1.1 * r * (a + b)); if (f <= 0) f = 1;
 	printf "%.6g %.6g\n", a * f, b * f }')
-smodel() { awk -f bench/mpi_model.awk -v S="$sS" -v alpha="$salpha" \
+smodel() { awk -f bench/mpi_model.awk -v S="$sS" -v c0="$c0" -v alpha="$salpha" \
 	-v beta="$sbeta" -v m="$mm" -v b="$sb" -v Tc="$sTc" -v bm="$sbm" \
 	-v bp="$sbp" -v bw="$bw" -v B=64 -v D=64 -v angles=67 "$@"; }
 pred2=$(smodel -v R="$srays" -v ranks=2 | awk 'NR == 2 { print $2 }')

@@ -8,8 +8,9 @@
 # the trace with the most pieces free; a trace's main pieces wait for its guide
 # (its pilot's last piece, + g).  A piece of a pass of P paths in nb
 # batches, K angle chunks, costs
-#   c = (P / nb) (alpha + beta / K)  [+ m on a remote rank] [+ b: the
+#   c = c0 + (P / nb) (alpha + beta / K)  [+ m on a remote rank] [+ b: the
 #       first piece of a trace on a worker builds its scene]
+# c0: a piece's fixed cost (a pass set up).
 # K = ceil(f N / (nb D)), f = 2, at most the angles (farm_set.c's
 # chunks_for; f = 4 before, kept as an option to compare).
 # The pilot: min(R / 10, 200000) paths, 8 batches (when R / 10 >= 1000).
@@ -21,7 +22,7 @@
 # h per remote piece.  T(1) = S + makespan(1 worker) + D Tc: one process
 # does it all on one core.  Efficiency T(1) / (N T(N)).
 # Usage:
-#   awk -f mpi_model.awk -v S= -v alpha= -v beta= -v m= -v b= -v Tc= \
+#   awk -f mpi_model.awk -v S= -v c0= -v alpha= -v beta= -v m= -v b= -v Tc= \
 #       -v bm= -v bp= -v bw= -v h= -v R= -v B=64 -v D=64 -v angles=67 \
 #       -v ranks="1 2 16 64 256"
 # bm, bp: bytes of a main and a pilot piece of one chunk (all angles);
@@ -38,7 +39,7 @@ function free_piece(i, t) {
 function makespan(n,    j, i, t, best, pick, kind, c, ms, next_t, most, k2) {
 	kp = chunks(8, n); km = chunks(B, n);
 	np = pilot ? 8 * kp : 0; nm = B * km;
-	cp = Rp / 8 * (alpha + beta / kp); cm = R / B * (alpha + beta / km);
+	cp = c0 + Rp / 8 * (alpha + beta / kp); cm = c0 + R / B * (alpha + beta / km);
 	for (i = 0; i < D; i++) { pl[i] = np; pgiven[i] = 0; pend[i] = 0;
 		gready[i] = 0; ml[i] = nm }
 	delete held; opened = 0; remote = 0; rbytes = 0; builds = 0; idle = 0;
@@ -89,7 +90,7 @@ function total(n,    ms, bound) {
 }
 BEGIN {
 	if (B == "") B = 64; if (angles == "") angles = 127; if (D == "") D = 1;
-	if (f == "") f = 2; if (g == "") g = 0.001; if (h == "") h = 2e-5; if (bstart == "") bstart = 0;
+	if (f == "") f = 2; if (c0 == "") c0 = 0; if (g == "") g = 0.001; if (h == "") h = 2e-5; if (bstart == "") bstart = 0;
 	Rp = R / 10 > 200000 ? 200000 : int(R / 10); pilot = R / 10 >= 1000;
 	t1 = total(1); work1 = D * (R * (alpha + beta) + (pilot ? Rp * (alpha + beta) : 0));
 	printf "%6s %10s %7s %7s %7s  %s\n", "ranks", "time_s", "speedup", "effic",
