@@ -4,14 +4,19 @@
 #    one-process tracer, 1 and 2 threads, as baseline), from ALTERNATING
 #    runs (t1, mpi1, mpi2, t2, t1, ...; BENCH_PAIRS rounds, default 3):
 #    median ratio and min-max, so load from others hits both sides.
-# 2. The cost model's inputs (bench/mpi_model.awk): fixed cost and
-#    per-path costs from 1-rank runs at R/4 (1 and 4 angle chunks), the
-#    message cost of a remote piece from a tiny many-piece trace at 1 and
-#    2 ranks, and a 64-design sweep at 1 and 2 ranks (alternated).
-# 3. The model's prediction for 2 ranks against the measurement, and its
-#    efficiency at 16, 64, 256 ranks with what limits it.
+# 2. The cost model's inputs (bench/mpi_model.awk): fixed, per-piece and
+#    per-path costs fitted to five 1-rank runs (R, R/4 with 1 and 4 angle
+#    chunks, 12 800 paths, a 1152-piece trace), the latency of a remote
+#    piece from that many-piece trace at 1 and 2 ranks, and a 64-design sweep (its designs farmed together) at 1 and
+#    2 ranks, alternated: its --stats line gives the scene builds, rank
+#    0's start and per-design work (curve kept), bytes per piece.
+# 3. The model's prediction for 2 ranks against the measurement (curve
+#    and sweep; raw, and corrected for the load seen in each pair), and
+#    its efficiency at 16, 64, 256 ranks with what limits it: the curve,
+#    and the sweep at 1.5 M (each design to ~1 %), 300 000 and
+#    BENCH_MPI_SWEEP_RAYS (default 30 000) paths per design.
 # Times are the traces' own ("seconds" of --json / --stats: without MPI
-# start-up and scene building) unless "command" says otherwise.
+# start-up) unless "command" says otherwise.
 set -eu
 . bench/alt.sh
 build=${STRAY_BUILD:-build}
@@ -78,20 +83,18 @@ echo "messages (2 ranks): $(stat n2 bytes_per_remote_piece) bytes per main piece
 	"$(stat n2 pilot_bytes_per_remote_piece) bytes per piece, job + guide $(stat n2 job_bytes) bytes"
 
 # --- the model's inputs ---------------------------------------------
-# T(R, K) = Ts + 1.1 R (alpha K + beta) at 1 rank (the pilot is a tenth
-# of the paths): Ts from a tiny trace (12800 paths) against the full one,
-# alpha from 1 against 4 angle chunks at R/4.  The message cost of a
-# remote piece mm from a tiny trace of many pieces (6400 paths, no
-# pilot, 16 chunks: 1024 pieces of 6 paths x 8 angles) at 1 and 2 ranks:
-# rank 1's time per piece beyond a piece's compute.  All alternated.
+# 1-rank traces of R and R/4 paths (1 and 4 angle chunks), 12 800 paths,
+# and 64 000 paths cut in 1152 pieces (16 chunks of 8 angles): the fit
+# below; the last also at 2 ranks, for the latency of a remote piece.
+# All alternated.
 q=$((rays / 4))
 a1=(trace --scene ref4 --angles "$angles" --seed 3 --json)
 for ((i = 0; i < pairs; i++)); do
 	run ts1 mpirun -n 1 "$smpi" "${a1[@]}" --rays 12800
 	run qk1 mpirun -n 1 "$smpi" "${a1[@]}" --rays "$q"
 	run qk4 mpirun -n 1 "$smpi" --angle-chunks 4 "${a1[@]}" --rays "$q"
-	run tn1 mpirun -n 1 "$smpi" --stats --angle-chunks 16 "${a1[@]}" --rays 6400
-	run tn2 mpirun -n 2 "$smpi" --stats --angle-chunks 16 "${a1[@]}" --rays 6400
+	run tn1 mpirun -n 1 "$smpi" --stats --angle-chunks 16 "${a1[@]}" --rays 64000
+	run tn2 mpirun -n 2 "$smpi" --stats --angle-chunks 16 "${a1[@]}" --rays 64000
 done
 # --- the 64-design sweep --------------------------------------------
 grid=(--grid edge_radius=0,0.005,0.01,0.015,0.02,0.03,0.04,0.05
@@ -107,48 +110,77 @@ sweep() {	# sweep TAG N: one 64-design sweep on N ranks, fresh state
 	t1=$(now)
 	sub "$t1" "$t0" >> "$tmp/$1.w"; echo -n " " >> "$tmp/$1.w"
 	awk '{ printf "%s ", $1 + $2 }' "$tmp/cpu" >> "$tmp/$1.c"
-	awk '/stray-mpi: stats/ { s += $NF } END { printf "%.6g ", s }' \
+	# one set of traces: one stats line; its seconds (no mpirun start-up)
+	awk '/stray-mpi: stats/ { s = $NF } END { printf "%.6g ", s }' \
 		"$tmp/$1.err" >> "$tmp/$1.s"
+	for k in scene_builds rank0_build_s rank0_done_s rank0_start_s remote_pieces \
+		pilot_bytes_per_remote_piece bytes_per_remote_piece; do
+		echo -n "$(stat "$1" "$k") " >> "$tmp/$1.$k"
+	done
 }
 for ((i = 0; i < pairs; i++)); do sweep s1 1; sweep s2 2; done
-Ta=$(med n1); T0=$(med ts1); Tb=$(med qk1); Tc=$(med qk4)
-read -r Ts ab < <(awk -v a="$Ta" -v z="$T0" -v r="$rays" 'BEGIN {
-	ab = (a - z) / (1.1 * (r - 12800)); ts = z - 1.1 * 12800 * ab;
-	printf "%.6g %.6g\n", (ts > 0 ? ts : 0), ab }')
-alpha=$(awk -v b="$Tb" -v c="$Tc" -v q="$q" 'BEGIN {
-	a = (c - b) / (1.1 * q * 3); printf "%.6g", (a > 0 ? a : 0) }')
-beta=$(sub "$ab" "$alpha")
-# rank 1 did pr of the tiny trace's 1024 pieces in about (T2 - Ts - b):
-# per piece that, less a piece's compute (T1 - Ts) / 1024 (measured: the
-# polling naps of rank 0 and the worker, farm_nap, 1 ms, dominate it).
-# A pilot piece carries ~1 MB (the guide's cells): mp = mm + its bytes
-# at bw (1 GB/s assumed, shared memory or InfiniBand do better), which
-# rank 0 also receives and adds one at a time (the model's bound).
+# The 1-rank runs fit T = Ts + c0 A + alpha X + beta Y (least squares,
+# 5 runs, 4 unknowns): A pieces, X path tracings (every angle chunk
+# retraces its paths), Y paths connected to all the angles; the pilot
+# is min(R / 10, 200000) paths in 8 batches when R / 10 >= 1000.  c0 is
+# a piece's fixed cost (tracer_trace_batches sets up a pass: ~1 ms).
+T0=$(med ts1)
+read -r Ts c0 alpha beta < <(awk -v r="$rays" -v q="$q" \
+	-v t="$(med n1) $T0 $(med qk1) $(med qk4) $(med tn1)" '
+	function row(i, R, K, y) { p = R / 10 >= 1000 ? (R / 10 > 200000 ? 200000 : R / 10) : 0;
+		a[i, 1] = 1; a[i, 2] = (64 + (p ? 8 : 0)) * K; a[i, 3] = K * (R + p);
+		a[i, 4] = R + p; rhs[i] = y }
+	BEGIN { split(t, T, " ");
+	row(1, r, 1, T[1]); row(2, 12800, 1, T[2]); row(3, q, 1, T[3]);
+	row(4, q, 4, T[4]); row(5, 64000, 16, T[5]);
+	for (i = 1; i <= 4; i++) { for (j = 1; j <= 4; j++) { s = 0;
+		for (k = 1; k <= 5; k++) s += a[k, i] * a[k, j] / (a[k, 4] + 1) ^ 2;
+		n[i, j] = s }	# rows weighted by 1/paths: relative errors
+		s = 0; for (k = 1; k <= 5; k++) s += a[k, i] * rhs[k] / (a[k, 4] + 1) ^ 2;
+		n[i, 5] = s }
+	for (i = 1; i <= 4; i++) { for (k = i + 1; k <= 4; k++) { f = n[k, i] / n[i, i];
+		for (j = i; j <= 5; j++) n[k, j] -= f * n[i, j] } }
+	for (i = 4; i >= 1; i--) { s = n[i, 5]; for (j = i + 1; j <= 4; j++) s -= n[i, j] * x[j];
+		x[i] = s / n[i, i] }
+	for (i = 1; i <= 4; i++) if (x[i] < 0) x[i] = 0;
+	printf "%.6g %.6g %.6g %.6g\n", x[1], x[2], x[3], x[4] }')
+# rank 1 did pr of the many-piece trace's 1024 main pieces (64000 paths,
+# 64 batches x 16 chunks, and 128 pilot pieces) in about (T2 - Ts - b):
+# per piece that, less a piece's own cost on rank 0 (T1 - Ts) / 1152:
+# the latency of a remote piece (rank 0's 1 ms polling naps, its tracing
+# thread on the same core, the messages).
 bw=${BENCH_MPI_BW:-1e9}
 Tt1=$(med tn1); Tt2=$(med tn2); pr=$(stat tn2 remote_pieces)
+sb0=$(awk -v n="$(med s1 scene_builds)" -v t="$(med s1 rank0_build_s)" \
+	'BEGIN { printf "%.6g", t / (n > 0 ? n : 1) }')
+mm=$(awk -v t1="$Tt1" -v t2="$Tt2" -v s="$Ts" -v pr="$pr" -v b="$sb0" 'BEGIN {
+	pr *= 1152 / 1024;	# its pilot pieces (8 x 16) in the same share
+	x = (t2 - s - b) / (pr > 0 ? pr : 1) - (t1 - s) / 1152;
+	printf "%.6g", (x > 0 ? x : 0) }')
 # mpirun and MPI_Init: the 1- and 2-rank commands' wall beyond the trace
 up1=$(sub "$(med n1 w)" "$(med n1)"); up2=$(sub "$(med n2 w)" "$(med n2)")
-# per design on rank 0 outside the traces (scene build, judging, files)
-Tser=$(awk -v w="$(med s1 w)" -v t="$(med s1)" -v u="$up1" 'BEGIN {
-	x = (w - t - u) / 64; printf "%.6g", (x > 0 ? x : 0) }')
-# a worker's start on a job: it builds the scene, as rank 0 does in Tser
-b=$Tser
-mm=$(awk -v t1="$Tt1" -v t2="$Tt2" -v s="$Ts" -v b="$b" -v pr="$pr" 'BEGIN {
-	x = (t2 - s - b) / (pr > 0 ? pr : 1) - (t1 - s) / 1024;
-	printf "%.6g", (x > 0 ? x : 0) }')
-# bytes per piece, from the full 2-rank trace
+# the sweep at 1 rank: a scene build b, the caller's work per design Tc
+# (curve written, read back, judged), rank 0's start S (every design's
+# scene checked, the options once), all from its --stats line
+sb=$(awk -v n="$(med s1 scene_builds)" -v t="$(med s1 rank0_build_s)" \
+	'BEGIN { printf "%.6g", t / (n > 0 ? n : 1) }')
+sTc=$(awk -v t="$(med s1 rank0_done_s)" 'BEGIN { printf "%.6g", t / 64 }')
+sS=$(awk -v a="$(med s1 rank0_start_s)" -v s="$Ts" 'BEGIN { printf "%.6g", a + s }')
+# bytes per piece (one chunk, all angles), from the 2-rank runs
 bm=$(stat n2 bytes_per_remote_piece); bp=$(stat n2 pilot_bytes_per_remote_piece)
-mp=$(awk -v m="$mm" -v y="$bp" -v bw="$bw" 'BEGIN { printf "%.6g", m + y / bw }')
+sbm=$(med s2 bytes_per_remote_piece); sbp=$(med s2 pilot_bytes_per_remote_piece)
 echo "model inputs (medians; bench/mpi_model.awk, mpi/README.md):"
 printf '  fixed farm cost per trace Ts %.3f s (12800-path trace: %.3f s)\n' "$Ts" "$T0"
-printf '  per path: tracing alpha %.3g s (repeated per angle chunk), connections to 127 angles beta %.3g s\n' "$alpha" "$beta"
-printf '  message cost per remote piece: main mm %.3g s (1024-piece trace: 1 rank %.3f s, 2 ranks %.3f s, %d remote)\n' "$mm" "$Tt1" "$Tt2" "$pr"
-printf '    pilot mp %.3g s (mm + %.0f bytes at %.3g bytes/s, assumed)\n' "$mp" "$bp" "$bw"
-printf '  worker start on a job (scene build) b %.3f s (= the sweep serial part per design); command start-up (mpirun, MPI_Init) %.2f s at 1 rank, %.2f s at 2\n' "$b" "$up1" "$up2"
+printf '  per piece c0 %.3g s; per path: tracing alpha %.3g s (repeated per angle chunk), connections to 127 angles beta %.3g s\n' "$c0" "$alpha" "$beta"
+printf '  latency of a remote piece m %.3g s (1152-piece trace: 1 rank %.3f s, 2 ranks %.3f s, %d main pieces remote)\n' "$mm" "$Tt1" "$Tt2" "$pr"
+printf '  bytes per piece: curve main %s, pilot %s; sweep main %s, pilot %s; rank 0 receives at %.3g bytes/s (assumed)\n' "$bm" "$bp" "$sbm" "$sbp" "$bw"
+printf '  sweep, per design: scene build b %.4f s, curve kept Tc %.4f s; rank 0 start S %.3f s; command start-up %.2f s (1 rank), %.2f s (2)\n' "$sb" "$sTc" "$sS" "$up1" "$up2"
 
-model() { awk -f bench/mpi_model.awk -v Ts="$Ts" -v alpha="$alpha" \
-	-v beta="$beta" -v mm="$mm" -v mp="$mp" -v bm="$bm" -v bp="$bp" -v bw="$bw" -v b="$b" -v B=64 "$@"; }
-pred2=$(model -v Tser=0 -v R="$rays" -v angles=127 -v ranks=2 | awk 'NR == 2 { print $2 }')
+model() { awk -f bench/mpi_model.awk -v S="$Ts" -v c0="$c0" -v alpha="$alpha" \
+	-v beta="$beta" -v m="$mm" -v b=0 -v Tc=0 -v bm="$bm" -v bp="$bp" \
+	-v bw="$bw" -v B=64 -v D=1 -v angles=127 -v R="$rays" "$@"; }
+pred2=$(model -v ranks=2 | awk 'NR == 2 { print $2 }')
+pt1=$(model -v ranks=1 | awk 'NR == 2 { print $2 }')
 meas2=$(med n2)
 echo "check, trace at 2 ranks on 2 free cores: model $(printf %.2f "$pred2") s, measured $(printf %.2f "$meas2") s" \
 	"(median), error $(awk -v p="$pred2" -v m="$meas2" 'BEGIN { printf "%+.1f", 100 * (p / m - 1) }') %"
@@ -156,60 +188,56 @@ echo "check, trace at 2 ranks on 2 free cores: model $(printf %.2f "$pred2") s, 
 # core, so others kept X = 2 / share1 - 1 cores' worth of threads
 # runnable; two ranks then get share2 = min(1, 2 / (2 + X)) each.  Per
 # pair: predicted T2 = T1 (model T2 / model T1) share1 / share2.
-pt1=$(model -v Tser=0 -v R="$rays" -v angles=127 -v ranks=1 | awk 'NR == 2 { print $2 }')
-loaded=$(awk -v t1="$(vals n1)" -v w1="$(vals n1 w)" -v c1="$(vals n1 c)" \
-	-v t2="$(vals n2)" -v g="$(div "$pred2" "$pt1")" 'BEGIN {
+loaded() {	# loaded T1S T1W T1C T2 G: per pair "pred:meas:X"
+	awk -v t1="$1" -v w1="$2" -v c1="$3" -v t2="$4" -v g="$5" 'BEGIN {
 	n = split(t1, a, " "); split(w1, w, " "); split(c1, c, " ");
 	split(t2, b, " ");
 	for (i = 1; i <= n; i++) {
 		s1 = c[i] / w[i]; if (s1 > 1) s1 = 1;
 		x = 2 / s1 - 1; s2 = 2 / (2 + x); if (s2 > 1) s2 = 1;
 		printf "%.4g:%.4g:%.3g ", a[i] * g * s1 / s2, b[i], x
-	} }')
-pl="" ml="" xl=""
-for v in $loaded; do
-	IFS=: read -r p2 m2 x <<< "$v"; pl+="$p2 "; ml+="$m2 "; xl+="$x "
-done
-read -r xm xlo xhi < <(spread $xl)
-printf 'check, trace at 2 ranks under the load measured in each pair (others: %.2f cores busy, %.2f-%.2f):\n' "$xm" "$xlo" "$xhi"
-show "  model / measured (target within 10 %)" "$pl" "$ml"
+	} }'
+}
+check_loaded() {	# check_loaded LABEL T1S T1W T1C T2 G
+	local pl="" ml="" xl="" v p2 m2 x xm xlo xhi label=$1; shift
+	for v in $(loaded "$@"); do
+		IFS=: read -r p2 m2 x <<< "$v"; pl+="$p2 "; ml+="$m2 "; xl+="$x "
+	done
+	read -r xm xlo xhi < <(spread $xl)
+	printf '%s under the load measured in each pair (others: %.2f cores busy, %.2f-%.2f):\n' "$label" "$xm" "$xlo" "$xhi"
+	show "  model / measured (target within 10 %)" "$pl" "$ml"
+}
+check_loaded "check, trace at 2 ranks" "$(vals n1)" "$(vals n1 w)" "$(vals n1 c)" \
+	"$(vals n2)" "$(div "$pred2" "$pt1")"
 echo "model, 127-angle curve at $rays paths (efficiency against the model's 1 rank):"
-model -v Tser=0 -v R="$rays" -v angles=127 -v ranks="1 2 16 64 256"
+model -v ranks="1 2 16 64 256"
 
 cmp -s <(body "$tmp/s1.csv") <(body "$tmp/s2.csv") && same=yes || same=NO
-echo "sweep, 64 designs x $srays paths, default angles (67), seed 3:"
-printf '  1 rank: command %.1f s, traces %.1f s; 2 ranks: command %.1f s, traces %.1f s (medians)\n' \
+echo "sweep, 64 designs x $srays paths, default angles (67), seed 3, the designs farmed together:"
+printf '  1 rank: command %.1f s, set %.1f s; 2 ranks: command %.1f s, set %.1f s (medians)\n' \
 	"$(med s1 w)" "$(med s1)" "$(med s2 w)" "$(med s2)"
 show "  sweep speedup 1 -> 2 ranks, command" "$(vals s1 w)" "$(vals s2 w)"
-show "  sweep speedup 1 -> 2 ranks, traces only" "$(vals s1)" "$(vals s2)"
-echo "  2-rank table identical to the 1-rank table: $same"
+show "  sweep speedup 1 -> 2 ranks, set (no start-up)" "$(vals s1)" "$(vals s2)"
+echo "  2-rank table identical to the 1-rank table: $same;" \
+	"scenes built: $(med s1 scene_builds) (1 rank), $(med s2 scene_builds) (2 ranks)"
 # the sweep's traces at 67 angles: connections scale with the angles;
-# alpha and beta then scaled to the sweep's own 1-rank trace time
+# alpha and beta then scaled to the sweep's own 1-rank time per design
 read -r salpha sbeta < <(awk -v a="$alpha" -v b="$beta" -v t="$(med s1)" \
-	-v s="$Ts" -v r="$srays" 'BEGIN { b *= 67 / 127;
-	f = (t / 64 - s) / (1.1 * r * (a + b)); if (f <= 0) f = 1;
+	-v s="$sS" -v bb="$sb" -v tc="$sTc" -v r="$srays" -v c0="$c0" 'BEGIN { b *= 67 / 127;
+	f = ((t - s) / 64 - bb - tc - 72 * c0) / (1.1 * r * (a + b)); if (f <= 0) f = 1;
 	printf "%.6g %.6g\n", a * f, b * f }')
-smodel() { awk -f bench/mpi_model.awk -v Ts="$Ts" -v alpha="$salpha" \
-	-v beta="$sbeta" -v mm="$mm" -v mp="$mp" -v bm="$bm" -v bp="$bp" -v bw="$bw" -v b="$b" -v B=64 -v Tser="$Tser" -v D=64 \
-	-v angles=67 "$@"; }
+smodel() { awk -f bench/mpi_model.awk -v S="$sS" -v c0="$c0" -v alpha="$salpha" \
+	-v beta="$sbeta" -v m="$mm" -v b="$sb" -v Tc="$sTc" -v bm="$sbm" \
+	-v bp="$sbp" -v bw="$bw" -v B=64 -v D=64 -v angles=67 "$@"; }
 pred2=$(smodel -v R="$srays" -v ranks=2 | awk 'NR == 2 { print $2 }')
-meas2=$(sub "$(med s2 w)" "$up2")
-printf '  per-design serial part on rank 0: %.3f s; per path alpha %.3g s, beta %.3g s (67 angles)\n' "$Tser" "$salpha" "$sbeta"
-echo "check, sweep at 2 ranks on 2 free cores: model $(printf %.1f "$pred2") s, measured $(printf %.1f "$meas2") s" \
-	"(command less start-up), error $(awk -v p="$pred2" -v m="$meas2" 'BEGIN { printf "%+.1f", 100 * (p / m - 1) }') %"
 pt1=$(smodel -v R="$srays" -v ranks=1 | awk 'NR == 2 { print $2 }')
-loaded=$(awk -v w1="$(vals s1 w)" -v c1="$(vals s1 c)" -v w2="$(vals s2 w)" \
-	-v u1="$up1" -v u2="$up2" -v g="$(div "$pred2" "$pt1")" 'BEGIN {
-	n = split(w1, w, " "); split(c1, c, " "); split(w2, b, " ");
-	for (i = 1; i <= n; i++) {
-		s1 = c[i] / w[i]; if (s1 > 1) s1 = 1;
-		x = 2 / s1 - 1; s2 = 2 / (2 + x); if (s2 > 1) s2 = 1;
-		printf "%.4g:%.4g ", (w[i] - u1) * g * s1 / s2, b[i] - u2
-	} }')
-pl="" ml=""
-for v in $loaded; do IFS=: read -r p2 m2 <<< "$v"; pl+="$p2 "; ml+="$m2 "; done
-show "check, sweep at 2 ranks under each pair's load, model / measured" "$pl" "$ml"
-for r in "$srays" 300000; do
+meas2=$(med s2)
+printf '  per path (67 angles, scaled to this sweep): alpha %.3g s, beta %.3g s\n' "$salpha" "$sbeta"
+echo "check, sweep at 2 ranks on 2 free cores: model $(printf %.2f "$pred2") s, measured $(printf %.2f "$meas2") s" \
+	"(set, median), error $(awk -v p="$pred2" -v m="$meas2" 'BEGIN { printf "%+.1f", 100 * (p / m - 1) }') %"
+check_loaded "check, sweep at 2 ranks" "$(vals s1)" "$(vals s1 w)" "$(vals s1 c)" \
+	"$(vals s2)" "$(div "$pred2" "$pt1")"
+for r in 1500000 300000 "$srays"; do
 	echo "model, 64-design sweep at $r paths per design:"
 	smodel -v R="$r" -v ranks="1 2 16 64 256"
 done

@@ -27,7 +27,7 @@ struct farm_config {
 
 extern struct farm_config farm_config;
 
-/* What the last trace sent and received, for `make bench`. */
+/* What the last trace (or set) sent and received, for `make bench`. */
 struct farm_stats {
 	uint64_t tasks, pilot_tasks;	/* main pass, pilot pass */
 	uint64_t task_bytes;	/* main pass: piece and result messages */
@@ -35,6 +35,11 @@ struct farm_stats {
 	uint64_t job_bytes;	/* job descriptions and guides */
 	uint64_t remote_tasks;	/* main-pass pieces done by other ranks */
 	uint64_t remote_pilot;	/* pilot pieces done by other ranks */
+	uint64_t scene_builds;	/* scenes built by other ranks (jobs sent) */
+	uint64_t local_builds;	/* scenes built by rank 0's own thread */
+	double done_s;		/* rank 0: in the caller's per-trace work */
+	double local_build_s;	/* rank 0's thread: building scenes */
+	double start_s;		/* rank 0: a set's checks before farming */
 };
 
 extern struct farm_stats farm_last;
@@ -44,6 +49,14 @@ int farm_trace(const struct tracer_scene_spec *spec,
 	       const struct tracer_scene *s,
 	       const struct tracer_trace_opts *o, struct tracer_result *res,
 	       struct stray_error *err);
+
+/* Rank 0: n traces at once (a sweep's designs; the runner's run_set):
+ * one queue of pieces across them, each trace's main pass waiting only
+ * for its own pilot; done(user, i, ...) on this thread as each finishes,
+ * while the ranks go on.  No path records, dumps or maps. */
+int farm_trace_set(const struct tracer_trace_item *items, size_t n,
+		   tracer_item_done_fn done, void *user,
+		   struct stray_error *err);
 
 /* Rank 0: 1 once a rank was lost or failed (the job must be aborted). */
 int farm_broken(void);

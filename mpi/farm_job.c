@@ -17,6 +17,7 @@ struct job_head {
 	int32_t n_batches, rr_depth, max_depth, guide;
 	int32_t n_theta, n_sets, has_lens, record_paths;
 	int32_t has_shifts;	/* opts.beam_shift_z follows theta_deg */
+	int32_t id;		/* the trace's number in its set */
 };
 
 static size_t str_size(const char *s)
@@ -25,7 +26,7 @@ static size_t str_size(const char *s)
 }
 
 char *farm_job_pack(const struct tracer_scene_spec *spec,
-		    const struct tracer_trace_opts *o, size_t *len)
+		    const struct tracer_trace_opts *o, int id, size_t *len)
 {
 	struct job_head h;
 	size_t angles = (o->beam_shift_z ? 2 : 1) * o->n_theta * sizeof(double);
@@ -48,6 +49,7 @@ char *farm_job_pack(const struct tracer_scene_spec *spec,
 	h.has_lens = spec->lens != NULL;
 	h.record_paths = o->record_paths != 0;
 	h.has_shifts = o->beam_shift_z != NULL;
+	h.id = id;
 	n += str_size(spec->scene) + str_size(spec->lens);
 	for (i = 0; i < spec->n_sets; i++)
 		n += str_size(spec->sets[i]);
@@ -102,6 +104,7 @@ int farm_job_unpack(char *buf, size_t len, struct farm_job *j,
 				(h.has_shifts ? 2 : 1))
 		return stray_error_set(err, STRAY_EINVAL, "job", "malformed");
 	tracer_trace_defaults(&j->o);
+	j->id = h.id;
 	j->o.n_paths = h.n_paths;
 	j->o.seed = h.seed;
 	j->o.rr_weight = h.rr_weight;

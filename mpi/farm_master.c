@@ -1,42 +1,24 @@
 /*
- * farm_master.c - rank 0 of the task farm: cut a trace into pieces, hand
- * them out to free ranks (and to a thread of its own), put the results in
- * their rows, and notice a rank that stops answering (farm.h).
+ * farm_master.c - rank 0 of the task farm: hand the pieces of the traces
+ * in flight (farm_set.h) to free ranks while a thread of its own works
+ * through the same queue, put the results in their rows, give each
+ * finished trace to the caller while the ranks go on, and notice a rank
+ * that stops answering (farm.h).
  */
 #include <mpi.h>
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "farm_proto.h"
-
-struct farm_config farm_config = { 0, 300.0, 0 };
-struct farm_stats farm_last;
-
-#define PREFETCH 2	/* pieces queued per rank: no idle gap between two */
+#include "farm_set.h"
+#include "tracer/scene_load.h"
 
 static int broken;
 static char remote_error[256];
 
-/* One pass being worked through, shared with rank 0's own thread. */
-struct pass_run {
-	const struct tracer_scene *s;
-	const struct tracer_trace_opts *po;
-	const struct tracer_guide *g;
-	struct piece *plan;
-	size_t n_plan, next, done;
-	struct tracer_result *r;
-	double *s2;
-	struct tracer_path_table *tables;	/* per batch (record_paths) */
-	pthread_mutex_t lock;
-	int failed;
-	struct stray_error err;
-};
-
 /* Per remote rank: the pieces it holds, oldest first. */
 struct rank_state {
-	size_t queue[PREFETCH];
+	struct farm_take queue[FARM_PREFETCH];
 	int n;
 	double last_heard;
 };
@@ -44,56 +26,6 @@ struct rank_state {
 int farm_broken(void)
 {
 	return broken;
-}
-
-/* The next piece, or -1 when all are handed out. */
-static long take(struct pass_run *p)
-{
-	long k;
-
-	pthread_mutex_lock(&p->lock);
-	k = !p->failed && p->next < p->n_plan ? (long)p->next++ : -1;
-	pthread_mutex_unlock(&p->lock);
-	return k;
-}
-
-/* A piece's payload into the result (under p->lock). */
-static int apply(struct pass_run *p, const struct piece *pc,
-		 const double *payload, struct stray_error *err)
-{
-	piece_apply(pc, payload, p->r, p->s2);
-	if (p->tables && piece_apply_paths(pc, payload, p->tables))
-		return stray_error_set(err, STRAY_ENOMEM, "paths",
-				       "out of memory recording paths");
-	p->done++;
-	return STRAY_OK;
-}
-
-static void *local_worker(void *arg)
-{
-	struct pass_run *p = arg;
-	double *buf = NULL;
-	long k;
-
-	while ((k = take(p)) >= 0) {
-		const struct piece *pc = &p->plan[k];
-		struct stray_error e;
-		size_t len;
-		int rc;
-
-		stray_error_clear(&e);
-		rc = piece_run_alloc(p->s, p->po, p->g, pc, &buf, &len, &e);
-		pthread_mutex_lock(&p->lock);
-		if (!rc)
-			rc = apply(p, pc, buf, &e);
-		if (rc) {
-			p->failed = 1;
-			p->err = e;
-		}
-		pthread_mutex_unlock(&p->lock);
-	}
-	free(buf);
-	return NULL;
 }
 
 /*
@@ -123,27 +55,162 @@ static int send_timed(const void *buf, int count, MPI_Datatype type,
 	return stray_error_set(err, STRAY_EIO, "mpi", remote_error);
 }
 
-static int send_piece(struct pass_run *p, struct rank_state *rs, int rank,
-		      size_t k)
-{
-	int msg[4] = { p->plan[k].pass, p->plan[k].batch,
-		       p->plan[k].theta_first, p->plan[k].theta_n };
+/*
+ * Rank 0's sends during a set do not wait: a rank may itself be sending
+ * a large result to rank 0 (a rendezvous) while rank 0 sends it a guide
+ * or a job; each send's buffer is kept until MPI says it went.
+ */
+struct outbox {
+	MPI_Request *req;
+	void **buf;
+	double *t0;
+	int *rank;
+	size_t n, cap;
+};
 
+static int post(struct outbox *ob, void *buf, int count, MPI_Datatype type,
+		int rank, int tag, struct stray_error *err)
+{
+	if (ob->n == ob->cap) {
+		size_t cap = 2 * ob->cap + 16;
+		MPI_Request *r = realloc(ob->req, cap * sizeof(*r));
+		void **b = r ? realloc(ob->buf, cap * sizeof(*b)) : NULL;
+		double *t = b ? realloc(ob->t0, cap * sizeof(*t)) : NULL;
+		int *k = t ? realloc(ob->rank, cap * sizeof(*k)) : NULL;
+
+		if (r)
+			ob->req = r;
+		if (b)
+			ob->buf = b;
+		if (t)
+			ob->t0 = t;
+		if (!k) {
+			free(buf);
+			return stray_error_set(err, STRAY_ENOMEM, "mpi",
+					       "out of memory");
+		}
+		ob->rank = k;
+		ob->cap = cap;
+	}
+	MPI_Isend(buf, count, type, rank, tag, MPI_COMM_WORLD,
+		  &ob->req[ob->n]);
+	ob->buf[ob->n] = buf;
+	ob->t0[ob->n] = farm_now();
+	ob->rank[ob->n++] = rank;
+	return STRAY_OK;
+}
+
+/* Free what went; a send pending longer than the timeout: a lost rank. */
+static int flush(struct outbox *ob, struct stray_error *err)
+{
+	double now = farm_now();
+	size_t i = 0;
+
+	while (i < ob->n) {
+		int done = 0;
+
+		MPI_Test(&ob->req[i], &done, MPI_STATUS_IGNORE);
+		if (!done) {
+			if (now - ob->t0[i] > farm_config.task_timeout_s) {
+				broken = 1;	/* pending: the job is aborted */
+				snprintf(remote_error, sizeof(remote_error),
+					 "rank %d took no message for %.0f s "
+					 "(killed or stalled; --task-timeout)",
+					 ob->rank[i], now - ob->t0[i]);
+				return stray_error_set(err, STRAY_EIO, "mpi",
+						       remote_error);
+			}
+			i++;
+			continue;
+		}
+		free(ob->buf[i]);
+		ob->n--;
+		ob->req[i] = ob->req[ob->n];
+		ob->buf[i] = ob->buf[ob->n];
+		ob->t0[i] = ob->t0[ob->n];
+		ob->rank[i] = ob->rank[ob->n];
+	}
+	return STRAY_OK;
+}
+
+/* Wait until every send went (or a rank is lost), then free the box. */
+static int drain(struct outbox *ob, struct stray_error *err)
+{
+	int rc = STRAY_OK;
+
+	while (!rc && ob->n) {
+		rc = flush(ob, err);
+		if (!rc && ob->n)
+			farm_nap();
+	}
+	if (!rc) {
+		free(ob->req);
+		free(ob->buf);
+		free(ob->t0);
+		free(ob->rank);
+	}
+	return rc;
+}
+
+/* The job (and guide) a rank needs before the piece, then the piece. */
+static int send_piece(struct farm_set *fs, struct outbox *ob,
+		      struct rank_state *rs, int rank,
+		      const struct farm_take *tk, struct stray_error *err)
+{
+	const struct farm_trace *t = &fs->t[tk->trace];
+	const struct piece *pc = farm_set_piece(fs, tk);
+	int *msg = malloc(5 * sizeof(int)), rc = STRAY_OK;
+
+	if (!msg)
+		return stray_error_set(err, STRAY_ENOMEM, "mpi",
+				       "out of memory");
+	msg[0] = (int)tk->trace;
+	msg[1] = pc->pass;
+	msg[2] = pc->batch;
+	msg[3] = pc->theta_first;
+	msg[4] = pc->theta_n;
+	if (tk->send_job) {
+		size_t len;
+		char *job = farm_job_pack(&t->spec, t->o, (int)tk->trace, &len);
+
+		rc = job ? post(ob, job, (int)len, MPI_BYTE, rank, TAG_JOB,
+				err) :
+		     stray_error_set(err, STRAY_ENOMEM, "mpi", "out of memory");
+		farm_last.job_bytes += len;
+		farm_last.scene_builds++;
+	}
+	if (!rc && tk->send_guide) {
+		struct farm_guide_msg *gm = malloc(sizeof(*gm));
+
+		if (gm) {
+			gm->trace = (int64_t)tk->trace;
+			gm->g = *t->g;
+		}
+		rc = gm ? post(ob, gm, (int)sizeof(*gm), MPI_BYTE, rank,
+			       TAG_GUIDE, err) :
+		     stray_error_set(err, STRAY_ENOMEM, "mpi", "out of memory");
+		farm_last.job_bytes += sizeof(*gm);
+	}
+	if (rc) {
+		free(msg);
+		return rc;
+	}
 	if (rs->n == 0)
 		rs->last_heard = farm_now();
-	rs->queue[rs->n++] = k;
-	*(p->plan[k].pass == PIECE_PILOT ? &farm_last.pilot_bytes :
-	  &farm_last.task_bytes) += sizeof(msg);
-	return send_timed(msg, 4, MPI_INT, rank, TAG_TASK, &p->err);
+	rs->queue[rs->n++] = *tk;
+	*(pc->pass == PIECE_PILOT ? &farm_last.pilot_bytes :
+	  &farm_last.task_bytes) += 5 * sizeof(int);
+	return post(ob, msg, 5, MPI_INT, rank, TAG_TASK, err);
 }
 
 /* Receive one message from a rank; returns nonzero on a fatal one. */
-static int receive(struct pass_run *p, struct rank_state *ranks,
-		   MPI_Status *st, double **buf, size_t *cap)
+static int receive(struct farm_set *fs, struct rank_state *ranks,
+		   MPI_Status *st, double **buf, size_t *cap,
+		   struct stray_error *err)
 {
 	struct rank_state *rs = &ranks[st->MPI_SOURCE];
 	const struct piece *pc;
-	int count, rc;
+	int count, rc, record;
 
 	if (st->MPI_TAG == TAG_ERROR) {
 		char line[200] = "";
@@ -152,49 +219,50 @@ static int receive(struct pass_run *p, struct rank_state *ranks,
 			 TAG_ERROR, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
 		snprintf(remote_error, sizeof(remote_error), "rank %d: %s",
 			 st->MPI_SOURCE, line);
-		return stray_error_set(&p->err, STRAY_EIO, "mpi",
-				       remote_error);
+		return stray_error_set(err, STRAY_EIO, "mpi", remote_error);
 	}
 	MPI_Get_count(st, MPI_DOUBLE, &count);
 	if (rs->n == 0 || st->MPI_TAG != TAG_RESULT)
-		return stray_error_set_value(&p->err, STRAY_EIO, "mpi",
+		return stray_error_set_value(err, STRAY_EIO, "mpi",
 			"unexpected message from rank", st->MPI_SOURCE);
-	pc = &p->plan[rs->queue[0]];
-	if (!piece_payload_ok(pc, p->tables != NULL, NULL, (size_t)count))
-		return stray_error_set_value(&p->err, STRAY_EIO, "mpi",
+	pc = farm_set_piece(fs, &rs->queue[0]);
+	record = fs->t[rs->queue[0].trace].pass[pc->pass].o.record_paths;
+	if (!piece_payload_ok(pc, record, NULL, (size_t)count))
+		return stray_error_set_value(err, STRAY_EIO, "mpi",
 			"result of the wrong size from rank", st->MPI_SOURCE);
 	if ((size_t)count > *cap) {
 		double *nb = realloc(*buf, (size_t)count * sizeof(double));
 
 		if (!nb)
-			return stray_error_set(&p->err, STRAY_ENOMEM, "mpi",
+			return stray_error_set(err, STRAY_ENOMEM, "mpi",
 					       "out of memory");
 		*buf = nb;
 		*cap = (size_t)count;
 	}
 	MPI_Recv(*buf, count, MPI_DOUBLE, st->MPI_SOURCE, TAG_RESULT,
 		 MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-	if (!piece_payload_ok(pc, p->tables != NULL, *buf, (size_t)count))
-		return stray_error_set_value(&p->err, STRAY_EIO, "mpi",
+	if (!piece_payload_ok(pc, record, *buf, (size_t)count))
+		return stray_error_set_value(err, STRAY_EIO, "mpi",
 			"malformed result from rank", st->MPI_SOURCE);
 	*(pc->pass == PIECE_PILOT ? &farm_last.pilot_bytes :
 	  &farm_last.task_bytes) += (uint64_t)count * sizeof(double);
 	(*(pc->pass == PIECE_PILOT ? &farm_last.remote_pilot :
 	   &farm_last.remote_tasks))++;
-	pthread_mutex_lock(&p->lock);
-	rc = apply(p, pc, *buf, &p->err);
-	pthread_mutex_unlock(&p->lock);
+	pthread_mutex_lock(&fs->lock);
+	rc = farm_set_apply(fs, &rs->queue[0], *buf);
+	pthread_mutex_unlock(&fs->lock);
 	if (rc)
 		return rc;
-	memmove(rs->queue, rs->queue + 1, (size_t)(rs->n - 1) * sizeof(size_t));
+	memmove(rs->queue, rs->queue + 1,
+		(size_t)(rs->n - 1) * sizeof(rs->queue[0]));
 	rs->n--;
 	rs->last_heard = farm_now();
 	return STRAY_OK;
 }
 
 /* A busy rank silent for longer than the timeout is lost. */
-static int check_silence(struct pass_run *p, const struct rank_state *ranks,
-			 int size)
+static int check_silence(const struct rank_state *ranks, int size,
+			 struct stray_error *err)
 {
 	double now = farm_now();
 	int r;
@@ -206,187 +274,158 @@ static int check_silence(struct pass_run *p, const struct rank_state *ranks,
 				 "rank %d sent no result for %.0f s "
 				 "(killed or stalled; --task-timeout)", r,
 				 now - ranks[r].last_heard);
-			return stray_error_set(&p->err, STRAY_EIO, "mpi",
+			return stray_error_set(err, STRAY_EIO, "mpi",
 					       remote_error);
 		}
 	return STRAY_OK;
 }
 
-/* Rank 0's loop: keep every rank fed, collect, watch the clock. */
-static int serve_pass(struct pass_run *p, struct rank_state *ranks, int size)
+/* Keep every rank fed (FARM_PREFETCH pieces each). */
+static int feed(struct farm_set *fs, struct outbox *ob,
+		struct rank_state *ranks, struct stray_error *err)
 {
+	int r, rc = STRAY_OK;
+
+	for (r = 1; r < fs->size && !rc; r++)
+		while (!rc && ranks[r].n < FARM_PREFETCH) {
+			struct farm_take tk;
+			int got;
+
+			pthread_mutex_lock(&fs->lock);
+			got = farm_set_take(fs, r, &tk);
+			pthread_mutex_unlock(&fs->lock);
+			if (!got)
+				break;
+			rc = send_piece(fs, ob, &ranks[r], r, &tk, err);
+		}
+	return rc;
+}
+
+/* farm_set_collect's drop: a rank lets go of a finished trace's scene. */
+struct drop_ctx {
+	int rc;
+	struct outbox *ob;
+	struct stray_error *err;
+};
+
+static void drop_scene(void *ctx, int rank, size_t trace)
+{
+	struct drop_ctx *d = ctx;
+	int *id = malloc(sizeof(*id));
+
+	if (d->rc)
+		free(id);
+	else if (!id)
+		d->rc = stray_error_set(d->err, STRAY_ENOMEM, "mpi",
+					"out of memory");
+	else {
+		*id = (int)trace;
+		d->rc = post(d->ob, id, 1, MPI_INT, rank, TAG_ENDJOB, d->err);
+	}
+}
+
+/* Pieces the other ranks hold. */
+static int held(const struct rank_state *ranks, int size)
+{
+	int r, n = 0;
+
+	for (r = 1; r < size; r++)
+		n += ranks[r].n;
+	return n;
+}
+
+/* Rank 0's loop: feed, collect, hand finished traces on, watch the clock. */
+static int serve(struct farm_set *fs, struct rank_state *ranks,
+		 struct stray_error *err)
+{
+	struct outbox ob;
+	struct drop_ctx drop = { STRAY_OK, &ob, err };
 	double *buf = NULL;
 	size_t cap = 0;
-	int r, rc = STRAY_OK, done;
+	int rc = STRAY_OK, finished, failed;
 
+	memset(&ob, 0, sizeof(ob));
 	for (;;) {
 		int flag = 0;
 		MPI_Status st;
-		long k;
 
-		for (r = 1; r < size && !rc; r++)
-			while (!rc && ranks[r].n < PREFETCH &&
-			       (k = take(p)) >= 0)
-				rc = send_piece(p, &ranks[r], r, (size_t)k);
+		rc = feed(fs, &ob, ranks, err);
+		if (!rc)
+			rc = flush(&ob, err);
 		if (rc)
 			break;
 		MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag,
 			   &st);
-		rc = flag ? receive(p, ranks, &st, &buf, &cap) :
-		     check_silence(p, ranks, size);
-		pthread_mutex_lock(&p->lock);
-		done = p->done == p->n_plan || p->failed;
-		pthread_mutex_unlock(&p->lock);
-		if (rc || done)
-			break;
+		rc = flag ? receive(fs, ranks, &st, &buf, &cap, err) :
+		     check_silence(ranks, fs->size, err);
+		if (!rc)	/* the caller's refusal fails the set (fs->err) */
+			farm_set_collect(fs, drop_scene, &drop);
+		if (!rc)
+			rc = drop.rc;
+		pthread_mutex_lock(&fs->lock);
+		finished = farm_set_finished(fs);
+		failed = fs->failed;
+		pthread_mutex_unlock(&fs->lock);
+		if (rc || (finished && (!failed || !held(ranks, fs->size))))
+			break;	/* a failed set: the ranks finish what they hold
+				 * first, and the job ends with one line */
 		if (!flag)
 			farm_nap();
 	}
 	free(buf);
+	if (!rc)	/* the last ENDJOBs: their buffers are ours */
+		rc = drain(&ob, err);
 	return rc;
 }
 
-/* Angle chunks: one (paths serve every angle) unless the batches alone
- * cannot give each rank a few pieces. */
-static int chunks_for(const struct tracer_trace_opts *po, int size)
+/* The set on all ranks: rank 0's thread and the loop above. */
+static int run_set(struct farm_set *fs, struct stray_error *err)
 {
-	int c = farm_config.angle_chunks;
-
-	if (c <= 0)
-		c = (4 * size + po->n_batches - 1) / po->n_batches;
-	if ((size_t)c > po->n_theta)
-		c = (int)po->n_theta;
-	return c < 1 ? 1 : c;
-}
-
-/* The batches' path records into the result in batch order, as
- * tracer_trace() merges them: the same sums, bit for bit. */
-static int merge_tables(struct pass_run *p, struct tracer_result *r,
-			struct stray_error *err)
-{
-	int b;
-
-	for (b = 0; b < p->po->n_batches; b++)
-		if (tracer_paths_merge(&r->paths, &p->tables[b])) {
-			tracer_result_free(r);
-			return stray_error_set(err, STRAY_ENOMEM, "paths",
-				"out of memory recording paths");
-		}
-	return STRAY_OK;
-}
-
-static void free_tables(struct pass_run *p)
-{
-	int b;
-
-	if (!p->tables)
-		return;
-	for (b = 0; b < p->po->n_batches; b++)
-		tracer_paths_free(&p->tables[b]);
-	free(p->tables);
-}
-
-static int run_pass(const struct tracer_scene *s,
-		    const struct tracer_trace_opts *po,
-		    const struct tracer_guide *g, int pass,
-		    struct tracer_result *r, double **s2,
-		    struct stray_error *err)
-{
-	struct pass_run p;
-	struct rank_state *ranks;
+	struct rank_state *ranks = calloc((size_t)fs->size, sizeof(*ranks));
 	pthread_t tid;
-	int size, chunks, rc;
+	int rc;
 
-	MPI_Comm_size(MPI_COMM_WORLD, &size);
-	chunks = chunks_for(po, size);
-	memset(&p, 0, sizeof(p));
-	p.s = s;
-	p.po = po;
-	p.g = g;
-	p.r = r;
-	p.plan = malloc((size_t)po->n_batches * (size_t)chunks *
-			sizeof(*p.plan));
-	ranks = calloc((size_t)size, sizeof(*ranks));
-	if (!p.plan || !ranks ||
-	    piece_result_alloc(po, r, pass == PIECE_PILOT ? s2 : NULL)) {
-		free(p.plan);
-		free(ranks);
+	if (!ranks)
 		return stray_error_set(err, STRAY_ENOMEM, "mpi",
 				       "out of memory");
-	}
-	p.s2 = pass == PIECE_PILOT ? *s2 : NULL;
-	if (po->record_paths &&
-	    !(p.tables = calloc((size_t)po->n_batches, sizeof(*p.tables)))) {
-		free(p.plan);
+	rc = pthread_create(&tid, NULL, farm_set_local, fs);
+	if (rc) {
 		free(ranks);
-		tracer_result_free(r);
-		return stray_error_set(err, STRAY_ENOMEM, "mpi",
-				       "out of memory");
+		return stray_error_set(err, STRAY_EIO, "mpi",
+				       "cannot start a thread");
 	}
-	p.n_plan = piece_plan(pass, po->n_batches, po->n_theta, chunks, p.plan);
-	*(pass == PIECE_PILOT ? &farm_last.pilot_tasks : &farm_last.tasks) +=
-		p.n_plan;
-	pthread_mutex_init(&p.lock, NULL);
-	stray_error_clear(&p.err);
-	rc = pthread_create(&tid, NULL, local_worker, &p);
-	if (rc == 0) {
-		rc = serve_pass(&p, ranks, size);
-		if (rc) {	/* stop the local thread too */
-			pthread_mutex_lock(&p.lock);
-			p.failed = 1;
-			pthread_mutex_unlock(&p.lock);
+	rc = serve(fs, ranks, err);
+	pthread_mutex_lock(&fs->lock);
+	if (rc || fs->failed) {	/* stop the local thread too */
+		if (!fs->failed) {
+			fs->err = *err;
+			fs->failed = 1;
 		}
-		pthread_join(tid, NULL);
+		pthread_cond_broadcast(&fs->wake);
 	}
-	if (rc || p.failed) {
-		broken = 1;	/* ranks may still hold pieces: abort the job */
-		*err = p.err;
+	pthread_mutex_unlock(&fs->lock);
+	pthread_join(tid, NULL);
+	if (rc)		/* ranks may still hold pieces: abort the job */
+		broken = 1;
+	if (fs->failed) {	/* else (a bad design): every piece came back */
+		*err = fs->err;
 		rc = err->code ? err->code : STRAY_EIO;
-		tracer_result_free(r);
 	}
-	if (p.tables && !rc)
-		rc = merge_tables(&p, r, err);
-	free_tables(&p);
-	pthread_mutex_destroy(&p.lock);
-	free(p.plan);
 	free(ranks);
 	return rc;
 }
 
-static int send_all(const void *buf, int len, int tag,
-		    struct stray_error *err)
+/* farm_trace's callback: the trace's result is the caller's. */
+static int take_result(void *user, size_t i, struct tracer_result *res,
+		       struct stray_error *err)
 {
-	int size, r, rc = STRAY_OK;
+	struct tracer_result *out = user;
 
-	MPI_Comm_size(MPI_COMM_WORLD, &size);
-	for (r = 1; r < size && !rc; r++) {
-		rc = send_timed(buf, len, MPI_BYTE, r, tag, err);
-		farm_last.job_bytes += (uint64_t)len;
-	}
-	return rc;
-}
-
-/* The pilot's pieces, then the guide to every rank. */
-static int make_guide(const struct tracer_scene *s,
-		      const struct tracer_trace_opts *o, struct tracer_guide *g,
-		      struct stray_error *err)
-{
-	struct tracer_trace_opts po;
-	struct tracer_result pr;
-	double *s2 = NULL;
-	int rc;
-
-	tracer_pilot_opts(o, &po);
-	rc = run_pass(s, &po, NULL, PIECE_PILOT, &pr, &s2, err);
-	if (rc)
-		return rc;
-	rc = tracer_guide_from_pilot(g, &pr, s2);
-	tracer_result_free(&pr);
-	free(s2);
-	if (rc)
-		return stray_error_set(err, STRAY_ENOMEM, "guide",
-				       "out of memory");
-	return send_all(g, (int)sizeof(*g), TAG_GUIDE, err);
+	(void)i;
+	(void)err;
+	*out = *res;
+	memset(res, 0, sizeof(*res));
+	return STRAY_OK;
 }
 
 int farm_trace(const struct tracer_scene_spec *spec,
@@ -394,10 +433,9 @@ int farm_trace(const struct tracer_scene_spec *spec,
 	       const struct tracer_trace_opts *o, struct tracer_result *res,
 	       struct stray_error *err)
 {
-	struct tracer_guide *g = NULL;
+	struct tracer_trace_item item;
+	struct farm_set fs;
 	double t0 = farm_now();
-	size_t len;
-	char *job;
 	int rc, size;
 
 	MPI_Comm_size(MPI_COMM_WORLD, &size);
@@ -413,30 +451,70 @@ int farm_trace(const struct tracer_scene_spec *spec,
 	rc = tracer_trace_check(s, o, err);	/* before any rank is bothered */
 	if (rc)
 		return rc;
-	job = farm_job_pack(spec, o, &len);
-	if (!job)
-		return stray_error_set(err, STRAY_ENOMEM, "mpi", "out of memory");
-	rc = send_all(job, (int)len, TAG_JOB, err);
-	free(job);
-	if (!rc && tracer_pilot_wanted(o)) {
-		g = malloc(sizeof(*g));
-		rc = g ? make_guide(s, o, g, err) :
-		     stray_error_set(err, STRAY_ENOMEM, "guide", "out of memory");
-	}
-	if (!rc)
-		rc = run_pass(s, o, g, PIECE_MAIN, res, NULL, err);
-	if (!broken && send_all(NULL, 0, TAG_ENDJOB, err) && !rc)
-		rc = err->code;
-	if (!rc)
+	item.spec = *spec;
+	item.o = o;
+	memset(res, 0, sizeof(*res));
+	rc = farm_set_init(&fs, &item, 1, s, size, take_result, res, err);
+	if (rc)
+		return rc;
+	rc = run_set(&fs, err);
+	farm_set_free(&fs);
+	if (rc)
+		tracer_result_free(res);
+	else
 		res->seconds = farm_now() - t0;
-	free(g);
+	return rc;
+}
+
+/* A set's callback through the runner's (const result) one. */
+struct set_user {
+	tracer_item_done_fn done;
+	void *user;
+};
+
+static int hand_on(void *user, size_t i, struct tracer_result *res,
+		   struct stray_error *err)
+{
+	const struct set_user *u = user;
+
+	return u->done(u->user, i, res, err);
+}
+
+int farm_trace_set(const struct tracer_trace_item *items, size_t n,
+		   tracer_item_done_fn done, void *user,
+		   struct stray_error *err)
+{
+	struct set_user u = { done, user };
+	struct farm_set fs;
+	size_t i;
+	int rc = STRAY_OK, size;
+
+	MPI_Comm_size(MPI_COMM_WORLD, &size);
+	memset(&farm_last, 0, sizeof(farm_last));
+	/* each trace's scene is checked as it opens (farm_set.c) */
+	for (i = 0; !rc && i < n; i++)
+		if (items[i].o->record_paths || items[i].o->dump_paths ||
+		    items[i].o->map_n || items[i].o->focal)
+			rc = stray_error_set(err, STRAY_EINVAL, "mpi",
+				"a set of traces records no paths, dumps or maps");
+	if (rc || n == 0)
+		return rc;
+	rc = farm_set_init(&fs, items, n, NULL, size, hand_on, &u, err);
+	if (rc)
+		return rc;
+	rc = run_set(&fs, err);
+	farm_set_free(&fs);
 	return rc;
 }
 
 void farm_quit(void)
 {
 	struct stray_error err;
+	int size, r;
 
+	MPI_Comm_size(MPI_COMM_WORLD, &size);
 	stray_error_clear(&err);
-	send_all(NULL, 0, TAG_QUIT, &err);
+	for (r = 1; r < size; r++)
+		if (send_timed(NULL, 0, MPI_BYTE, r, TAG_QUIT, &err))
+			return;
 }

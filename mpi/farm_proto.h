@@ -6,24 +6,32 @@
 #define STRAY_MPI_FARM_PROTO_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "farm.h"
 #include "piece.h"
 
 enum farm_tag {
-	TAG_JOB = 1,	/* bytes: farm_job packed */
-	TAG_GUIDE,	/* bytes: struct tracer_guide */
-	TAG_TASK,	/* int[4]: struct piece */
-	TAG_RESULT,	/* double[piece_payload_len] */
+	TAG_JOB = 1,	/* bytes: farm_job packed (its trace's number) */
+	TAG_GUIDE,	/* bytes: struct farm_guide_msg */
+	TAG_TASK,	/* int[5]: trace, then struct piece */
+	TAG_RESULT,	/* double[]: the piece's payload (piece.h) */
 	TAG_ERROR,	/* char[]: one line from a failed rank */
-	TAG_ENDJOB,	/* empty */
+	TAG_ENDJOB,	/* int: the trace whose scene to drop */
 	TAG_QUIT	/* empty */
 };
 
 #define FARM_SETS_MAX 64
 
+/* A trace's guide, for the ranks that trace its main pass. */
+struct farm_guide_msg {
+	int64_t trace;
+	struct tracer_guide g;
+};
+
 /* A trace as a rank other than 0 needs it; strings point into the buffer. */
 struct farm_job {
+	int id;			/* the trace's number in its set */
 	struct tracer_trace_opts o;
 	const char *scene, *lens;	/* lens: NULL when none */
 	const char *sets[FARM_SETS_MAX];
@@ -33,7 +41,7 @@ struct farm_job {
 
 /* Pack spec and o into a new buffer (caller frees); NULL when out of memory. */
 char *farm_job_pack(const struct tracer_scene_spec *spec,
-		    const struct tracer_trace_opts *o, size_t *len);
+		    const struct tracer_trace_opts *o, int id, size_t *len);
 
 /* Unpack into j; its pointers point into buf (kept by the caller);
  * theta_deg too.  STRAY_EINVAL on a malformed buffer. */
@@ -43,7 +51,8 @@ int farm_job_unpack(char *buf, size_t len, struct farm_job *j,
 /* Monotonic seconds. */
 double farm_now(void);
 
-/* Sleep between polls: long enough to leave the core to the tracer. */
+/* Rank 0's sleep between polls: long enough to leave the core to its
+ * own tracing thread (the other ranks block in MPI_Probe). */
 void farm_nap(void);
 
 #endif /* STRAY_MPI_FARM_PROTO_H */

@@ -1,6 +1,8 @@
 /*
- * farm_worker.c - a rank other than 0: build each job's scene from its
- * description, trace the pieces it is handed, send the payloads back.
+ * farm_worker.c - a rank other than 0: build the scene of each trace it
+ * is given a piece of (a sweep has several in flight: farm_set.h), keep
+ * it until rank 0 says the trace is over, trace the pieces it is handed,
+ * send the payloads back.
  */
 #include <mpi.h>
 #include <stdlib.h>
@@ -10,13 +12,19 @@
 #include "stray/errfmt.h"
 #include "tracer/scene_load.h"
 
-struct worker {
+/* One trace this rank holds the scene of. */
+struct held_trace {
 	char *job_buf;
 	struct farm_job job;
 	struct tracer_scene scene;
 	struct tracer_lens lens;
 	struct tracer_guide guide;
-	int have_scene, have_guide, failed;
+	int have_guide, failed;
+};
+
+struct worker {
+	struct held_trace **t;
+	size_t n, cap;
 	double *payload;
 };
 
@@ -29,86 +37,136 @@ static void send_error(const struct stray_error *err)
 		 MPI_COMM_WORLD);
 }
 
-static void end_job(struct worker *w)
+static struct held_trace *find(struct worker *w, int id)
 {
-	if (w->have_scene) {
-		tracer_scene_free(&w->scene);
-		tracer_lens_free(&w->lens);
-	}
-	free(w->job_buf);
-	w->job_buf = NULL;
-	w->have_scene = w->have_guide = w->failed = 0;
+	size_t i;
+
+	for (i = 0; i < w->n; i++)
+		if (w->t[i]->job.id == id)
+			return w->t[i];
+	return NULL;
 }
 
+static void drop(struct worker *w, int id)
+{
+	size_t i;
+
+	for (i = 0; i < w->n; i++)
+		if (w->t[i]->job.id == id) {
+			struct held_trace *h = w->t[i];
+
+			tracer_scene_free(&h->scene);
+			tracer_lens_free(&h->lens);
+			free(h->job_buf);
+			free(h);
+			w->t[i] = w->t[--w->n];
+			return;
+		}
+}
+
+/* Build the scene of a trace from its job; an error goes to rank 0. */
 static void start_job(struct worker *w, int len)
 {
+	struct held_trace *h = calloc(1, sizeof(*h));
+	char *buf = malloc(len > 0 ? (size_t)len : 1);
 	struct stray_error err;
 	int rc;
 
-	end_job(w);
-	stray_error_clear(&err);
-	w->job_buf = malloc(len > 0 ? (size_t)len : 1);
-	MPI_Recv(w->job_buf, len, MPI_BYTE, 0, TAG_JOB, MPI_COMM_WORLD,
+	MPI_Recv(buf, len, MPI_BYTE, 0, TAG_JOB, MPI_COMM_WORLD,
 		 MPI_STATUS_IGNORE);
-	rc = farm_job_unpack(w->job_buf, (size_t)len, &w->job, &err);
-	memset(&w->lens, 0, sizeof(w->lens));
-	tracer_scene_init(&w->scene);
-	w->have_scene = 1;
-	if (!rc)
-		rc = tracer_scene_load(w->job.scene, w->job.sets,
-				       w->job.n_sets, &w->scene, &err);
-	if (!rc) {	/* the edits rank 0 made after loading */
-		struct tracer_scene_spec ed = { w->job.scene, w->job.sets,
-			w->job.n_sets, w->job.lens, w->job.beam_shift_z,
-			w->job.abg_g };
-
-		tracer_scene_spec_edit(&ed, &w->scene);
+	stray_error_clear(&err);
+	if (!h || (w->n == w->cap && !(w->t = realloc(w->t, (w->cap = 2 *
+					w->cap + 4) * sizeof(*w->t))))) {
+		free(h);
+		free(buf);
+		stray_error_set(&err, STRAY_ENOMEM, "mpi", "out of memory");
+		send_error(&err);
+		return;
 	}
-	if (!rc && w->job.lens)
-		rc = tracer_lens_load(w->job.lens, &w->lens, &err);
+	h->job_buf = buf;
+	tracer_scene_init(&h->scene);
+	rc = farm_job_unpack(buf, (size_t)len, &h->job, &err);
+	if (!rc) {
+		drop(w, h->job.id);	/* a stale one of that number */
+		rc = tracer_scene_load(h->job.scene, h->job.sets,
+				       h->job.n_sets, &h->scene, &err);
+	}
+	if (!rc) {	/* the edits rank 0 made after loading */
+		struct tracer_scene_spec ed = { h->job.scene, h->job.sets,
+			h->job.n_sets, h->job.lens, h->job.beam_shift_z,
+			h->job.abg_g };
+
+		tracer_scene_spec_edit(&ed, &h->scene);
+	}
+	if (!rc && h->job.lens)
+		rc = tracer_lens_load(h->job.lens, &h->lens, &err);
 	if (!rc)
-		rc = tracer_scene_commit(&w->scene, &err);
-	w->job.o.lens = w->job.lens ? &w->lens : NULL;
+		rc = tracer_scene_commit(&h->scene, &err);
+	h->job.o.lens = h->job.lens ? &h->lens : NULL;
+	w->t[w->n++] = h;
 	if (rc) {
-		w->failed = 1;
+		h->failed = 1;
 		send_error(&err);
 	}
+}
+
+static void take_guide(struct worker *w)
+{
+	struct farm_guide_msg *gm = malloc(sizeof(*gm));
+	struct held_trace *h;
+
+	MPI_Recv(gm, gm ? (int)sizeof(*gm) : 0, MPI_BYTE, 0, TAG_GUIDE,
+		 MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+	if (gm && (h = find(w, (int)gm->trace))) {
+		h->guide = gm->g;
+		h->have_guide = 1;
+	}
+	free(gm);
 }
 
 static void run_task(struct worker *w)
 {
 	struct tracer_trace_opts po;
 	struct stray_error err;
+	struct held_trace *h;
 	struct piece p;
-	int msg[4];
+	int msg[5];
 	size_t len = 0;
 
-	MPI_Recv(msg, 4, MPI_INT, 0, TAG_TASK, MPI_COMM_WORLD,
+	MPI_Recv(msg, 5, MPI_INT, 0, TAG_TASK, MPI_COMM_WORLD,
 		 MPI_STATUS_IGNORE);
-	if (w->failed)	/* the error is on its way; rank 0 will abort */
-		return;
-	p.pass = msg[0];
-	p.batch = msg[1];
-	p.theta_first = msg[2];
-	p.theta_n = msg[3];
+	h = find(w, msg[0]);
 	stray_error_clear(&err);
-	po = w->job.o;
+	if (!h) {
+		stray_error_set_value(&err, STRAY_EINVAL, "mpi",
+				      "piece of an unknown trace", msg[0]);
+		send_error(&err);
+		return;
+	}
+	if (h->failed)	/* the error is on its way; rank 0 will abort */
+		return;
+	p.pass = msg[1];
+	p.batch = msg[2];
+	p.theta_first = msg[3];
+	p.theta_n = msg[4];
+	po = h->job.o;
 	if (p.pass == PIECE_PILOT)
-		tracer_pilot_opts(&w->job.o, &po);
-	if (p.pass != PIECE_PILOT && po.guide && !w->have_guide &&
+		tracer_pilot_opts(&h->job.o, &po);
+	if (p.pass != PIECE_PILOT && po.guide && !h->have_guide &&
 	    tracer_pilot_wanted(&po))
 		stray_error_set(&err, STRAY_EINVAL, "guide",
 				"piece before the guide");
 	else
-		piece_run_alloc(&w->scene, &po, w->have_guide ? &w->guide :
-				NULL, &p, &w->payload, &len, &err);
+		piece_run_alloc(&h->scene, &po, p.pass == PIECE_MAIN &&
+				h->have_guide ? &h->guide : NULL, &p,
+				&w->payload, &len, &err);
 	if (err.code) {
-		w->failed = 1;
+		h->failed = 1;
 		send_error(&err);
 		return;
 	}
-	MPI_Send(w->payload, (int)len, MPI_DOUBLE, 0,
-		 TAG_RESULT, MPI_COMM_WORLD);
+	MPI_Send(w->payload, (int)len, MPI_DOUBLE, 0, TAG_RESULT,
+		 MPI_COMM_WORLD);
 }
 
 int farm_serve(void)
@@ -118,36 +176,39 @@ int farm_serve(void)
 	memset(&w, 0, sizeof(w));
 	for (;;) {
 		MPI_Status st;
-		int flag = 0, len;
+		int len, id = -1;
 
-		MPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
-		if (!flag) {
-			farm_nap();
-			continue;
-		}
+		/* a blocking wait, not a poll with 1 ms naps: measured on 2
+		 * ranks (64-design sweep, 4 alternating pairs) 0.975 of the
+		 * wall and 0.977 of the CPU time.  Rank 0 still polls: it
+		 * must also hear its own thread, which cannot call MPI
+		 * (MPI_THREAD_FUNNELED) */
+		MPI_Probe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &st);
 		MPI_Get_count(&st, MPI_BYTE, &len);
 		switch (st.MPI_TAG) {
 		case TAG_JOB:
 			start_job(&w, len);
 			break;
 		case TAG_GUIDE:
-			MPI_Recv(&w.guide, (int)sizeof(w.guide), MPI_BYTE, 0,
-				 TAG_GUIDE, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-			w.have_guide = 1;
+			take_guide(&w);
 			break;
 		case TAG_TASK:
 			run_task(&w);
 			break;
 		case TAG_ENDJOB:
+			MPI_Recv(&id, 1, MPI_INT, 0, TAG_ENDJOB,
+				 MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+			drop(&w, id);
+			break;
 		case TAG_QUIT:
 		default:
 			MPI_Recv(NULL, 0, MPI_BYTE, 0, st.MPI_TAG,
 				 MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-			end_job(&w);
-			if (st.MPI_TAG != TAG_ENDJOB) {
-				free(w.payload);
-				return 0;
-			}
+			while (w.n)
+				drop(&w, w.t[0]->job.id);
+			free(w.t);
+			free(w.payload);
+			return 0;
 		}
 	}
 }

@@ -43,6 +43,15 @@ $(B)/tests/mpi/test_pieces: $(B)/obj/tests/mpi/test_pieces.o \
 		$(STRAY_LDLIBS)
 TESTS += $(B)/tests/mpi/test_pieces
 
+# test_farm_set: the one queue of pieces across a sweep's traces (no MPI).
+$(B)/tests/mpi/test_farm_set: $(B)/obj/tests/mpi/test_farm_set.o \
+		$(B)/obj/mpi/farm_set.o $(B)/obj/mpi/farm_job.o \
+		$(MPI_PIECE_OBJ) $(TRACER_LIB) $(STRAY_LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_BASE) -o $@ $^ $(CMOCKA_LIBS) $(TRACER_LDLIBS) \
+		$(STRAY_LDLIBS) -lpthread
+TESTS += $(B)/tests/mpi/test_farm_set
+
 MPI_TESTS := $(B)/tests/mpi/test_mpi_trace $(B)/tests/mpi/test_mpi_faults \
 	$(B)/tests/mpi/test_mpi_diagnose
 $(MPI_TESTS): $(B)/tests/mpi/%: $(B)/obj/tests/mpi/%.o $(STRAY_MPI_BIN)

@@ -20,11 +20,14 @@ struct piece {
 	int theta_first, theta_n;	/* angles [first, first + n) */
 };
 
-/* Doubles in a piece's payload (the pilot's carries its s2 tallies). */
+/* Doubles in a piece's payload (the pilot's: at most, its s2 tallies
+ * encoded; path records not counted). */
 size_t piece_payload_len(const struct piece *p);
 
 /* Payload: batch_paths, casts, connections, energy[TRACER_ENERGY_N],
- * power[theta_n][TRACER_ORDERS], then (pilot) s2[cells][theta_n]. */
+ * power[theta_n][TRACER_ORDERS], then (pilot) s2[cells][theta_n] as runs
+ * of nonzero values (n_runs, then start, length, values per run) or,
+ * when not shorter, -1 and all the values (piece.c). */
 #define PIECE_HEAD (3 + TRACER_ENERGY_N)
 
 /*
@@ -50,7 +53,8 @@ int piece_run_alloc(const struct tracer_scene *s,
 		    double **out, size_t *len, struct stray_error *err);
 
 /* Payload length checks: 1 when len doubles can be piece p's payload of
- * a pass with (record_paths) or without path records. */
+ * a pass with (record_paths) or without path records (with payload: its
+ * encoding read through, too). */
 int piece_payload_ok(const struct piece *p, int record_paths,
 		     const double *payload, size_t len);
 

@@ -107,38 +107,64 @@ static int parse_global(int argc, char **argv, struct farm_run *fr)
 	return CLI_OK;
 }
 
-/* The runner: the farm, and its traffic on stderr with --stats (make
- * bench reads it). */
+/* Its traffic on stderr with --stats (make bench reads it). */
+static void print_stats(const struct farm_run *fr, double seconds)
+{
+	int size;
+
+	MPI_Comm_size(MPI_COMM_WORLD, &size);
+	if (!fr->show_stats || !farm_last.tasks)
+		return;
+	fprintf(stderr, "stray-mpi: stats: ranks %d pieces %llu "
+		"remote_pieces %llu bytes_per_remote_piece %.1f "
+		"pilot_pieces %llu pilot_bytes_per_remote_piece %.1f "
+		"job_bytes %llu scene_builds %llu rank0_build_s %.4f "
+		"rank0_done_s %.4f rank0_start_s %.4f seconds %.4f\n", size,
+		(unsigned long long)farm_last.tasks,
+		(unsigned long long)farm_last.remote_tasks,
+		farm_last.remote_tasks ? (double)farm_last.task_bytes /
+		farm_last.remote_tasks : 0.0,
+		(unsigned long long)farm_last.pilot_tasks,
+		farm_last.remote_pilot ? (double)farm_last.pilot_bytes /
+		farm_last.remote_pilot : 0.0,
+		(unsigned long long)farm_last.job_bytes,
+		(unsigned long long)(farm_last.scene_builds +
+				     farm_last.local_builds),
+		farm_last.local_build_s, farm_last.done_s, farm_last.start_s,
+		seconds);
+}
+
+/* The runner: the farm. */
 static int run_on_farm(void *ctx, const struct tracer_scene_spec *spec,
 		       const struct tracer_scene *s,
 		       const struct tracer_trace_opts *o,
 		       struct tracer_result *res, struct stray_error *err)
 {
-	const struct farm_run *fr = ctx;
-	int rc = farm_trace(spec, s, o, res, err), size;
+	int rc = farm_trace(spec, s, o, res, err);
 
-	MPI_Comm_size(MPI_COMM_WORLD, &size);
-	if (!rc && fr->show_stats && farm_last.tasks)
-		fprintf(stderr, "stray-mpi: stats: ranks %d pieces %llu "
-			"remote_pieces %llu bytes_per_remote_piece %.1f "
-			"pilot_pieces %llu pilot_bytes_per_remote_piece %.1f "
-			"job_bytes %llu seconds %.4f\n", size,
-			(unsigned long long)farm_last.tasks,
-			(unsigned long long)farm_last.remote_tasks,
-			farm_last.remote_tasks ? (double)farm_last.task_bytes /
-			farm_last.remote_tasks : 0.0,
-			(unsigned long long)farm_last.pilot_tasks,
-			farm_last.remote_pilot ? (double)farm_last.pilot_bytes /
-			farm_last.remote_pilot : 0.0,
-			(unsigned long long)farm_last.job_bytes,
-			res->seconds);
+	if (!rc)
+		print_stats(ctx, res->seconds);
+	return rc;
+}
+
+/* A set of traces (a sweep's designs) farmed together. */
+static int run_set_on_farm(void *ctx, const struct tracer_trace_item *items,
+			   size_t n, tracer_item_done_fn done, void *user,
+			   struct stray_error *err)
+{
+	double t0 = MPI_Wtime();
+	int rc = farm_trace_set(items, n, done, user, err);
+
+	if (!rc)
+		print_stats(ctx, MPI_Wtime() - t0);
 	return rc;
 }
 
 static int run_command(int argc, char **argv)
 {
 	struct farm_run fr = { 0 };
-	const struct tracer_runner farm = { run_on_farm, &fr };
+	const struct tracer_runner farm = { run_on_farm, &fr,
+					    run_set_on_farm };
 	int rc = parse_global(argc, argv, &fr);
 	int (*cmd)(int, char **, const struct tracer_runner *) = NULL;
 

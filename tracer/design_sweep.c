@@ -98,36 +98,21 @@ static int resume(const char *path, const char *key, struct stray_curve *c)
 	return 0;
 }
 
-/* Trace one design and keep its curve (alpha, sigma from theta > 0). */
-static int trace_design(const struct design_sweep *a, const char *const *sets,
-			int n_sets, const struct tracer_lens *lens,
-			const char *key, const char *path,
-			struct stray_curve *c, struct stray_error *err)
+/* A design's trace finished: keep its curve (alpha, sigma from theta > 0)
+ * in path with the run key, and read it back into c. */
+static int keep_curve(const struct design_sweep *a,
+		      const struct tracer_result *r, const char *key,
+		      const char *path, struct stray_curve *c,
+		      struct stray_error *err)
 {
-	struct tracer_scene_spec spec = { a->scene, sets, n_sets, a->lens,
-					  0.0, 0.0 };
-	struct tracer_trace_opts o = a->o;
-	struct tracer_scene s;
-	struct tracer_result r;
 	size_t j, n = a->o.n_theta - 1;
 	int rc;
 
-	o.lens = a->lens ? lens : NULL;
-	tracer_scene_init(&s);
-	rc = tracer_scene_load(a->scene, sets, n_sets, &s, err);
-	if (!rc)
-		rc = tracer_scene_commit(&s, err);
-	if (!rc)
-		rc = tracer_run(a->runner, &spec, &s, &o, &r, err);
-	tracer_scene_free(&s);
-	if (rc)
-		return rc;
 	{	/* alpha = P(theta) / P(0): refuse 0/0 (a blocked beam) */
 		double p0, s0;
 
-		tracer_result_power(&r, 0, -1, &p0, &s0);
+		tracer_result_power(r, 0, -1, &p0, &s0);
 		if (!(p0 > 0.0)) {
-			tracer_result_free(&r);
 			stray_error_at(err, STRAY_EINVAL, a->scene, 0, "beam",
 				"no on-axis power reaches the detector in this "
 				"design (is the beam blocked?): alpha would be 0/0");
@@ -137,11 +122,10 @@ static int trace_design(const struct design_sweep *a, const char *const *sets,
 	}
 	rc = stray_curve_alloc(c, n, 1, err);
 	for (j = 0; !rc && j < n; j++) {
-		c->theta_deg[j] = o.theta_deg[j + 1];
-		tracer_result_alpha(&r, j + 1, 0, -1, &c->alpha[j],
+		c->theta_deg[j] = a->o.theta_deg[j + 1];
+		tracer_result_alpha(r, j + 1, 0, -1, &c->alpha[j],
 				    &c->sigma[j]);
 	}
-	tracer_result_free(&r);
 	if (!rc)
 		rc = stray_curve_add_meta(c, "kind", "baffle", err);
 	if (!rc)
@@ -182,41 +166,132 @@ static int make_state_dir(const char *dir, struct stray_error *err)
 	return STRAY_EIO;
 }
 
-static int run_design(const struct design_sweep *a, size_t i,
-		      const struct tracer_lens *lens, double alpha_req,
-		      struct design_result *d, struct stray_error *err)
-{
-	char set[GRID_AXES_MAX][2 * GRID_TEXT_MAX], key[1100], path[4200];
+/* A design as the runner sees it: its --set list (the fixed ones, then
+ * the grid's), run key and state file. */
+struct design_item {
 	const char *sets[DESIGN_SWEEP_SETS_MAX];
-	struct stray_curve c;
-	int k, n = a->n_sets, rc = STRAY_OK;
+	char set[GRID_AXES_MAX][2 * GRID_TEXT_MAX];
+	char key[1100], path[4200];
+	size_t design;
+};
 
-	design_grid_sets(&a->grid, i, set);
+/* The sweep while its traces run: who is judged, who is reported. */
+struct sweep_run {
+	struct design_sweep *a;
+	double alpha_req;
+	struct design_item *items;	/* the designs to trace */
+	unsigned char *ready;		/* per design: judged */
+	size_t next_report;		/* progress in design order */
+};
+
+static void prepare(const struct design_sweep *a, size_t i,
+		    struct design_item *it, struct design_result *d)
+{
+	int k, n = a->n_sets;
+
+	design_grid_sets(&a->grid, i, it->set);
 	design_grid_label(&a->grid, i, d->label, sizeof(d->label));
 	for (k = 0; k < n; k++)
-		sets[k] = a->sets[k];
+		it->sets[k] = a->sets[k];
 	for (k = 0; k < a->grid.n_axes; k++)
-		sets[n++] = set[k];
-	run_key(a, d->label, key, sizeof(key));
-	snprintf(path, sizeof(path), "%s/design_%04zu.csv", a->state, i);
-	d->resumed = resume(path, key, &c);
-	if (!d->resumed)
-		rc = trace_design(a, sets, n, lens, key, path, &c, err);
+		it->sets[n++] = it->set[k];
+	run_key(a, d->label, it->key, sizeof(it->key));
+	snprintf(it->path, sizeof(it->path), "%s/design_%04zu.csv", a->state,
+		 i);
+	it->design = i;
+}
+
+/* Progress for the designs judged so far, in design order (a farm
+ * finishes them in any order; one process in order, as before). */
+static void report(struct sweep_run *w)
+{
+	struct design_sweep *a = w->a;
+
+	while (w->next_report < a->grid.n_designs &&
+	       w->ready[w->next_report]) {
+		if (a->progress)
+			a->progress(a->progress_user, w->next_report,
+				    a->grid.n_designs, &a->d[w->next_report]);
+		w->next_report++;
+	}
+}
+
+/* The runner's callback: keep item i's curve, judge it, report. */
+static int design_done(void *user, size_t i, const struct tracer_result *r,
+		       struct stray_error *err)
+{
+	struct sweep_run *w = user;
+	const struct design_item *it = &w->items[i];
+	struct stray_curve c;
+	int rc = keep_curve(w->a, r, it->key, it->path, &c, err);
+
 	if (rc)
 		return rc;
-	if (a->progress)
-		a->progress(a->progress_user, i, a->grid.n_designs, d);
-	rc = judge(a, &c, alpha_req, d, err);
+	rc = judge(w->a, &c, w->alpha_req, &w->a->d[it->design], err);
 	stray_curve_free(&c);
+	w->ready[it->design] = 1;
+	report(w);
+	return rc;
+}
+
+/* Every design kept from an earlier run judged, the others traced
+ * through the runner as one set. */
+static int run_designs(struct sweep_run *w, struct stray_error *err)
+{
+	struct design_sweep *a = w->a;
+	struct tracer_trace_item *set;
+	struct tracer_trace_opts o = a->o;
+	size_t i, n = 0;
+	int rc = STRAY_OK;
+
+	o.lens = a->lens ? &a->lens_model : NULL;
+	set = calloc(a->grid.n_designs, sizeof(*set));
+	w->items = calloc(a->grid.n_designs, sizeof(*w->items));
+	w->ready = calloc(a->grid.n_designs, 1);
+	if (!set || !w->items || !w->ready)
+		rc = stray_error_set(err, STRAY_ENOMEM, "sweep",
+				     "out of memory");
+	for (i = 0; !rc && i < a->grid.n_designs; i++) {
+		struct design_item *it = &w->items[n];
+		struct stray_curve c;
+
+		prepare(a, i, it, &a->d[i]);
+		a->d[i].resumed = resume(it->path, it->key, &c);
+		if (a->d[i].resumed) {
+			rc = judge(a, &c, w->alpha_req, &a->d[i], err);
+			stray_curve_free(&c);
+			w->ready[i] = 1;
+			continue;
+		}
+		set[n].spec.scene = a->scene;
+		set[n].spec.sets = it->sets;
+		set[n].spec.n_sets = a->n_sets + a->grid.n_axes;
+		set[n].spec.lens = a->lens;
+		set[n].o = &o;
+		n++;
+	}
+	if (!rc) {
+		report(w);
+		rc = tracer_run_set(a->runner, set, n, design_done, w, err);
+	}
+	if (!rc)
+		report(w);
+	free(set);
+	free(w->items);
+	free(w->ready);
 	return rc;
 }
 
 int design_sweep_run(struct design_sweep *a, double alpha_req,
 		     struct stray_error *err)
 {
-	size_t n, i;
+	struct sweep_run w;
+	size_t n;
 	int rc = make_angles(a, &a->theta, &n, err);
 
+	memset(&w, 0, sizeof(w));
+	w.a = a;
+	w.alpha_req = alpha_req;
 	if (!rc && a->lens)
 		rc = tracer_lens_load(a->lens, &a->lens_model, err);
 	if (!rc)
@@ -226,8 +301,8 @@ int design_sweep_run(struct design_sweep *a, double alpha_req,
 		rc = stray_error_set(err, STRAY_ENOMEM, "sweep", "out of memory");
 	a->o.theta_deg = a->theta;
 	a->o.n_theta = n;
-	for (i = 0; !rc && i < a->grid.n_designs; i++)
-		rc = run_design(a, i, &a->lens_model, alpha_req, &a->d[i], err);
+	if (!rc)
+		rc = run_designs(&w, err);
 	blame_grid(a, err);
 	return rc;
 }

@@ -6,6 +6,7 @@
 
 #include "tracer/brdf.h"
 #include "tracer/runner.h"
+#include "tracer/scene_load.h"
 
 static int run_local(void *ctx, const struct tracer_scene_spec *spec,
 		     const struct tracer_scene *s,
@@ -17,7 +18,7 @@ static int run_local(void *ctx, const struct tracer_scene_spec *spec,
 	return tracer_trace(s, o, res, err);
 }
 
-const struct tracer_runner tracer_runner_local = { run_local, NULL };
+const struct tracer_runner tracer_runner_local = { run_local, NULL, NULL };
 
 int tracer_run(const struct tracer_runner *r,
 	       const struct tracer_scene_spec *spec,
@@ -25,6 +26,48 @@ int tracer_run(const struct tracer_runner *r,
 	       struct tracer_result *res, struct stray_error *err)
 {
 	return r->run(r->ctx, spec, s, o, res, err);
+}
+
+/* One item: its scene built from the description, traced, handed on. */
+static int run_item(const struct tracer_runner *r,
+		    const struct tracer_trace_item *it, size_t i,
+		    tracer_item_done_fn done, void *user,
+		    struct stray_error *err)
+{
+	struct tracer_scene s;
+	struct tracer_result res;
+	int rc;
+
+	tracer_scene_init(&s);
+	rc = tracer_scene_load(it->spec.scene, it->spec.sets,
+			       it->spec.n_sets, &s, err);
+	if (!rc) {
+		tracer_scene_spec_edit(&it->spec, &s);
+		rc = tracer_scene_commit(&s, err);
+	}
+	if (!rc)
+		rc = tracer_run(r, &it->spec, &s, it->o, &res, err);
+	tracer_scene_free(&s);
+	if (rc)
+		return rc;
+	rc = done(user, i, &res, err);
+	tracer_result_free(&res);
+	return rc;
+}
+
+int tracer_run_set(const struct tracer_runner *r,
+		   const struct tracer_trace_item *items, size_t n,
+		   tracer_item_done_fn done, void *user,
+		   struct stray_error *err)
+{
+	size_t i;
+	int rc = STRAY_OK;
+
+	if (r->run_set)
+		return r->run_set(r->ctx, items, n, done, user, err);
+	for (i = 0; !rc && i < n; i++)
+		rc = run_item(r, &items[i], i, done, user, err);
+	return rc;
 }
 
 #ifndef M_PI	/* math.h hides it under strict C99 */

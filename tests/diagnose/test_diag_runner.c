@@ -57,7 +57,7 @@ static void eval_init(struct diag_eval *e, const struct tracer_runner *r)
 static void test_every_trace_through_the_runner(void **state)
 {
 	struct spy sp = { 0 };
-	const struct tracer_runner runner = { spy_run, &sp };
+	const struct tracer_runner runner = { spy_run, &sp, NULL };
 	const struct diag_cause *abg = diag_cause_find("abg_scatter");
 	struct diag_eval e;
 	struct diag_state st;
@@ -92,7 +92,7 @@ static void test_every_trace_through_the_runner(void **state)
 static void test_same_curve_as_the_local_runner(void **state)
 {
 	struct spy sp = { 0 };
-	const struct tracer_runner runner = { spy_run, &sp };
+	const struct tracer_runner runner = { spy_run, &sp, NULL };
 	struct diag_eval a, b;
 	struct diag_state st;
 	struct stray_error err;
@@ -117,7 +117,7 @@ static void test_same_curve_as_the_local_runner(void **state)
 static void test_runner_failure_is_the_evaluators(void **state)
 {
 	struct spy sp = { 0 };
-	const struct tracer_runner runner = { spy_run, &sp };
+	const struct tracer_runner runner = { spy_run, &sp, NULL };
 	struct diag_eval e;
 	struct stray_error err;
 	char line[256];

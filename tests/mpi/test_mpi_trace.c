@@ -2,7 +2,8 @@
  * test_mpi_trace.c - mpirun on localhost with 2, 3 and 4 ranks
  * (oversubscribed on 2 cores) gives the bytes of a one-process run with
  * the same seed: `stray trace` curves with a lens, angle chunks and the
- * pilot guide, and a `stray sweep` table.  Every command has a timeout.
+ * pilot guide, and a `stray sweep` (its designs farmed together): table,
+ * curves and progress.  Every command has a timeout.
  */
 #include <signal.h>
 
@@ -66,19 +67,46 @@ static void test_mpi_trace_seed_matters(void **state)
 	assert_false(same_bytes("seed7.csv", "seed8.csv"));
 }
 
+/* The designs farmed together (one set: one stats line) give the table,
+ * every design's curve and the progress lines of a one-process sweep. */
 static void test_mpi_sweep_identical(void **state)
 {
+	static const int ranks[] = { 2, 4 };
+	char name[64], one[64];
+	size_t i;
+	int d;
+
 	(void)state;
 	assert_int_equal(shell("timeout 120 %s " SWEEP_ARGS " --state st1 "
-			       "--out sweep1.csv > sweep1.txt 2>&1",
+			       "--out sweep1.csv > sweep1.txt 2> sweep1.err",
 			       bin("stray")), 0);
-	assert_int_equal(shell("timeout 120 mpirun --oversubscribe -n 3 %s "
-			       SWEEP_ARGS " --state st3 --out sweep3.csv "
-			       "--json > sweep3.json 2> sweep3.err",
-			       bin("stray-mpi")), 0);
-	assert_true(same_bytes("sweep1.csv", "sweep3.csv"));
-	assert_true(same_bytes("st1/design_0003.csv", "st3/design_0003.csv"));
-	assert_true(file_has("sweep3.json", "\"best\":"));
+	for (i = 0; i < sizeof(ranks) / sizeof(ranks[0]); i++) {
+		int n = ranks[i];
+
+		assert_int_equal(shell("timeout 120 mpirun --oversubscribe -n %d "
+				       "%s --stats " SWEEP_ARGS " --state st%d "
+				       "--out sweep%d.csv --json > sweep%d.json "
+				       "2> sweep%d.err", n, bin("stray-mpi"), n,
+				       n, n, n), 0);
+		snprintf(name, sizeof(name), "sweep%d.csv", n);
+		assert_true(same_bytes("sweep1.csv", name));
+		for (d = 0; d < 4; d++) {
+			snprintf(one, sizeof(one), "st1/design_%04d.csv", d);
+			snprintf(name, sizeof(name), "st%d/design_%04d.csv", n,
+				 d);
+			if (!same_bytes(one, name))
+				fail_msg("%d ranks: %s differs", n, name);
+		}
+		snprintf(name, sizeof(name), "sweep%d.json", n);
+		assert_true(file_has(name, "\"best\":"));
+		/* progress in design order, as `stray sweep` prints it */
+		assert_int_equal(shell("grep '^stray sweep: design' sweep%d.err "
+				       "| cmp -s - sweep1.err", n), 0);
+		/* one set of traces, not a farm per design */
+		assert_int_equal(shell("grep -c 'stray-mpi: stats' sweep%d.err "
+				       "| grep -qx 1", n), 0);
+	}
+	assert_false(file_has("sweep4.err", "remote_pieces 0 "));
 }
 
 /* Paths, dumps and maps are not distributed: one clear line, exit 2. */
@@ -92,6 +120,25 @@ static void test_mpi_refuses_path_records(void **state)
 	assert_true(file_has("top.err", "need one rank"));
 }
 
+/* A bad design in the middle of a farmed sweep: the line `stray sweep`
+ * gives, exit 2, and the job ends without MPI_Abort (the ranks hand back
+ * what they hold first). */
+static void test_mpi_sweep_bad_design(void **state)
+{
+	(void)state;
+	assert_int_equal(shell("timeout 90 mpirun --oversubscribe -n 3 %s "
+			       SWEEP_ARGS " --grid edge_radius=0,0.01,abc "
+			       "--state bad > bad.out 2> bad.err",
+			       bin("stray-mpi")), 2);
+	assert_true(file_has("bad.err", "stray-mpi sweep: --set"));
+	assert_true(file_has("bad.err", "edge_radius=abc"));
+	assert_true(file_has("bad.err", "value is not a finite number"));
+	/* mpirun's notice of a normal end with a nonzero code: after an
+	 * MPI_Abort it says otherwise */
+	assert_true(file_has("bad.err", "terminated normally"));
+	assert_false(file_has("bad.err", "MPI_ABORT"));
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -99,6 +146,7 @@ int main(void)
 		cmocka_unit_test(test_mpi_trace_seed_matters),
 		cmocka_unit_test(test_mpi_sweep_identical),
 		cmocka_unit_test(test_mpi_refuses_path_records),
+		cmocka_unit_test(test_mpi_sweep_bad_design),
 	};
 
 	return mpi_run_group(tests);

@@ -39,9 +39,34 @@ typedef int (*tracer_run_fn)(void *ctx, const struct tracer_scene_spec *spec,
 			     struct tracer_result *res,
 			     struct stray_error *err);
 
+/* One trace of a set (a sweep's designs): its scene as a description
+ * (built by whoever traces it) and its options. */
+struct tracer_trace_item {
+	struct tracer_scene_spec spec;
+	const struct tracer_trace_opts *o;
+};
+
+/* Called on the caller's thread as each trace of a set is finished:
+ * res is item i's, freed after the call.  Nonzero (err set): the set
+ * stops with that error. */
+typedef int (*tracer_item_done_fn)(void *user, size_t i,
+				   const struct tracer_result *res,
+				   struct stray_error *err);
+
+/* Run n traces, in any order and at once if the runner can (the MPI
+ * farm keeps every rank busy across a sweep's designs): each item's
+ * result the bits tracer_trace() gives it. */
+typedef int (*tracer_run_set_fn)(void *ctx,
+				 const struct tracer_trace_item *items,
+				 size_t n, tracer_item_done_fn done,
+				 void *user, struct stray_error *err);
+
 struct tracer_runner {
 	tracer_run_fn run;
 	void *ctx;		/* the runner's own, passed to run */
+	/* NULL: one trace after another, in index order, each scene built
+	 * here and traced through run */
+	tracer_run_set_fn run_set;
 };
 
 /* tracer_trace() in this process. */
@@ -52,5 +77,11 @@ int tracer_run(const struct tracer_runner *r,
 	       const struct tracer_scene_spec *spec,
 	       const struct tracer_scene *s, const struct tracer_trace_opts *o,
 	       struct tracer_result *res, struct stray_error *err);
+
+/* r->run_set, or the items one after another through r->run. */
+int tracer_run_set(const struct tracer_runner *r,
+		   const struct tracer_trace_item *items, size_t n,
+		   tracer_item_done_fn done, void *user,
+		   struct stray_error *err);
 
 #endif /* TRACER_RUNNER_H */
