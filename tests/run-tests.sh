@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Run every test binary given (or any program: make test adds the demo
 # check), from the top of the tree, TEST_JOBS at a
-# time (default 2: the binaries are independent, each works in its own
-# mkdtemp folder; one after another left a core idle through the tests
-# that wait on daemons, sockets and mpirun), and close with one line that
+# time (default 2, make test 3 on two cores: the binaries are
+# independent, each works in its own mkdtemp folder; fewer jobs than that
+# left a core idle through the tests that wait on INDI's simulators,
+# daemons, sockets and mpirun), and close with one line that
 # totals cmocka's counts: "total: N passed, M failed".  Each binary's
 # output is printed whole when it ends.  The slowest binaries of the last
 # run (BUILD_DIR/test-times.txt, seconds per binary) start first, so two
