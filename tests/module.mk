@@ -37,8 +37,7 @@ $(B)/tests/tools/test_hardening2_fits: $(B)/tests/flightcheck/make_flight
 #                    14's double free: 1 s from it, 7-22 s from the seeds
 #                    alone); a longer search is the nightly one (issue 27:
 #                    15 s each was 345 of make test's CPU seconds)
-#   make nightly     the same for FUZZ_NIGHTLY_SECONDS (300 s) each, then
-#                    the TESTS_NIGHTLY (Makefile)
+#   make nightly     the same for FUZZ_NIGHTLY_SECONDS (300 s) each
 #   make fuzz        the long campaign: FUZZ_RUNS runs (10^7) per target,
 #                    at most FUZZ_SECONDS (3600) each (0: no time limit;
 #                    fuzz_scene_json, ~150 runs/s through assimp, stops at
