@@ -14,6 +14,11 @@
 # limit), whichever comes first, or at its first crash; crash, leak,
 # timeout and out-of-memory inputs land in build/fuzz/artifacts/.  Exit 1
 # when any target crashed (its report is printed), else 0.
+# Before it mutates anything libFuzzer runs every file of the corpus and
+# seed folders once (its "#N INITED" line), whatever SECONDS is: a target
+# whose log shows fewer than the files it was given is counted as failed
+# ("replay"), so even a short box (`make test`: FUZZ_CI_SECONDS) replays
+# every kept input, the regressions of issue 14 among them.
 # `merge` rewrites tests/fuzz/corpus/X as the inputs of the kept corpus and
 # of build/fuzz/corpus-X that add coverage beyond the seeds (-merge=1).
 set -u
@@ -62,7 +67,9 @@ one() {	# one target; writes $out/results/NAME
 	rm -f "$out/artifacts/$name-"*
 	[ "$secs" -gt 0 ] && opts+=("-max_total_time=$secs")
 	[ "$runs" -gt 0 ] && opts+=("-runs=$runs")
-	local t0 t1 rc execs crashes
+	local t0 t1 rc execs crashes files inited
+	files=0
+	for d in "${dirs[@]}"; do files=$((files + $(find "$d" -type f | wc -l))); done
 	t0=$(date +%s)
 	# assimp (C++, no frame pointers) is seen by the suppression only
 	# through the slow unwinder; the fast one stops at operator new.
@@ -79,7 +86,10 @@ one() {	# one target; writes $out/results/NAME
 	[ -n "$execs" ] || execs=$(grep -oE '^#[0-9]+' "$log" | tail -n 1 | tr -d '#')
 	crashes=$(ls "$out/artifacts/$name-"{crash,leak,timeout,oom}-* 2>/dev/null | wc -l)
 	[ "$rc" -ne 0 ] && [ "$crashes" -eq 0 ] && crashes=1	# died without an artifact
-	echo "$name ${execs:-0} $((t1 - t0)) $crashes $rc" >"$out/results/$name"
+	# every kept file run once: "#N INITED", N counting the empty input
+	inited=$(sed -n 's/^#\([0-9]*\)[[:space:]]*INITED.*/\1/p' "$log" | head -n 1)
+	echo "$name ${execs:-0} $((t1 - t0)) $crashes $rc $files ${inited:-0}" \
+		>"$out/results/$name"
 }
 
 if [ "$mode" = one ]; then	# internal: xargs calls back here
@@ -93,15 +103,19 @@ start=$(date +%s)
 printf '%s\n' "$@" | xargs -P "$jobs" -n 1 "$0" one "$mode" "$secs" "$runs"
 
 fail=0
-printf '%-22s %12s %6s %10s %8s\n' target executions secs exec/s crashes
+printf '%-22s %12s %6s %10s %8s %8s\n' target executions secs exec/s \
+	crashes replayed
 for b in "$@"; do
 	name=$(basename "$b")
-	if ! read -r _ execs t crashes rc <"$out/results/$name"; then
+	if ! read -r _ execs t crashes rc files inited <"$out/results/$name"; then
 		echo "$name: no result" && fail=1 && continue
 	fi
-	printf '%-22s %12s %6s %10s %8s\n' "$name" "$execs" "$t" \
-		"$((execs / (t > 0 ? t : 1)))" "$crashes"
+	printf '%-22s %12s %6s %10s %8s %8s\n' "$name" "$execs" "$t" \
+		"$((execs / (t > 0 ? t : 1)))" "$crashes" "$inited/$files"
 	[ "$crashes" -ne 0 ] && fail=1
+	if [ "$crashes" -eq 0 ] && [ "$inited" -lt "$files" ]; then
+		echo "$name: replayed $inited of its $files kept inputs" && fail=1
+	fi
 done
 echo "fuzz: $# targets in $(( $(date +%s) - start )) s wall time, $jobs at a time"
 for b in "$@"; do

@@ -1,13 +1,17 @@
 #!/usr/bin/env bash
 # Run every test binary given (or any program: make test adds the demo
 # check), from the top of the tree, TEST_JOBS at a
-# time (default 2: the binaries are independent, each works in its own
-# mkdtemp folder; one after another left a core idle through the tests
-# that wait on daemons, sockets and mpirun), and close with one line that
+# time (default 2, make test 3 on two cores: the binaries are
+# independent, each works in its own mkdtemp folder; fewer jobs than that
+# left a core idle through the tests that wait on INDI's simulators,
+# daemons, sockets and mpirun), and close with one line that
 # totals cmocka's counts: "total: N passed, M failed".  Each binary's
 # output is printed whole when it ends.  The slowest binaries of the last
 # run (BUILD_DIR/test-times.txt, seconds per binary) start first, so two
-# long ones do not end the run alone.
+# long ones do not end the run alone.  Each line of test-times.txt is
+# "BINARY WALL CPU": seconds of wall time, then CPU seconds (user+sys of
+# the binary and every child it waited for), so a run can be modelled on
+# free cores (CPU/jobs plus the waits on daemons, sockets and sleeps).
 # A binary under OTHER_BUILD/tests/ runs with STRAY_BUILD=OTHER_BUILD.
 # Usage: [TEST_JOBS=N] tests/run-tests.sh BUILD_DIR BINARY...
 set -u
@@ -28,11 +32,14 @@ if [ "${1:-}" = --one ]; then	# internal: xargs calls back here
 		   export STRAY_BIN="$STRAY_BUILD/bin/stray" ;;
 	esac
 	log="$dir/$(echo "$t" | tr / _)"
-	t0=$(date +%s%N)
-	"$t" >"$log.out" 2>&1
-	echo $? >"$log.rc"
-	ms=$((($(date +%s%N) - t0) / 1000000))
-	printf '%s %d.%03d\n' "$t" $((ms / 1000)) $((ms % 1000)) >"$log.time"
+	# bash's own timer: wall, user and sys seconds of the binary and
+	# the children it reaped
+	TIMEFORMAT='%R %U %S'
+	{ time { "$t" >"$log.out" 2>&1; echo $? >"$log.rc"; } ; } 2>"$log.cpu"
+	read -r wall user sys <"$log.cpu"
+	printf '%s %s %s\n' "$t" "$wall" \
+		"$(awk -v u="$user" -v s="$sys" 'BEGIN { printf "%.3f", u + s }')" \
+		>"$log.time"
 	# one binary's output at a time (flock: whole, not interleaved)
 	flock "$dir" sh -c 'echo "== $1"; cat "$2"' sh "$t" "$log.out"
 	exit 0
@@ -65,6 +72,9 @@ done
 [ -f "$times" ] && awk 'FILENAME == ARGV[1] { new[$1] = 1; next } !($1 in new)' \
 	"$dir/times" "$times" >>"$dir/times"
 cp "$dir/times" "$times" 2>/dev/null
-echo "$build: $# test binaries, $jobs at a time, $broken broken"
+echo "$build: $# test binaries, $jobs at a time, $broken broken;" \
+	"$(awk 'NR == FNR { n[$1] = 1; next } ($1 in n) { w += $2; c += $3 }
+	END { printf "%.0f s of wall time, %.0f CPU seconds summed over them", w, c }' \
+	<(printf '%s\n' "$@") "$dir/times")"
 echo "total: $passed passed, $((failed + broken)) failed"
 [ "$failed" -eq 0 ] && [ "$broken" -eq 0 ]

@@ -238,6 +238,10 @@ static void test_frames_sigint_leaves_nothing(void **state)
 
 		dup2(fd, 1);
 		dup2(fd, 2);
+		/* as from a terminal: started under a non-interactive shell's
+		 * `&` the test inherits SIGINT ignored, stray rightly leaves
+		 * an ignored signal alone, and the kill below did nothing */
+		signal(SIGINT, SIG_DFL);
 		execl(bin, "stray", "frames", "--alpha", "1e-6", "--window",
 		      "512", "--frames", "1000", "--save", "1000", "--out-dir",
 		      dir, (char *)NULL);
