@@ -109,7 +109,7 @@ def test_ctrl_c_stops_a_long_trace_within_a_second(sigint_raises):
     assert c.alpha[0] == 1.0
 
 
-def test_ctrl_c_stops_long_frames():
+def test_ctrl_c_stops_long_frames(sigint_raises):
     """Rendering stops at the next frame too (not only traces)."""
     sent = {}
 
