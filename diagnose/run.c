@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "diagnose/diag_result.h"
 #include "diagnose/diag_surfaces.h"
@@ -73,6 +74,41 @@ static void rms(const struct diag_data *d, const double *r, double *all,
 		region[k] = count[k] ? sqrt(sr[k] / count[k]) : NAN;
 }
 
+/* A stage's cost, said in the log (issue 27: where the time goes): the
+ * traces it added, their seconds, and its wall time with the fits. */
+struct stage {
+	size_t traces;
+	double trace_s, t0, cpu0;
+};
+
+static double clock_s(clockid_t id)
+{
+	struct timespec ts;
+
+	clock_gettime(id, &ts);
+	return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+static void stage_start(const struct diag_eval *e, struct stage *g)
+{
+	g->traces = e->n_traces;
+	g->trace_s = e->trace_seconds;
+	g->t0 = clock_s(CLOCK_MONOTONIC);
+	g->cpu0 = clock_s(CLOCK_PROCESS_CPUTIME_ID);
+}
+
+/* cpu: this process's threads (a shared machine's wall clock counts the
+ * other processes too) */
+static void stage_say(const struct diag_eval *e, const struct stage *g,
+		      void (*log)(const char *), const char *what)
+{
+	say(log, "    [%s: %zu traces, %.2f s tracing, %.2f s wall, "
+	    "%.2f s cpu in all]", what, e->n_traces - g->traces,
+	    e->trace_seconds - g->trace_s,
+	    clock_s(CLOCK_MONOTONIC) - g->t0,
+	    clock_s(CLOCK_PROCESS_CPUTIME_ID) - g->cpu0);
+}
+
 static int uses(const struct diag_fit *f, const struct diag_cause *c)
 {
 	int i;
@@ -121,6 +157,51 @@ static const struct diag_cause *scene_cause(const struct diag_eval *e,
 	return NULL;
 }
 
+/* Would c's grid have to be traced at other geometries of cur (a
+ * re-trace cause joining another one)? */
+static int needs_combined_grid(const struct diag_fit *cur,
+			       const struct diag_cause *c)
+{
+	int i;
+
+	if (c->kind != DIAG_RETRACE)
+		return 0;
+	for (i = 0; i < cur->n_causes; i++)
+		if (cur->cause[i]->kind == DIAG_RETRACE &&
+		    cur->cause[i]->geo_axis != c->geo_axis)
+			return 1;
+	return 0;
+}
+
+/*
+ * The screen of a re-trace cause joining another re-trace cause: its
+ * combined grid costs a trace per node pair (a pivot-offset pass, eight
+ * nominal traces' time, per node of the other axis), so it is first fitted
+ * with the interaction neglected (evaluate.c, blend_factorized: its own
+ * nodes' effect times the others', no trace).  Only a cause that lowers
+ * BIC by at least half the margin that way is fitted on its traced
+ * combined grid, which decides; the others are said and left.  The
+ * neglected interaction's noise is added, not subtracted, so the screen
+ * errs toward tracing.
+ */
+static int screened_out(struct diag_eval *e, const struct diag_data *d,
+			const struct diag_fit *f, double bic_cur,
+			void (*log)(const char *), struct stray_error *err,
+			int *rc)
+{
+	struct diag_fit g = *f;
+	const struct diag_cause *c = f->cause[f->n_causes - 1];
+
+	e->factorized = 1u << c->geo_axis;
+	*rc = diag_fit_run(e, d, &g, 1, err);
+	e->factorized = 0u;
+	if (*rc || bic_cur - g.bic >= 0.5 * DIAG_BIC_MARGIN)
+		return 0;
+	say(log, "  (%s: BIC %.1f -> %.1f with the interaction neglected; "
+	    "its combined grid not traced)", c->name, bic_cur, g.bic);
+	return 1;
+}
+
 /* Greedy forward steps from `cur`; each must lower BIC by the margin.
  * Candidates are the causes that earned their place alone (a cause that
  * cannot improve the baseline by itself is not tried in combination: it
@@ -142,6 +223,10 @@ static int forward(struct diag_eval *e, const struct diag_data *d,
 				continue;
 			f = *cur;
 			f.cause[f.n_causes++] = e->causes[i];
+			if (needs_combined_grid(cur, e->causes[i]) &&
+			    (screened_out(e, d, &f, cur->bic, log, err, &rc) ||
+			     rc))
+				continue;
 			rc = diag_fit_run(e, d, &f, 1, err);
 			if (!rc && f.bic < best.bic)
 				best = f;
@@ -234,16 +319,20 @@ static int fit_singles(struct diag_eval *e, const struct diag_data *d,
 	r->n_single = 0;
 	for (i = 0; e->causes[i] && !rc; i++) {
 		struct diag_fit *f = &r->single[r->n_single];
+		struct stage g;
 
 		if (!usable(e, e->causes[i]))
 			continue;
 		memset(f, 0, sizeof(*f));
 		f->n_causes = 1;
 		f->cause[0] = e->causes[i];
+		stage_start(e, &g);
 		rc = diag_fit_run(e, d, f, 0, err);
-		if (!rc)
+		if (!rc) {
 			say(log, "  %-18s chi2 %10.1f  BIC %10.1f",
 			    e->causes[i]->name, f->chi2, f->bic);
+			stage_say(e, &g, log, e->causes[i]->name);
+		}
 		r->n_single++;
 	}
 	return rc;
@@ -301,6 +390,7 @@ static int name_causes(struct diag_eval *e, const struct diag_data *d,
 		       void (*log)(const char *), struct stray_error *err)
 {
 	struct diag_fit cur;
+	struct stage g;
 	int i, rc;
 
 	memset(&cur, 0, sizeof(cur));
@@ -315,15 +405,20 @@ static int name_causes(struct diag_eval *e, const struct diag_data *d,
 		return STRAY_OK;
 	}
 	say(log, "greedy combinations from %s:", cur.cause[0]->name);
+	stage_start(e, &g);
 	rc = forward(e, d, r, &cur, log, err);
 	if (!rc)
 		rc = backward(e, d, &cur, log, err);
 	if (!rc)
 		rc = simplify(e, d, &cur, log, err);
-	if (!rc)
+	if (!rc) {
+		stage_say(e, &g, log, "combinations");
+		stage_start(e, &g);
 		rc = diag_fit_intervals(e, d, &cur, err);
+	}
 	if (rc)
 		return rc;
+	stage_say(e, &g, log, "intervals");
 	r->explained = diag_chi2_pvalue(cur.chi2, (int)d->n - cur.k) >= P_FINAL;
 	if (r->explained)
 		r->named = cur;
@@ -354,6 +449,8 @@ int diag_run(struct diag_eval *e, const struct diag_data *d,
 	r->significant = r->p_before < DIAG_P_ACCEPT;
 	say(log, "baseline: chi2 %.1f for %d points (p = %.3g)",
 	    r->chi2_before, r->dof_before, r->p_before);
+	say(log, "    [nominal: %zu traces, %.2f s tracing]", e->n_traces,
+	    e->trace_seconds);
 	/* defaults: the corrected model is the baseline */
 	memcpy(r->model_after, r->model_before, d->n * sizeof(double));
 	memcpy(r->resid_after, r->resid_before, d->n * sizeof(double));
