@@ -252,12 +252,15 @@ static int fit_from(struct diag_eval *e, const struct diag_data *d,
 int diag_fit_run(struct diag_eval *e, const struct diag_data *d,
 		 struct diag_fit *f, int warm, struct stray_error *err)
 {
-	static double rows[STARTS_MAX][DIAG_PARAMS_MAX];
+	double (*rows)[DIAG_PARAMS_MAX] = malloc(STARTS_MAX * sizeof(*rows));
 	const struct diag_cause *last = f->cause[f->n_causes - 1];
 	double best_c[KEEP_STARTS], best_p[KEEP_STARTS][DIAG_FIT_PMAX];
 	int c, n_rows, i, k, o, rc = STRAY_OK;
 	struct diag_state s;
 
+	if (!rows)	/* per call: the step's candidates fit side by side */
+		return stray_error_set(err, STRAY_ENOMEM, "diagnose",
+				       "out of memory");
 	f->n_p = 0;
 	f->k = 0;
 	for (c = 0; c < f->n_causes; c++) {
@@ -304,6 +307,7 @@ int diag_fit_run(struct diag_eval *e, const struct diag_data *d,
 	f->converged = isfinite(f->chi2);
 	for (i = 0; i < f->n_p; i++)
 		f->ci_lo[i] = f->ci_hi[i] = f->p[i];
+	free(rows);
 	return rc;
 }
 

@@ -20,6 +20,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "candidates.h"
 #include "diagnose/diag_result.h"
 #include "diagnose/diag_surfaces.h"
 #include "stray/errfmt.h"
@@ -158,7 +159,12 @@ static const struct diag_cause *scene_cause(const struct diag_eval *e,
 }
 
 /* Would c's grid have to be traced at other geometries of cur (a
- * re-trace cause joining another one)? */
+ * re-trace cause joining another one)?  Such a candidate goes through the
+ * screen (candidates.c): its combined grid costs a trace per node pair (a
+ * pivot-offset pass, eight nominal traces' time, per node of the other
+ * axis), so it is first fitted with the interaction neglected
+ * (geometry_blend.c, no trace) and traced only when that lowers BIC by at
+ * least half the margin. */
 static int needs_combined_grid(const struct diag_fit *cur,
 			       const struct diag_cause *c)
 {
@@ -173,35 +179,6 @@ static int needs_combined_grid(const struct diag_fit *cur,
 	return 0;
 }
 
-/*
- * The screen of a re-trace cause joining another re-trace cause: its
- * combined grid costs a trace per node pair (a pivot-offset pass, eight
- * nominal traces' time, per node of the other axis), so it is first fitted
- * with the interaction neglected (evaluate.c, blend_factorized: its own
- * nodes' effect times the others', no trace).  Only a cause that lowers
- * BIC by at least half the margin that way is fitted on its traced
- * combined grid, which decides; the others are said and left.  The
- * neglected interaction's noise is added, not subtracted, so the screen
- * errs toward tracing.
- */
-static int screened_out(struct diag_eval *e, const struct diag_data *d,
-			const struct diag_fit *f, double bic_cur,
-			void (*log)(const char *), struct stray_error *err,
-			int *rc)
-{
-	struct diag_fit g = *f;
-	const struct diag_cause *c = f->cause[f->n_causes - 1];
-
-	e->factorized = 1u << c->geo_axis;
-	*rc = diag_fit_run(e, d, &g, 1, err);
-	e->factorized = 0u;
-	if (*rc || bic_cur - g.bic >= 0.5 * DIAG_BIC_MARGIN)
-		return 0;
-	say(log, "  (%s: BIC %.1f -> %.1f with the interaction neglected; "
-	    "its combined grid not traced)", c->name, bic_cur, g.bic);
-	return 1;
-}
-
 /* Greedy forward steps from `cur`; each must lower BIC by the margin.
  * Candidates are the causes that earned their place alone (a cause that
  * cannot improve the baseline by itself is not tried in combination: it
@@ -213,23 +190,33 @@ static int forward(struct diag_eval *e, const struct diag_data *d,
 	int i, rc = STRAY_OK;
 
 	while (cur->n_causes < DIAG_COMBO_MAX && !rc) {
-		struct diag_fit best, f;
+		struct diag_candidate c[DIAG_CAUSES_MAX];
+		struct diag_fit best;
+		int n = 0;
 
-		best.bic = INFINITY;
-		for (i = 0; e->causes[i] && !rc; i++) {
+		for (i = 0; e->causes[i] && n < DIAG_CAUSES_MAX; i++) {
 			if (uses(cur, e->causes[i]) ||
 			    !usable(e, e->causes[i]) ||
 			    !earned_alone(r, e->causes[i]))
 				continue;
-			f = *cur;
-			f.cause[f.n_causes++] = e->causes[i];
-			if (needs_combined_grid(cur, e->causes[i]) &&
-			    (screened_out(e, d, &f, cur->bic, log, err, &rc) ||
-			     rc))
+			c[n].f = *cur;
+			c[n].f.cause[c[n].f.n_causes++] = e->causes[i];
+			c[n++].combined = needs_combined_grid(cur,
+							      e->causes[i]);
+		}
+		rc = diag_fit_candidates(e, d, cur->bic, c, n, err);
+		best.bic = INFINITY;
+		for (i = 0; i < n && !rc; i++) {
+			if (c[i].screened) {
+				say(log, "  (%s: BIC %.1f -> %.1f with the "
+				    "interaction neglected; its combined grid "
+				    "not traced)",
+				    c[i].f.cause[c[i].f.n_causes - 1]->name,
+				    cur->bic, c[i].screen_bic);
 				continue;
-			rc = diag_fit_run(e, d, &f, 1, err);
-			if (!rc && f.bic < best.bic)
-				best = f;
+			}
+			if (c[i].f.bic < best.bic)
+				best = c[i].f;
 		}
 		if (rc || !(cur->bic - best.bic > DIAG_BIC_MARGIN))
 			break;

@@ -44,6 +44,12 @@ struct diag_eval {
 	 * factor from their own nodes, the interaction with the other axes
 	 * neglected: no trace of a combined grid (run.c's screen); 0 */
 	unsigned factorized;
+	/* threads fitting one greedy step's candidates (candidates.c; 0:
+	 * two, 1: the caller's alone) */
+	int fit_threads;
+	/* a copy fitting beside the caller (candidates.c): a trace not
+	 * cached is not made, missed set and an error returned */
+	int no_trace, missed;
 	/* the last geometry blend: its key, alpha then relcov (n + n^2) */
 #define DIAG_BLEND_KEY (DIAG_GEO_N + 3)
 	double blend_key[DIAG_BLEND_KEY], *blend_alpha;
