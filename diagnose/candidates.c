@@ -20,14 +20,33 @@
 #include "diagnose/diag_spectral.h"
 #include "stray/errfmt.h"
 
+/* The next candidate to fit, taken by whichever thread is free (one
+ * candidate, a leak beside a two-parameter coating, can take as long as
+ * the rest together). */
+struct queue {
+	pthread_mutex_t lock;
+	int next, n;
+};
+
 struct worker {
 	struct diag_eval e;	/* a copy: own caches, no tracing */
 	const struct diag_data *d;
 	double bic_cur;
 	struct diag_candidate *c;
-	int n, first, step, *deferred, rc;
+	struct queue *q;
+	int *deferred, rc;
 	struct stray_error err;
 };
+
+static int take(struct queue *q)
+{
+	int i;
+
+	pthread_mutex_lock(&q->lock);
+	i = q->next < q->n ? q->next++ : -1;
+	pthread_mutex_unlock(&q->lock);
+	return i;
+}
 
 /* The screen (run.c): fitted with the interaction neglected first; only
  * a candidate lowering BIC by half the margin that way is fitted on its
@@ -62,7 +81,7 @@ static void *work(void *arg)
 	struct worker *w = arg;
 	int i;
 
-	for (i = w->first; i < w->n && !w->rc; i += w->step) {
+	while (!w->rc && (i = take(w->q)) >= 0) {
 		struct diag_candidate keep = w->c[i];
 
 		w->e.missed = 0;
@@ -83,6 +102,7 @@ int diag_fit_candidates(struct diag_eval *e, const struct diag_data *d,
 			struct stray_error *err)
 {
 	struct worker w[2];
+	struct queue q = { PTHREAD_MUTEX_INITIALIZER, 0, n };
 	pthread_t th;
 	int deferred[DIAG_CAUSES_MAX] = { 0 }, i, k, started, rc = STRAY_OK;
 
@@ -95,18 +115,14 @@ int diag_fit_candidates(struct diag_eval *e, const struct diag_data *d,
 		w[k].d = d;
 		w[k].bic_cur = bic_cur;
 		w[k].c = c;
-		w[k].n = n;
-		w[k].first = k;
-		w[k].step = 2;
+		w[k].q = &q;
 		w[k].deferred = deferred;
 		w[k].rc = STRAY_OK;
 		stray_error_clear(&w[k].err);
 	}
 	started = e->fit_threads != 1 && n > 1 &&
 		  pthread_create(&th, NULL, work, &w[1]) == 0;
-	if (!started)
-		w[0].step = 1;	/* no second thread: all on this one */
-	work(&w[0]);
+	work(&w[0]);	/* without a second thread: all on this one */
 	if (started)
 		pthread_join(th, NULL);
 	for (k = 0; k < 2 && !rc; k++)

@@ -141,12 +141,19 @@ static int offset_factor(struct diag_eval *e, const struct diag_state *s,
 	return STRAY_OK;
 }
 
+/* The nominal fine grid sorted by angle: alpha and its log (taken once
+ * per state where alpha > 0: the same values every call would take). */
+struct fine_curve {
+	const double *th, *a, *la;
+	size_t m;
+};
+
 /* alpha at off-axis angle phi, log-linear between the fine points
  * (sorted by angle), held constant beyond them. */
-static double fine_at(const double *th, const double *a, size_t m,
-		      double phi)
+static double fine_at(const struct fine_curve *f, double phi)
 {
-	size_t lo = 0, hi = m - 1;
+	const double *th = f->th, *a = f->a, *la = f->la;
+	size_t m = f->m, lo = 0, hi = m - 1;
 
 	if (phi <= th[0])
 		return a[0];
@@ -169,16 +176,16 @@ static double fine_at(const double *th, const double *a, size_t m,
 		if (m >= 3 && a[c] > 0.0 && a[c + 1] > 0.0 && a[c + 2] > 0.0) {
 			double x0 = th[c], x1 = th[c + 1], x2 = th[c + 2];
 
-			return exp(log(a[c]) * (phi - x1) * (phi - x2) /
+			return exp(la[c] * (phi - x1) * (phi - x2) /
 				   ((x0 - x1) * (x0 - x2)) +
-				   log(a[c + 1]) * (phi - x0) * (phi - x2) /
+				   la[c + 1] * (phi - x0) * (phi - x2) /
 				   ((x1 - x0) * (x1 - x2)) +
-				   log(a[c + 2]) * (phi - x0) * (phi - x1) /
+				   la[c + 2] * (phi - x0) * (phi - x1) /
 				   ((x2 - x0) * (x2 - x1)));
 		}
 	}
 	if (a[lo] > 0.0 && a[hi] > 0.0)
-		return exp(log(a[lo]) + (log(a[hi]) - log(a[lo])) *
+		return exp(la[lo] + (la[hi] - la[lo]) *
 			   (phi - th[lo]) / (th[hi] - th[lo]));
 	return a[lo] + (a[hi] - a[lo]) * (phi - th[lo]) / (th[hi] - th[lo]);
 }
@@ -212,8 +219,8 @@ static void beam_quad_init(struct beam_quad *q, double b, double g)
  * the disk |(u, v)| <= b, weighted exp(-2 r^2 / g^2) when g > 0 (polar
  * midpoint rule); an axisymmetric baffle sees off-axis angle
  * sqrt((theta + u)^2 + v^2) (small angles). */
-static double beam_mean(const double *th, const double *a, size_t m,
-			double theta, const struct beam_quad *q)
+static double beam_mean(const struct fine_curve *f, double theta,
+			const struct beam_quad *q)
 {
 	double sum = 0.0, sw = 0.0;
 	int ir, ia;
@@ -224,11 +231,11 @@ static double beam_mean(const double *th, const double *a, size_t m,
 		for (ia = 0; ia < BEAM_AZ; ia++) {
 			double u = theta + r * q->c[ia], v = r * q->s[ia];
 
-			sum += w * fine_at(th, a, m, sqrt(u * u + v * v));
+			sum += w * fine_at(f, sqrt(u * u + v * v));
 			sw += w;
 		}
 	}
-	return sw > 0.0 ? sum / sw : fine_at(th, a, m, theta);
+	return sw > 0.0 ? sum / sw : fine_at(f, theta);
 }
 
 static int cmp_pair(const void *x, const void *y)
@@ -252,8 +259,9 @@ static int beam_factor(struct diag_eval *e, const struct diag_state *s,
 	double nominal[DIAG_GEO_N], b = s->beam_half_deg, h = e->sub_step_deg;
 	const struct diag_trace *t;
 	struct beam_quad q;
+	struct fine_curve f;
 	size_t i, m = 0, nm = e->n * DIAG_SUB, nt;
-	double *buf, *p, *var, *a, *rv, *pair, *th, *al, a0;
+	double *buf, *p, *var, *a, *rv, *pair, *th, *al, *la, a0;
 	int rc, g, k;
 
 	for (g = 0; g < DIAG_GEO_N; g++)
@@ -262,7 +270,7 @@ static int beam_factor(struct diag_eval *e, const struct diag_state *s,
 	if (rc)
 		return rc;
 	nt = t->n_theta;
-	buf = malloc((2 * nt + 6 * nm + 1) * sizeof(*buf));
+	buf = malloc((2 * nt + 7 * nm + 1) * sizeof(*buf));
 	if (!buf)
 		return stray_error_set(err, STRAY_ENOMEM, "diagnose",
 				       "out of memory");
@@ -273,6 +281,7 @@ static int beam_factor(struct diag_eval *e, const struct diag_state *s,
 	pair = rv + nm;
 	th = pair + 2 * nm;
 	al = th + nm;
+	la = al + nm;
 	diag_trace_alpha(e, t, s->reflectance, s->spectral_slope, p, var, a, rv,
 		    1);
 	for (i = 0; i < e->n; i++)
@@ -287,17 +296,21 @@ static int beam_factor(struct diag_eval *e, const struct diag_state *s,
 		if (k > 0 && pair[2 * i] - th[k - 1] < 1e-9)
 			continue;
 		th[k] = pair[2 * i];
-		al[k++] = pair[2 * i + 1];
+		al[k] = pair[2 * i + 1];
+		la[k] = al[k] > 0.0 ? log(al[k]) : 0.0;	/* read if > 0 */
+		k++;
 	}
-	m = (size_t)k;
+	f.th = th;
+	f.a = al;
+	f.la = la;
+	f.m = (size_t)k;
 	beam_quad_init(&q, b, s->beam_gauss_deg);
-	a0 = th[0] <= 1.0 ? beam_mean(th, al, m, 0.0, &q) /
-			    fine_at(th, al, m, 0.0) : 1.0;
+	a0 = th[0] <= 1.0 ? beam_mean(&f, 0.0, &q) / fine_at(&f, 0.0) : 1.0;
 	for (i = 0; i < e->n; i++) {
 		double c = a[i * DIAG_SUB + DIAG_SUB / 2];
 
 		factor[i] = c > 0.0 && a0 > 0.0 ?
-			beam_mean(th, al, m, e->theta_deg[i], &q) / c / a0 :
+			beam_mean(&f, e->theta_deg[i], &q) / c / a0 :
 			1.0;
 	}
 	free(buf);
