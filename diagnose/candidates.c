@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "candidates.h"
+#include "trace_cache.h"
 #include "diagnose/diag_result.h"
 #include "diagnose/diag_spectral.h"
 #include "stray/errfmt.h"
@@ -34,7 +35,7 @@ struct worker {
 	double bic_cur;
 	struct diag_candidate *c;
 	struct queue *q;
-	int *deferred, rc;
+	int warm, *deferred, rc;
 	struct stray_error err;
 };
 
@@ -52,7 +53,7 @@ static int take(struct queue *q)
  * a candidate lowering BIC by half the margin that way is fitted on its
  * combined grid. */
 static int fit_one(struct diag_eval *e, const struct diag_data *d,
-		   double bic_cur, struct diag_candidate *c,
+		   double bic_cur, int warm, struct diag_candidate *c,
 		   struct stray_error *err)
 {
 	int rc;
@@ -73,7 +74,7 @@ static int fit_one(struct diag_eval *e, const struct diag_data *d,
 			return STRAY_OK;
 		}
 	}
-	return diag_fit_run(e, d, &c->f, 1, err);
+	return diag_fit_run(e, d, &c->f, warm, err);
 }
 
 static void *work(void *arg)
@@ -85,7 +86,8 @@ static void *work(void *arg)
 		struct diag_candidate keep = w->c[i];
 
 		w->e.missed = 0;
-		w->rc = fit_one(&w->e, w->d, w->bic_cur, &w->c[i], &w->err);
+		w->rc = fit_one(&w->e, w->d, w->bic_cur, w->warm, &w->c[i],
+				&w->err);
 		if (w->e.missed) {	/* a trace to make: the caller's */
 			w->c[i] = keep;
 			w->deferred[i] = 1;
@@ -97,6 +99,28 @@ static void *work(void *arg)
 	return NULL;
 }
 
+/* A copy of the evaluator that fits beside the caller: its own kept
+ * blend and factor, the trace cache as it is now, no tracing. */
+static void worker_init(struct worker *w, const struct diag_eval *e,
+			const struct diag_data *d, double bic_cur, int warm,
+			struct diag_candidate *c, struct queue *q,
+			int *deferred)
+{
+	(void)diag_band_current();	/* loaded once, before the threads */
+	w->e = *e;
+	w->e.chol_in = w->e.chol_out = w->e.blend_alpha = NULL;
+	w->e.chol_n = 0;
+	w->e.no_trace = 1;
+	w->d = d;
+	w->bic_cur = bic_cur;
+	w->warm = warm;
+	w->c = c;
+	w->q = q;
+	w->deferred = deferred;
+	w->rc = STRAY_OK;
+	stray_error_clear(&w->err);
+}
+
 int diag_fit_candidates(struct diag_eval *e, const struct diag_data *d,
 			double bic_cur, struct diag_candidate *c, int n,
 			struct stray_error *err)
@@ -106,20 +130,8 @@ int diag_fit_candidates(struct diag_eval *e, const struct diag_data *d,
 	pthread_t th;
 	int deferred[DIAG_CAUSES_MAX] = { 0 }, i, k, started, rc = STRAY_OK;
 
-	(void)diag_band_current();	/* loaded once, before the threads */
-	for (k = 0; k < 2; k++) {
-		w[k].e = *e;
-		w[k].e.chol_in = w[k].e.chol_out = w[k].e.blend_alpha = NULL;
-		w[k].e.chol_n = 0;
-		w[k].e.no_trace = 1;
-		w[k].d = d;
-		w[k].bic_cur = bic_cur;
-		w[k].c = c;
-		w[k].q = &q;
-		w[k].deferred = deferred;
-		w[k].rc = STRAY_OK;
-		stray_error_clear(&w[k].err);
-	}
+	for (k = 0; k < 2; k++)
+		worker_init(&w[k], e, d, bic_cur, 1, c, &q, deferred);
 	started = e->fit_threads != 1 && n > 1 &&
 		  pthread_create(&th, NULL, work, &w[1]) == 0;
 	work(&w[0]);	/* without a second thread: all on this one */
@@ -132,6 +144,69 @@ int diag_fit_candidates(struct diag_eval *e, const struct diag_data *d,
 		}
 	for (i = 0; i < n && !rc; i++)
 		if (deferred[i])
-			rc = fit_one(e, d, bic_cur, &c[i], err);
+			rc = fit_one(e, d, bic_cur, 1, &c[i], err);
+	return rc;
+}
+
+/*
+ * Each cause alone (run.c): the fits that need no trace of their own
+ * (re-weighted and post-processed causes) run on a second thread while
+ * the caller traces and fits the re-trace causes' grids.  The copy reads
+ * the traces cached when it starts; the cache is given room first, so
+ * the caller's new traces never move the list it reads.  A fit that
+ * needs a trace (the angle offset's fine grid) is made by the caller
+ * after, in order.
+ */
+int diag_aside_start(struct diag_aside *a, struct diag_eval *e,
+		     const struct diag_data *d, struct diag_candidate *c,
+		     int n, struct stray_error *err)
+{
+	int i, rc;
+
+	memset(a->deferred, 0, sizeof(a->deferred));
+	for (i = 0; i < n; i++)
+		a->deferred[i] = 1;	/* unless the thread fits it */
+	a->started = 0;
+	a->q = malloc(sizeof(*a->q));
+	a->w = malloc(sizeof(*a->w));
+	if (!a->q || !a->w)
+		return stray_error_set(err, STRAY_ENOMEM, "diagnose",
+				       "out of memory");
+	rc = diag_trace_cache_reserve(e, DIAG_ASIDE_TRACES, err);
+	if (rc || e->fit_threads == 1 || n == 0)
+		return rc;
+	memset(a->deferred, 0, sizeof(a->deferred));
+	pthread_mutex_init(&a->q->lock, NULL);
+	a->q->next = 0;
+	a->q->n = n;
+	worker_init(a->w, e, d, 0.0, 0, c, a->q, a->deferred);
+	a->started = pthread_create(&a->th, NULL, work, a->w) == 0;
+	if (!a->started)
+		for (i = 0; i < n; i++)
+			a->deferred[i] = 1;
+	return STRAY_OK;
+}
+
+int diag_aside_finish(struct diag_aside *a, struct diag_eval *e,
+		      const struct diag_data *d, struct diag_candidate *c,
+		      int n, int rc, struct stray_error *err)
+{
+	int i;
+
+	if (a->started) {
+		pthread_join(a->th, NULL);
+		pthread_mutex_destroy(&a->q->lock);
+		if (!rc && a->w->rc) {
+			*err = a->w->err;
+			rc = a->w->rc;
+		}
+	}
+	for (i = 0; i < n && !rc; i++)
+		if (a->deferred[i])
+			rc = fit_one(e, d, 0.0, 0, &c[i], err);
+	free(a->q);
+	free(a->w);
+	a->q = NULL;
+	a->w = NULL;
 	return rc;
 }

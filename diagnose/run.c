@@ -297,31 +297,61 @@ static int simplify(struct diag_eval *e, const struct diag_data *d,
 	return rc;
 }
 
+/* Each cause alone.  The re-trace causes are traced and fitted here in
+ * turn, the others fitted meanwhile on a second thread (candidates.c);
+ * the table and the log keep the registry's order. */
 static int fit_singles(struct diag_eval *e, const struct diag_data *d,
 		       struct diag_result *r, void (*log)(const char *),
 		       struct stray_error *err)
 {
-	int i, rc = STRAY_OK;
+	struct diag_candidate c[DIAG_CAUSES_MAX];
+	struct stage g[DIAG_CAUSES_MAX], all;
+	double wall[DIAG_CAUSES_MAX];
+	struct diag_aside a;
+	int i, n_aside = 0, at[DIAG_CAUSES_MAX], rc;
 
 	r->n_single = 0;
-	for (i = 0; e->causes[i] && !rc; i++) {
+	stage_start(e, &all);
+	for (i = 0; e->causes[i] && r->n_single < DIAG_CAUSES_MAX; i++) {
 		struct diag_fit *f = &r->single[r->n_single];
-		struct stage g;
 
 		if (!usable(e, e->causes[i]))
 			continue;
 		memset(f, 0, sizeof(*f));
 		f->n_causes = 1;
 		f->cause[0] = e->causes[i];
-		stage_start(e, &g);
-		rc = diag_fit_run(e, d, f, 0, err);
-		if (!rc) {
-			say(log, "  %-18s chi2 %10.1f  BIC %10.1f",
-			    e->causes[i]->name, f->chi2, f->bic);
-			stage_say(e, &g, log, e->causes[i]->name);
+		if (e->causes[i]->kind != DIAG_RETRACE) {
+			memset(&c[n_aside], 0, sizeof(c[n_aside]));
+			c[n_aside].f = *f;
+			at[n_aside++] = r->n_single;
 		}
 		r->n_single++;
 	}
+	rc = diag_aside_start(&a, e, d, c, n_aside, err);
+	for (i = 0; i < r->n_single && !rc; i++) {
+		if (r->single[i].cause[0]->kind != DIAG_RETRACE)
+			continue;
+		stage_start(e, &g[i]);
+		rc = diag_fit_run(e, d, &r->single[i], 0, err);
+		wall[i] = clock_s(CLOCK_MONOTONIC) - g[i].t0;
+		g[i].traces = e->n_traces - g[i].traces;
+		g[i].trace_s = e->trace_seconds - g[i].trace_s;
+	}
+	rc = diag_aside_finish(&a, e, d, c, n_aside, rc, err);
+	for (i = 0; i < n_aside && !rc; i++)
+		r->single[at[i]] = c[i].f;
+	for (i = 0; i < r->n_single && !rc; i++) {
+		const struct diag_fit *f = &r->single[i];
+
+		say(log, "  %-18s chi2 %10.1f  BIC %10.1f", f->cause[0]->name,
+		    f->chi2, f->bic);
+		if (f->cause[0]->kind == DIAG_RETRACE)
+			say(log, "    [%s: %zu traces, %.2f s tracing, %.2f s "
+			    "wall]", f->cause[0]->name, g[i].traces,
+			    g[i].trace_s, wall[i]);
+	}
+	if (!rc)
+		stage_say(e, &all, log, "each cause alone");
 	return rc;
 }
 

@@ -263,6 +263,12 @@ int diag_trace_get(struct diag_eval *e, const double *geo, int fine,
 	return STRAY_OK;
 }
 
+int diag_trace_cache_reserve(struct diag_eval *e, size_t more,
+			     struct stray_error *err)
+{
+	return cache_room(e, more, err);
+}
+
 void diag_trace_cache_free(struct diag_eval *e)
 {
 	size_t i;

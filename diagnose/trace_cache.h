@@ -13,6 +13,10 @@
 int diag_trace_get(struct diag_eval *e, const double *geo, int fine,
 		   const struct diag_trace **out, struct stray_error *err);
 void diag_trace_cache_free(struct diag_eval *e);
+/* Room for `more` traces, so that making them does not move the list
+ * (candidates.c: a thread reads it meanwhile). */
+int diag_trace_cache_reserve(struct diag_eval *e, size_t more,
+			     struct stray_error *err);
 
 /* Power and variance per traced angle at interior reflectance rho
  * (NaN: the scene's). */
