@@ -84,142 +84,12 @@ void diag_eval_free(struct diag_eval *e)
 	diag_trace_cache_free(e);
 	free(e->direct_share);
 	e->direct_share = NULL;
+	free(e->blend_alpha);	/* geometry_blend.c's last blend */
+	e->blend_alpha = NULL;
+	free(e->chol_in);	/* fit.c's factor of the last covariance */
+	e->chol_in = e->chol_out = NULL;
+	e->chol_n = 0;
 	diag_lens_free(e);
-}
-
-/* A node value as a cache key: the scene's own value is NaN, so the
- * nominal node shares the nominal trace. */
-static double node_key(const struct diag_cause *c, double v)
-{
-	if (c && c->n_params > 0 && v == c->param[0].nominal)
-		return NAN;
-	return v;
-}
-
-struct corners {
-	int n_axis, axis[DIAG_GEO_N];
-	double lo[DIAG_GEO_N], hi[DIAG_GEO_N], t[DIAG_GEO_N];
-};
-
-static void bracket(const struct diag_eval *e, const struct diag_state *s,
-		    struct corners *c)
-{
-	int a, k;
-
-	c->n_axis = 0;
-	for (a = 0; a < DIAG_GEO_N; a++) {
-		const struct diag_cause *cs = diag_eval_axis_cause(e, a);
-		double v = s->geo[a];
-		int m = c->n_axis;
-
-		if (isnan(v) || isnan(node_key(cs, v)))
-			continue;
-		c->axis[m] = a;
-		c->lo[m] = c->hi[m] = v;
-		c->t[m] = 0.0;
-		if (cs && cs->n_nodes > 1) {
-			v = fmin(fmax(v, cs->nodes[0]),
-				 cs->nodes[cs->n_nodes - 1]);
-			for (k = 0; k + 2 < cs->n_nodes &&
-			     v > cs->nodes[k + 1]; k++)
-				;
-			c->lo[m] = node_key(cs, cs->nodes[k]);
-			c->hi[m] = node_key(cs, cs->nodes[k + 1]);
-			c->t[m] = (v - cs->nodes[k]) /
-				(cs->nodes[k + 1] - cs->nodes[k]);
-		}
-		c->n_axis++;
-	}
-}
-
-/* alpha and relative variance at the centre of each measured angle (and
- * at the fine sub-points when t is fine), for one trace. */
-static void trace_alpha(const struct diag_eval *e, const struct diag_trace *t,
-			double rho, double slope, double *p, double *var,
-			double *alpha, double *relvar, int all_sub)
-{
-	size_t i;
-	int k;
-	double p0, v0;
-
-	if (slope != 0.0)	/* cause_spectral_slope.c */
-		diag_trace_power_band(t, rho, slope, p, var);
-	else
-		diag_trace_power(t, rho, p, var);
-	p0 = p[t->ref];
-	v0 = p0 > 0.0 ? var[t->ref] / (p0 * p0) : 0.0;
-	for (i = 0; i < e->n; i++)
-		for (k = 0; k < DIAG_SUB; k++) {
-			size_t j, o = i * DIAG_SUB + k;
-
-			if (!all_sub && k != DIAG_SUB / 2)
-				continue;
-			j = t->idx[o];
-			alpha[o] = p0 > 0.0 ? p[j] / p0 : 0.0;
-			relvar[o] = p[j] > 0.0 ?
-				var[j] / (p[j] * p[j]) + v0 : 0.0;
-		}
-}
-
-/* Blend the corners of the active axes: log alpha multilinear (linear in
- * alpha where a corner is 0), relative sigma likewise. */
-static int blend_geometry(struct diag_eval *e, const struct diag_state *s,
-			  double *work, double *alpha, double *relcov,
-			  struct stray_error *err)
-{
-	struct corners c;
-	size_t i, nt, nm = e->n * DIAG_SUB;
-	double *p, *var, *a_c, *rv_c, *la, *lin;
-	int corner, n_corner, rc = STRAY_OK;
-
-	bracket(e, s, &c);
-	n_corner = 1 << c.n_axis;
-	nt = e->n * DIAG_SUB + 1;	/* bounds every trace's angle count */
-	p = work;
-	var = p + nt;
-	a_c = var + nt;
-	rv_c = a_c + nm;
-	la = rv_c + nm;
-	lin = la + e->n;
-	memset(la, 0, 2 * e->n * sizeof(*la));
-	memset(relcov, 0, e->n * e->n * sizeof(*relcov));
-	for (i = 0; i < e->n; i++)
-		alpha[i] = 1.0;	/* 1: every corner positive so far */
-	for (corner = 0; corner < n_corner && !rc; corner++) {
-		double geo[DIAG_GEO_N], w = 1.0;
-		const struct diag_trace *t;
-		int a;
-
-		for (a = 0; a < DIAG_GEO_N; a++)
-			geo[a] = NAN;
-		for (a = 0; a < c.n_axis; a++) {
-			int up = (corner >> a) & 1;
-
-			geo[c.axis[a]] = up ? c.hi[a] : c.lo[a];
-			w *= up ? c.t[a] : 1.0 - c.t[a];
-		}
-		if (w == 0.0)
-			continue;
-		rc = diag_trace_get(e, geo, 0, &t, err);
-		if (rc)
-			break;
-		trace_alpha(e, t, s->reflectance, s->spectral_slope, p, var, a_c,
-			    rv_c, 0);
-		for (i = 0; i < e->n; i++) {
-			double ai = a_c[i * DIAG_SUB + DIAG_SUB / 2];
-
-			lin[i] += w * ai;
-			if (ai > 0.0)
-				la[i] += w * log(ai);
-			else
-				alpha[i] = 0.0;
-		}
-		for (i = 0; i < e->n * e->n; i++)
-			relcov[i] += w * t->relcov[i];
-	}
-	for (i = 0; i < e->n; i++)
-		alpha[i] = alpha[i] > 0.0 ? exp(la[i]) : lin[i];
-	return rc;
 }
 
 /* alpha(theta_i + d) / alpha(theta_i) on the nominal fine grid, by
@@ -244,7 +114,7 @@ static int offset_factor(struct diag_eval *e, const struct diag_state *s,
 	var = p + t->n_theta;
 	a = var + t->n_theta;
 	rv = a + nm;
-	trace_alpha(e, t, s->reflectance, s->spectral_slope, p, var, a, rv,
+	diag_trace_alpha(e, t, s->reflectance, s->spectral_slope, p, var, a, rv,
 		    1);
 	for (i = 0; i < e->n; i++) {
 		double x = fmin(fmax(d / h, -(DIAG_SUB / 2)), DIAG_SUB / 2);
@@ -271,12 +141,19 @@ static int offset_factor(struct diag_eval *e, const struct diag_state *s,
 	return STRAY_OK;
 }
 
+/* The nominal fine grid sorted by angle: alpha and its log (taken once
+ * per state where alpha > 0: the same values every call would take). */
+struct fine_curve {
+	const double *th, *a, *la;
+	size_t m;
+};
+
 /* alpha at off-axis angle phi, log-linear between the fine points
  * (sorted by angle), held constant beyond them. */
-static double fine_at(const double *th, const double *a, size_t m,
-		      double phi)
+static double fine_at(const struct fine_curve *f, double phi)
 {
-	size_t lo = 0, hi = m - 1;
+	const double *th = f->th, *a = f->a, *la = f->la;
+	size_t m = f->m, lo = 0, hi = m - 1;
 
 	if (phi <= th[0])
 		return a[0];
@@ -299,44 +176,66 @@ static double fine_at(const double *th, const double *a, size_t m,
 		if (m >= 3 && a[c] > 0.0 && a[c + 1] > 0.0 && a[c + 2] > 0.0) {
 			double x0 = th[c], x1 = th[c + 1], x2 = th[c + 2];
 
-			return exp(log(a[c]) * (phi - x1) * (phi - x2) /
+			return exp(la[c] * (phi - x1) * (phi - x2) /
 				   ((x0 - x1) * (x0 - x2)) +
-				   log(a[c + 1]) * (phi - x0) * (phi - x2) /
+				   la[c + 1] * (phi - x0) * (phi - x2) /
 				   ((x1 - x0) * (x1 - x2)) +
-				   log(a[c + 2]) * (phi - x0) * (phi - x1) /
+				   la[c + 2] * (phi - x0) * (phi - x1) /
 				   ((x2 - x0) * (x2 - x1)));
 		}
 	}
 	if (a[lo] > 0.0 && a[hi] > 0.0)
-		return exp(log(a[lo]) + (log(a[hi]) - log(a[lo])) *
+		return exp(la[lo] + (la[hi] - la[lo]) *
 			   (phi - th[lo]) / (th[hi] - th[lo]));
 	return a[lo] + (a[hi] - a[lo]) * (phi - th[lo]) / (th[hi] - th[lo]);
+}
+
+/* The beam disk's quadrature (polar midpoint rule): ring radii, their
+ * weights r exp(-2 r^2 / g^2) (g > 0), the azimuths' cos and sin; the
+ * same for every angle of a state, so computed once per state. */
+struct beam_quad {
+	double r[BEAM_RINGS], w[BEAM_RINGS], c[BEAM_AZ], s[BEAM_AZ];
+};
+
+static void beam_quad_init(struct beam_quad *q, double b, double g)
+{
+	int ir, ia;
+
+	for (ir = 0; ir < BEAM_RINGS; ir++) {
+		q->r[ir] = b * (ir + 0.5) / BEAM_RINGS;
+		q->w[ir] = q->r[ir];
+		if (g > 0.0)
+			q->w[ir] *= exp(-2.0 * q->r[ir] * q->r[ir] / (g * g));
+	}
+	for (ia = 0; ia < BEAM_AZ; ia++) {
+		double ph = 2.0 * M_PI * (ia + 0.5) / BEAM_AZ;
+
+		q->c[ia] = cos(ph);
+		q->s[ia] = sin(ph);
+	}
 }
 
 /* The beam average of alpha about theta: directions (theta + u, v) over
  * the disk |(u, v)| <= b, weighted exp(-2 r^2 / g^2) when g > 0 (polar
  * midpoint rule); an axisymmetric baffle sees off-axis angle
  * sqrt((theta + u)^2 + v^2) (small angles). */
-static double beam_mean(const double *th, const double *a, size_t m,
-			double theta, double b, double g)
+static double beam_mean(const struct fine_curve *f, double theta,
+			const struct beam_quad *q)
 {
 	double sum = 0.0, sw = 0.0;
 	int ir, ia;
 
 	for (ir = 0; ir < BEAM_RINGS; ir++) {
-		double r = b * (ir + 0.5) / BEAM_RINGS, w = r;
+		double r = q->r[ir], w = q->w[ir];
 
-		if (g > 0.0)
-			w *= exp(-2.0 * r * r / (g * g));
 		for (ia = 0; ia < BEAM_AZ; ia++) {
-			double ph = 2.0 * M_PI * (ia + 0.5) / BEAM_AZ,
-			       u = theta + r * cos(ph), v = r * sin(ph);
+			double u = theta + r * q->c[ia], v = r * q->s[ia];
 
-			sum += w * fine_at(th, a, m, sqrt(u * u + v * v));
+			sum += w * fine_at(f, sqrt(u * u + v * v));
 			sw += w;
 		}
 	}
-	return sw > 0.0 ? sum / sw : fine_at(th, a, m, theta);
+	return sw > 0.0 ? sum / sw : fine_at(f, theta);
 }
 
 static int cmp_pair(const void *x, const void *y)
@@ -359,8 +258,10 @@ static int beam_factor(struct diag_eval *e, const struct diag_state *s,
 {
 	double nominal[DIAG_GEO_N], b = s->beam_half_deg, h = e->sub_step_deg;
 	const struct diag_trace *t;
+	struct beam_quad q;
+	struct fine_curve f;
 	size_t i, m = 0, nm = e->n * DIAG_SUB, nt;
-	double *buf, *p, *var, *a, *rv, *pair, *th, *al, a0;
+	double *buf, *p, *var, *a, *rv, *pair, *th, *al, *la, a0;
 	int rc, g, k;
 
 	for (g = 0; g < DIAG_GEO_N; g++)
@@ -369,7 +270,7 @@ static int beam_factor(struct diag_eval *e, const struct diag_state *s,
 	if (rc)
 		return rc;
 	nt = t->n_theta;
-	buf = malloc((2 * nt + 6 * nm + 1) * sizeof(*buf));
+	buf = malloc((2 * nt + 7 * nm + 1) * sizeof(*buf));
 	if (!buf)
 		return stray_error_set(err, STRAY_ENOMEM, "diagnose",
 				       "out of memory");
@@ -380,7 +281,8 @@ static int beam_factor(struct diag_eval *e, const struct diag_state *s,
 	pair = rv + nm;
 	th = pair + 2 * nm;
 	al = th + nm;
-	trace_alpha(e, t, s->reflectance, s->spectral_slope, p, var, a, rv,
+	la = al + nm;
+	diag_trace_alpha(e, t, s->reflectance, s->spectral_slope, p, var, a, rv,
 		    1);
 	for (i = 0; i < e->n; i++)
 		for (k = 0; k < DIAG_SUB; k++) {
@@ -394,17 +296,22 @@ static int beam_factor(struct diag_eval *e, const struct diag_state *s,
 		if (k > 0 && pair[2 * i] - th[k - 1] < 1e-9)
 			continue;
 		th[k] = pair[2 * i];
-		al[k++] = pair[2 * i + 1];
+		al[k] = pair[2 * i + 1];
+		la[k] = al[k] > 0.0 ? log(al[k]) : 0.0;	/* read if > 0 */
+		k++;
 	}
-	m = (size_t)k;
-	a0 = th[0] <= 1.0 ? beam_mean(th, al, m, 0.0, b, s->beam_gauss_deg) /
-			    fine_at(th, al, m, 0.0) : 1.0;
+	f.th = th;
+	f.a = al;
+	f.la = la;
+	f.m = (size_t)k;
+	beam_quad_init(&q, b, s->beam_gauss_deg);
+	a0 = th[0] <= 1.0 ? beam_mean(&f, 0.0, &q) / fine_at(&f, 0.0) : 1.0;
 	for (i = 0; i < e->n; i++) {
 		double c = a[i * DIAG_SUB + DIAG_SUB / 2];
 
 		factor[i] = c > 0.0 && a0 > 0.0 ?
-			beam_mean(th, al, m, e->theta_deg[i], b,
-				  s->beam_gauss_deg) / c / a0 : 1.0;
+			beam_mean(&f, e->theta_deg[i], &q) / c / a0 :
+			1.0;
 	}
 	free(buf);
 	return STRAY_OK;
@@ -437,7 +344,7 @@ int diag_eval_model(struct diag_eval *e, const struct diag_state *s,
 	factor = work + n_work - 3 * n;
 	frac = factor + n;
 	bfac = frac + n;
-	rc = blend_geometry(e, s, work, alpha, relcov, err);
+	rc = diag_blend_geometry(e, s, work, alpha, relcov, err);
 	if (!rc && s->angle_offset_deg != 0.0)
 		rc = offset_factor(e, s, work, factor, err);
 	if (!rc && s->beam_half_deg > 0.0)

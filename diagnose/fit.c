@@ -23,25 +23,45 @@
 #define PROFILE_STEPS 14
 #define MODEL_TINY 1e-30	/* a model of 0 is a huge, finite residual */
 
-/* In-place Cholesky factor (lower) of an n x n SPD matrix; 0 if not. */
+/* In-place Cholesky factor (lower) of an n x n SPD matrix; 0 if not.
+ * Below the diagonal, four rows at a time: each element's sum keeps its
+ * own order (the same bits as one row at a time), the four independent
+ * sums hide the latency of the add that each would otherwise wait for. */
 static int cholesky(double *c, size_t n)
 {
 	size_t i, j, k;
 
 	for (j = 0; j < n; j++) {
-		double s = c[j * n + j];
+		const double *cj = c + j * n;
+		double s = cj[j];
 
 		for (k = 0; k < j; k++)
-			s -= c[j * n + k] * c[j * n + k];
+			s -= cj[k] * cj[k];
 		if (!(s > 0.0))
 			return 0;
 		c[j * n + j] = sqrt(s);
-		for (i = j + 1; i < n; i++) {
+		for (i = j + 1; i + 3 < n; i += 4) {
+			double *c0 = c + i * n, *c1 = c0 + n, *c2 = c1 + n,
+			       *c3 = c2 + n;
+			double t0 = c0[j], t1 = c1[j], t2 = c2[j], t3 = c3[j];
+
+			for (k = 0; k < j; k++) {
+				t0 -= c0[k] * cj[k];
+				t1 -= c1[k] * cj[k];
+				t2 -= c2[k] * cj[k];
+				t3 -= c3[k] * cj[k];
+			}
+			c0[j] = t0 / cj[j];
+			c1[j] = t1 / cj[j];
+			c2[j] = t2 / cj[j];
+			c3[j] = t3 / cj[j];
+		}
+		for (; i < n; i++) {
 			double t = c[i * n + j];
 
 			for (k = 0; k < j; k++)
-				t -= c[i * n + k] * c[j * n + k];
-			c[i * n + j] = t / c[j * n + j];
+				t -= c[i * n + k] * cj[k];
+			c[i * n + j] = t / cj[j];
 		}
 	}
 	return 1;
@@ -50,10 +70,15 @@ static int cholesky(double *c, size_t n)
 /*
  * Covariance of the log10 residuals, C = (diag(s_m/m)^2 + relcov) /
  * ln(10)^2 (first order), whitened through its Cholesky factor L:
- * chi2 = |L^-1 r|^2 (generalised least squares).
+ * chi2 = |L^-1 r|^2 (generalised least squares).  The factor of the last
+ * C is kept (e->chol_*): relcov depends on the geometry blend and the
+ * floor/leak share only, so a fit of re-weighted or post-processed
+ * causes factors it once, not per evaluation (n^3 / 6 each, the fit's
+ * largest cost); the same C gives the same factor, bit for bit.
  */
-static int whiten(const struct diag_data *d, const double *relcov,
-		  const double *r, double *w, double *cov)
+static int whiten(struct diag_eval *e, const struct diag_data *d,
+		  const double *relcov, const double *r, double *w,
+		  double *cov)
 {
 	size_t i, k, n = d->n;
 
@@ -65,7 +90,25 @@ static int whiten(const struct diag_data *d, const double *relcov,
 					  (i == k ? rm * rm : 0.0)) /
 					 (M_LN10 * M_LN10);
 		}
-	if (!cholesky(cov, n))
+	if (e->chol_n == n &&
+	    memcmp(e->chol_in, cov, n * n * sizeof(*cov)) == 0) {
+		memcpy(cov, e->chol_out, n * n * sizeof(*cov));
+	} else {
+		double *in = realloc(e->chol_in, 2 * n * n * sizeof(*in));
+
+		e->chol_n = 0;
+		if (in) {
+			e->chol_in = in;
+			e->chol_out = in + n * n;
+			memcpy(e->chol_in, cov, n * n * sizeof(*cov));
+		}
+		e->chol_ok = cholesky(cov, n);
+		if (in) {
+			memcpy(e->chol_out, cov, n * n * sizeof(*cov));
+			e->chol_n = n;
+		}
+	}
+	if (!e->chol_ok)
 		return 0;
 	for (i = 0; i < n; i++) {	/* forward substitution */
 		double t = r[i];
@@ -108,7 +151,7 @@ int diag_chi2(struct diag_eval *e, const struct diag_data *d,
 		if (model)
 			model[i] = a[i];
 	}
-	if (!rc && !whiten(d, rel, r, w, cov))
+	if (!rc && !whiten(e, d, rel, r, w, cov))
 		for (i = 0; i < n; i++)	/* not SPD: the diagonal alone */
 			w[i] = r[i] / (sqrt(fmax(rel[i * n + i], 0.0) +
 				pow(d->sigma[i] / d->alpha[i], 2)) / M_LN10);
@@ -209,12 +252,15 @@ static int fit_from(struct diag_eval *e, const struct diag_data *d,
 int diag_fit_run(struct diag_eval *e, const struct diag_data *d,
 		 struct diag_fit *f, int warm, struct stray_error *err)
 {
-	static double rows[STARTS_MAX][DIAG_PARAMS_MAX];
+	double (*rows)[DIAG_PARAMS_MAX] = malloc(STARTS_MAX * sizeof(*rows));
 	const struct diag_cause *last = f->cause[f->n_causes - 1];
 	double best_c[KEEP_STARTS], best_p[KEEP_STARTS][DIAG_FIT_PMAX];
 	int c, n_rows, i, k, o, rc = STRAY_OK;
 	struct diag_state s;
 
+	if (!rows)	/* per call: the step's candidates fit side by side */
+		return stray_error_set(err, STRAY_ENOMEM, "diagnose",
+				       "out of memory");
 	f->n_p = 0;
 	f->k = 0;
 	for (c = 0; c < f->n_causes; c++) {
@@ -261,6 +307,7 @@ int diag_fit_run(struct diag_eval *e, const struct diag_data *d,
 	f->converged = isfinite(f->chi2);
 	for (i = 0; i < f->n_p; i++)
 		f->ci_lo[i] = f->ci_hi[i] = f->p[i];
+	free(rows);
 	return rc;
 }
 

@@ -32,12 +32,15 @@ TOOLS_LDLIBS := $(DIAG_LIB) $(TOOLS_LDLIBS)
 # test_diag_errors (bad input, no tracing), test_diag_runner (the
 # library's public headers with a runner of its own, small traces) and
 # test_diag_beams (pivot-offset nodes in one pass = full re-traces, small
-# traces) run in both passes.
+# traces) and test_diag_speed (issue 27: two fitting threads = one, bit
+# for bit, every trace on the caller's thread; small traces) run in both
+# passes.
 DIAG_TRUTH := $(B)/obj/tests/diagnose/truth.o
 DIAG_TESTS := $(patsubst tests/diagnose/%.c,$(B)/tests/diagnose/%,\
 	$(wildcard tests/diagnose/test_*.c))
 DIAG_TESTS_FAST := $(B)/tests/diagnose/test_diag_errors \
-	$(B)/tests/diagnose/test_diag_runner $(B)/tests/diagnose/test_diag_beams
+	$(B)/tests/diagnose/test_diag_runner $(B)/tests/diagnose/test_diag_beams \
+	$(B)/tests/diagnose/test_diag_speed
 TESTS += $(DIAG_TESTS_FAST)
 TESTS_SLOW += $(filter-out $(DIAG_TESTS_FAST),$(DIAG_TESTS))
 

@@ -18,7 +18,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
+#include "candidates.h"
 #include "diagnose/diag_result.h"
 #include "diagnose/diag_surfaces.h"
 #include "stray/errfmt.h"
@@ -73,6 +75,41 @@ static void rms(const struct diag_data *d, const double *r, double *all,
 		region[k] = count[k] ? sqrt(sr[k] / count[k]) : NAN;
 }
 
+/* A stage's cost, said in the log (issue 27: where the time goes): the
+ * traces it added, their seconds, and its wall time with the fits. */
+struct stage {
+	size_t traces;
+	double trace_s, t0, cpu0;
+};
+
+static double clock_s(clockid_t id)
+{
+	struct timespec ts;
+
+	clock_gettime(id, &ts);
+	return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+static void stage_start(const struct diag_eval *e, struct stage *g)
+{
+	g->traces = e->n_traces;
+	g->trace_s = e->trace_seconds;
+	g->t0 = clock_s(CLOCK_MONOTONIC);
+	g->cpu0 = clock_s(CLOCK_PROCESS_CPUTIME_ID);
+}
+
+/* cpu: this process's threads (a shared machine's wall clock counts the
+ * other processes too) */
+static void stage_say(const struct diag_eval *e, const struct stage *g,
+		      void (*log)(const char *), const char *what)
+{
+	say(log, "    [%s: %zu traces, %.2f s tracing, %.2f s wall, "
+	    "%.2f s cpu in all]", what, e->n_traces - g->traces,
+	    e->trace_seconds - g->trace_s,
+	    clock_s(CLOCK_MONOTONIC) - g->t0,
+	    clock_s(CLOCK_PROCESS_CPUTIME_ID) - g->cpu0);
+}
+
 static int uses(const struct diag_fit *f, const struct diag_cause *c)
 {
 	int i;
@@ -121,6 +158,27 @@ static const struct diag_cause *scene_cause(const struct diag_eval *e,
 	return NULL;
 }
 
+/* Would c's grid have to be traced at other geometries of cur (a
+ * re-trace cause joining another one)?  Such a candidate goes through the
+ * screen (candidates.c): its combined grid costs a trace per node pair (a
+ * pivot-offset pass, eight nominal traces' time, per node of the other
+ * axis), so it is first fitted with the interaction neglected
+ * (geometry_blend.c, no trace) and traced only when that lowers BIC by at
+ * least half the margin. */
+static int needs_combined_grid(const struct diag_fit *cur,
+			       const struct diag_cause *c)
+{
+	int i;
+
+	if (c->kind != DIAG_RETRACE)
+		return 0;
+	for (i = 0; i < cur->n_causes; i++)
+		if (cur->cause[i]->kind == DIAG_RETRACE &&
+		    cur->cause[i]->geo_axis != c->geo_axis)
+			return 1;
+	return 0;
+}
+
 /* Greedy forward steps from `cur`; each must lower BIC by the margin.
  * Candidates are the causes that earned their place alone (a cause that
  * cannot improve the baseline by itself is not tried in combination: it
@@ -132,19 +190,33 @@ static int forward(struct diag_eval *e, const struct diag_data *d,
 	int i, rc = STRAY_OK;
 
 	while (cur->n_causes < DIAG_COMBO_MAX && !rc) {
-		struct diag_fit best, f;
+		struct diag_candidate c[DIAG_CAUSES_MAX];
+		struct diag_fit best;
+		int n = 0;
 
-		best.bic = INFINITY;
-		for (i = 0; e->causes[i] && !rc; i++) {
+		for (i = 0; e->causes[i] && n < DIAG_CAUSES_MAX; i++) {
 			if (uses(cur, e->causes[i]) ||
 			    !usable(e, e->causes[i]) ||
 			    !earned_alone(r, e->causes[i]))
 				continue;
-			f = *cur;
-			f.cause[f.n_causes++] = e->causes[i];
-			rc = diag_fit_run(e, d, &f, 1, err);
-			if (!rc && f.bic < best.bic)
-				best = f;
+			c[n].f = *cur;
+			c[n].f.cause[c[n].f.n_causes++] = e->causes[i];
+			c[n++].combined = needs_combined_grid(cur,
+							      e->causes[i]);
+		}
+		rc = diag_fit_candidates(e, d, cur->bic, c, n, err);
+		best.bic = INFINITY;
+		for (i = 0; i < n && !rc; i++) {
+			if (c[i].screened) {
+				say(log, "  (%s: BIC %.1f -> %.1f with the "
+				    "interaction neglected; its combined grid "
+				    "not traced)",
+				    c[i].f.cause[c[i].f.n_causes - 1]->name,
+				    cur->bic, c[i].screen_bic);
+				continue;
+			}
+			if (c[i].f.bic < best.bic)
+				best = c[i].f;
 		}
 		if (rc || !(cur->bic - best.bic > DIAG_BIC_MARGIN))
 			break;
@@ -225,14 +297,22 @@ static int simplify(struct diag_eval *e, const struct diag_data *d,
 	return rc;
 }
 
+/* Each cause alone.  The re-trace causes are traced and fitted here in
+ * turn, the others fitted meanwhile on a second thread (candidates.c);
+ * the table and the log keep the registry's order. */
 static int fit_singles(struct diag_eval *e, const struct diag_data *d,
 		       struct diag_result *r, void (*log)(const char *),
 		       struct stray_error *err)
 {
-	int i, rc = STRAY_OK;
+	struct diag_candidate c[DIAG_CAUSES_MAX];
+	struct stage g[DIAG_CAUSES_MAX], all;
+	double wall[DIAG_CAUSES_MAX];
+	struct diag_aside a;
+	int i, n_aside = 0, at[DIAG_CAUSES_MAX], rc;
 
 	r->n_single = 0;
-	for (i = 0; e->causes[i] && !rc; i++) {
+	stage_start(e, &all);
+	for (i = 0; e->causes[i] && r->n_single < DIAG_CAUSES_MAX; i++) {
 		struct diag_fit *f = &r->single[r->n_single];
 
 		if (!usable(e, e->causes[i]))
@@ -240,12 +320,38 @@ static int fit_singles(struct diag_eval *e, const struct diag_data *d,
 		memset(f, 0, sizeof(*f));
 		f->n_causes = 1;
 		f->cause[0] = e->causes[i];
-		rc = diag_fit_run(e, d, f, 0, err);
-		if (!rc)
-			say(log, "  %-18s chi2 %10.1f  BIC %10.1f",
-			    e->causes[i]->name, f->chi2, f->bic);
+		if (e->causes[i]->kind != DIAG_RETRACE) {
+			memset(&c[n_aside], 0, sizeof(c[n_aside]));
+			c[n_aside].f = *f;
+			at[n_aside++] = r->n_single;
+		}
 		r->n_single++;
 	}
+	rc = diag_aside_start(&a, e, d, c, n_aside, err);
+	for (i = 0; i < r->n_single && !rc; i++) {
+		if (r->single[i].cause[0]->kind != DIAG_RETRACE)
+			continue;
+		stage_start(e, &g[i]);
+		rc = diag_fit_run(e, d, &r->single[i], 0, err);
+		wall[i] = clock_s(CLOCK_MONOTONIC) - g[i].t0;
+		g[i].traces = e->n_traces - g[i].traces;
+		g[i].trace_s = e->trace_seconds - g[i].trace_s;
+	}
+	rc = diag_aside_finish(&a, e, d, c, n_aside, rc, err);
+	for (i = 0; i < n_aside && !rc; i++)
+		r->single[at[i]] = c[i].f;
+	for (i = 0; i < r->n_single && !rc; i++) {
+		const struct diag_fit *f = &r->single[i];
+
+		say(log, "  %-18s chi2 %10.1f  BIC %10.1f", f->cause[0]->name,
+		    f->chi2, f->bic);
+		if (f->cause[0]->kind == DIAG_RETRACE)
+			say(log, "    [%s: %zu traces, %.2f s tracing, %.2f s "
+			    "wall]", f->cause[0]->name, g[i].traces,
+			    g[i].trace_s, wall[i]);
+	}
+	if (!rc)
+		stage_say(e, &all, log, "each cause alone");
 	return rc;
 }
 
@@ -301,6 +407,7 @@ static int name_causes(struct diag_eval *e, const struct diag_data *d,
 		       void (*log)(const char *), struct stray_error *err)
 {
 	struct diag_fit cur;
+	struct stage g;
 	int i, rc;
 
 	memset(&cur, 0, sizeof(cur));
@@ -315,15 +422,20 @@ static int name_causes(struct diag_eval *e, const struct diag_data *d,
 		return STRAY_OK;
 	}
 	say(log, "greedy combinations from %s:", cur.cause[0]->name);
+	stage_start(e, &g);
 	rc = forward(e, d, r, &cur, log, err);
 	if (!rc)
 		rc = backward(e, d, &cur, log, err);
 	if (!rc)
 		rc = simplify(e, d, &cur, log, err);
-	if (!rc)
+	if (!rc) {
+		stage_say(e, &g, log, "combinations");
+		stage_start(e, &g);
 		rc = diag_fit_intervals(e, d, &cur, err);
+	}
 	if (rc)
 		return rc;
+	stage_say(e, &g, log, "intervals");
 	r->explained = diag_chi2_pvalue(cur.chi2, (int)d->n - cur.k) >= P_FINAL;
 	if (r->explained)
 		r->named = cur;
@@ -354,6 +466,8 @@ int diag_run(struct diag_eval *e, const struct diag_data *d,
 	r->significant = r->p_before < DIAG_P_ACCEPT;
 	say(log, "baseline: chi2 %.1f for %d points (p = %.3g)",
 	    r->chi2_before, r->dof_before, r->p_before);
+	say(log, "    [nominal: %zu traces, %.2f s tracing]", e->n_traces,
+	    e->trace_seconds);
 	/* defaults: the corrected model is the baseline */
 	memcpy(r->model_after, r->model_before, d->n * sizeof(double));
 	memcpy(r->resid_after, r->resid_before, d->n * sizeof(double));

@@ -239,6 +239,11 @@ int diag_trace_get(struct diag_eval *e, const double *geo, int fine,
 	*out = cached(e, geo, fine);
 	if (*out)
 		return STRAY_OK;
+	if (e->no_trace) {	/* candidates.c: the caller's thread traces */
+		e->missed = 1;
+		return stray_error_set(err, STRAY_ERANGE, "diagnose",
+				       "a trace not made yet");
+	}
 	if (!fine && !isnan(geo[DIAG_GEO_PIVOT])) {
 		rc = trace_pivot_nodes(e, geo, err);
 		*out = rc ? NULL : cached(e, geo, fine);
@@ -256,6 +261,12 @@ int diag_trace_get(struct diag_eval *e, const double *geo, int fine,
 	e->cache[e->n_cache++] = t;
 	*out = t;
 	return STRAY_OK;
+}
+
+int diag_trace_cache_reserve(struct diag_eval *e, size_t more,
+			     struct stray_error *err)
+{
+	return cache_room(e, more, err);
 }
 
 void diag_trace_cache_free(struct diag_eval *e)

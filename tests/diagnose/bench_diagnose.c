@@ -4,7 +4,9 @@
  * radius 0.05 mm hidden on ref4, `stray diagnose` run as a user would.
  * Reported as wall time and as a ratio to one nominal trace of the same
  * angles and paths measured in the same run (the unit the diagnosis is
- * made of).
+ * made of), and against issue 27's target of 10 s wall on 2 cores as a
+ * figure, not a verdict: on a shared machine the wall clock counts the
+ * other processes too, so the cpu seconds are printed beside it.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,6 +24,7 @@
 
 #define N_ANGLES 90
 #define RAYS 200000
+#define TARGET_WALL_S 10.0	/* issue 27: "<= 10 s wall on 2 cores" */
 
 static double now_s(void)
 {
@@ -108,13 +111,30 @@ int main(void)
 	       N_ANGLES, RAYS, t_diag, t_diag / t_trace, t_trace,
 	       cJSON_GetObjectItem(j, "traces")->valuedouble);
 	/* on a shared machine the wall clock counts other processes too */
-	printf("  cpu of stray diagnose: %.1f s user + %.1f s system\n",
+	printf("  cpu of stray diagnose: %.1f s user + %.1f s system; "
+	       "%.1f s of tracing\n",
 	       tv_s(ru1.ru_utime) - tv_s(ru0.ru_utime),
-	       tv_s(ru1.ru_stime) - tv_s(ru0.ru_stime));
-	printf("  named:");
-	cJSON_ArrayForEach(it, cJSON_GetObjectItem(j, "causes"))
+	       tv_s(ru1.ru_stime) - tv_s(ru0.ru_stime),
+	       cJSON_GetObjectItem(j, "trace_seconds")->valuedouble);
+	printf("  wall %.1f s against the %.0f s target: %.2f x the target\n",
+	       t_diag, TARGET_WALL_S, t_diag / TARGET_WALL_S);
+	printf("  named (before and after a change must agree):");
+	cJSON_ArrayForEach(it, cJSON_GetObjectItem(j, "causes")) {
+		const cJSON *p, *ci = cJSON_GetObjectItem(it, "intervals");
+
 		printf(" %s", cJSON_GetObjectItem(it, "name")->valuestring);
-	printf("; rms %.4f -> %.4f\n",
+		cJSON_ArrayForEach(p, cJSON_GetObjectItem(it, "params")) {
+			const cJSON *iv = cJSON_GetObjectItem(ci, p->string);
+
+			printf(" %s %.6g", p->string, p->valuedouble);
+			if (cJSON_GetArraySize(iv) == 2)
+				printf(" [%.6g, %.6g]",
+				       cJSON_GetArrayItem(iv, 0)->valuedouble,
+				       cJSON_GetArrayItem(iv, 1)->valuedouble);
+		}
+		printf(";");
+	}
+	printf(" rms %.4f -> %.4f\n",
 	       cJSON_GetObjectItem(j, "rms_before")->valuedouble,
 	       cJSON_GetObjectItem(j, "rms_after")->valuedouble);
 	cJSON_Delete(j);

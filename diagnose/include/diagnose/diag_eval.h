@@ -40,6 +40,23 @@ struct diag_eval {
 	size_t n_traces;
 	double trace_seconds;
 	double *direct_share;	/* nominal direct / total at theta_i */
+	/* geometry axes (bit per enum diag_geo) whose effect is taken as a
+	 * factor from their own nodes, the interaction with the other axes
+	 * neglected: no trace of a combined grid (run.c's screen); 0 */
+	unsigned factorized;
+	/* threads fitting one greedy step's candidates (candidates.c; 0:
+	 * two, 1: the caller's alone) */
+	int fit_threads;
+	/* a copy fitting beside the caller (candidates.c): a trace not
+	 * cached is not made, missed set and an error returned */
+	int no_trace, missed;
+	/* the last geometry blend: its key, alpha then relcov (n + n^2) */
+#define DIAG_BLEND_KEY (DIAG_GEO_N + 3)
+	double blend_key[DIAG_BLEND_KEY], *blend_alpha;
+	/* the last residual covariance and its Cholesky factor (fit.c) */
+	double *chol_in, *chol_out;
+	size_t chol_n;
+	int chol_ok;
 	/* system curves (diagnose/lens.c): light arriving per incidence bin
 	 * beyond the lens's field, [bin][measured], and the nominal model */
 	int n_lens_bins;
