@@ -69,7 +69,7 @@ struct outcome {
 static void diagnose(const char *csv, int fit_threads, struct spy *sp,
 		     struct outcome *out)
 {
-	const struct tracer_runner runner = { spy_run, sp };
+	const struct tracer_runner runner = { spy_run, sp, NULL };
 	const struct diag_fit *f;
 	struct stray_error err;
 	struct diag_data d;
