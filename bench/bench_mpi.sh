@@ -49,7 +49,11 @@ vals() { cat "$tmp/$1.${2:-s}"; }
 med() { spread $(vals "$@") | cut -d' ' -f1; }
 stat() { sed -n "s/.* $2 \([0-9.]*\).*/\1/p" "$tmp/$1.err" | tail -n 1; }
 
-args=(trace --scene ref4 --angles "$angles" --rays "$rays" --seed 3 --json)
+# the detector-side estimator alone: the cost model's pieces and the
+# figures of mpi/README.md (B, the default of `trace` since, adds its
+# samples to the pieces: tracer/README.md)
+args=(trace --scene ref4 --angles "$angles" --rays "$rays" --seed 3 --json
+	--no-light-paths)
 for ((i = 0; i < pairs; i++)); do
 	run t1 "$stray" "${args[@]}" --threads 1
 	run n1 mpirun -n 1 "$smpi" --stats "${args[@]}"

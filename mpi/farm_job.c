@@ -18,6 +18,7 @@ struct job_head {
 	int32_t n_theta, n_sets, has_lens, record_paths;
 	int32_t has_shifts;	/* opts.beam_shift_z follows theta_deg */
 	int32_t id;		/* the trace's number in its set */
+	int32_t light_paths, light_weights;	/* strategy B (light.h) */
 };
 
 static size_t str_size(const char *s)
@@ -50,6 +51,8 @@ char *farm_job_pack(const struct tracer_scene_spec *spec,
 	h.record_paths = o->record_paths != 0;
 	h.has_shifts = o->beam_shift_z != NULL;
 	h.id = id;
+	h.light_paths = o->light_paths != 0;
+	h.light_weights = o->light_weights;
 	n += str_size(spec->scene) + str_size(spec->lens);
 	for (i = 0; i < spec->n_sets; i++)
 		n += str_size(spec->sets[i]);
@@ -100,6 +103,7 @@ int farm_job_unpack(char *buf, size_t len, struct farm_job *j,
 	memcpy(&h, buf, sizeof(h));
 	if (h.n_theta < 1 || h.n_sets < 0 || h.n_sets > FARM_SETS_MAX ||
 	    (h.has_shifts != 0 && h.has_shifts != 1) ||
+	    (h.light_paths != 0 && h.light_paths != 1) ||
 	    (size_t)h.n_theta > (len - sizeof(h)) / sizeof(double) /
 				(h.has_shifts ? 2 : 1))
 		return stray_error_set(err, STRAY_EINVAL, "job", "malformed");
@@ -113,6 +117,8 @@ int farm_job_unpack(char *buf, size_t len, struct farm_job *j,
 	j->o.max_depth = h.max_depth;
 	j->o.guide = h.guide;
 	j->o.record_paths = h.record_paths;
+	j->o.light_paths = h.light_paths;
+	j->o.light_weights = h.light_weights;
 	j->beam_shift_z = h.beam_shift_z;
 	j->abg_g = h.abg_g;
 	j->o.n_theta = (size_t)h.n_theta;

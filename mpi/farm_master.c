@@ -179,17 +179,21 @@ static int send_piece(struct farm_set *fs, struct outbox *ob,
 		farm_last.job_bytes += len;
 		farm_last.scene_builds++;
 	}
-	if (!rc && tk->send_guide) {
-		struct farm_guide_msg *gm = malloc(sizeof(*gm));
+	if (!rc && tk->send_guide) {	/* B's ratios packed after it */
+		size_t nr = t->ratio ? t->o->n_theta : 0;
+		size_t len = sizeof(struct farm_guide_msg) + nr * sizeof(double);
+		struct farm_guide_msg *gm = malloc(len);
 
 		if (gm) {
 			gm->trace = (int64_t)tk->trace;
 			gm->g = *t->g;
+			if (nr)
+				memcpy(gm + 1, t->ratio, nr * sizeof(double));
 		}
-		rc = gm ? post(ob, gm, (int)sizeof(*gm), MPI_BYTE, rank,
-			       TAG_GUIDE, err) :
+		rc = gm ? post(ob, gm, (int)len, MPI_BYTE, rank, TAG_GUIDE,
+			       err) :
 		     stray_error_set(err, STRAY_ENOMEM, "mpi", "out of memory");
-		farm_last.job_bytes += sizeof(*gm);
+		farm_last.job_bytes += len;
 	}
 	if (rc) {
 		free(msg);
@@ -451,6 +455,10 @@ int farm_trace(const struct tracer_scene_spec *spec,
 	rc = tracer_trace_check(s, o, err);	/* before any rank is bothered */
 	if (rc)
 		return rc;
+	if (size > 1 && o->light_ratio &&
+	    !(o->light_paths && tracer_pilot_wanted(o)))
+		return stray_error_set(err, STRAY_EINVAL, "mpi", "a caller's "
+			"light_ratio is not carried (light_paths sizes B)");
 	item.spec = *spec;
 	item.o = o;
 	memset(res, 0, sizeof(*res));

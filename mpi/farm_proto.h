@@ -13,7 +13,8 @@
 
 enum farm_tag {
 	TAG_JOB = 1,	/* bytes: farm_job packed (its trace's number) */
-	TAG_GUIDE,	/* bytes: struct farm_guide_msg */
+	TAG_GUIDE,	/* bytes: struct farm_guide_msg, then (light_paths)
+			 * B's n_theta ratios as doubles */
 	TAG_TASK,	/* int[5]: trace, then struct piece */
 	TAG_RESULT,	/* double[]: the piece's payload (piece.h) */
 	TAG_ERROR,	/* char[]: one line from a failed rank */

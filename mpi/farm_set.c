@@ -76,6 +76,7 @@ static void free_pass(struct farm_pass *p)
 	free(p->tables);
 	free(p->plan);
 	free(p->s2);
+	free(p->light);
 	tracer_result_free(&p->r);
 	memset(p, 0, sizeof(*p));
 }
@@ -86,6 +87,8 @@ static void free_trace(struct farm_trace *t)
 	free_pass(&t->pass[PIECE_MAIN]);
 	free(t->g);
 	t->g = NULL;
+	free(t->ratio);
+	t->ratio = NULL;
 	if (t->own_built)
 		tracer_scene_free(&t->own);
 	t->own_built = 0;
@@ -132,6 +135,16 @@ static int open_pass(struct farm_set *fs, struct farm_trace *t, int pass)
 		return fail(fs, STRAY_ENOMEM, "out of memory");
 	p->n_plan = piece_plan(pass, p->o.n_batches, p->o.n_theta, chunks,
 			       p->plan);
+	if (pass == PIECE_PILOT && p->o.light_paths) {	/* B's statistics */
+		size_t k;
+
+		p->light = calloc((size_t)p->o.n_batches * p->o.n_theta *
+				  TRACER_LIGHT_STATS, sizeof(double));
+		if (!p->light)
+			return fail(fs, STRAY_ENOMEM, "out of memory");
+		for (k = 0; k < p->n_plan; k++)
+			p->plan[k].light = 1;
+	}
 	*(pass == PIECE_PILOT ? &farm_last.pilot_tasks : &farm_last.tasks) +=
 		p->n_plan;
 	return STRAY_OK;
@@ -277,8 +290,9 @@ const struct piece *farm_set_piece(const struct farm_set *fs,
 	return &fs->t[t->trace].pass[t->pass].plan[t->k];
 }
 
-/* The pilot is in: the guide, as tracer_trace builds it, then the main
- * pass is free to go. */
+/* The pilot is in: the guide, as tracer_trace builds it (and with
+ * light_paths B's ratios from the same pilot, tracer/batches.h), then the
+ * main pass is free to go. */
 static int pilot_done(struct farm_set *fs, struct farm_trace *t)
 {
 	struct farm_pass *p = &t->pass[PIECE_PILOT];
@@ -286,6 +300,13 @@ static int pilot_done(struct farm_set *fs, struct farm_trace *t)
 	t->g = malloc(sizeof(*t->g));
 	if (!t->g || tracer_guide_from_pilot(t->g, &p->r, p->s2))
 		return fail(fs, STRAY_ENOMEM, "out of memory");
+	if (p->light) {
+		t->ratio = malloc(p->o.n_theta * sizeof(double));
+		if (!t->ratio)
+			return fail(fs, STRAY_ENOMEM, "out of memory");
+		tracer_light_alloc(&p->r, p->light, t->ratio);
+		t->pass[PIECE_MAIN].o.light_ratio = t->ratio;
+	}
 	free_pass(p);
 	t->phase = FT_MAIN;
 	pthread_cond_broadcast(&fs->wake);
@@ -317,7 +338,7 @@ int farm_set_apply(struct farm_set *fs, const struct farm_take *tk,
 
 	if (fs->failed)		/* the set stops: pieces still out are dropped */
 		return STRAY_OK;
-	piece_apply(pc, payload, &p->r, p->s2);
+	piece_apply(pc, payload, &p->r, p->s2, p->light);
 	if (p->tables && piece_apply_paths(pc, payload, p->tables))
 		return fail(fs, STRAY_ENOMEM, "out of memory recording paths");
 	if (++p->done < p->n_plan)

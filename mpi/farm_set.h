@@ -40,6 +40,8 @@ struct farm_pass {
 	size_t n_plan, next, done;
 	struct tracer_result r;
 	double *s2;			/* pilot: [batch][cell][theta] */
+	double *light;			/* pilot of light_paths: B's
+					 * [batch][theta][TRACER_LIGHT_STATS] */
 	struct tracer_path_table *tables;	/* per batch (record_paths) */
 };
 
@@ -49,6 +51,8 @@ struct farm_trace {
 	int phase;			/* enum farm_phase */
 	struct farm_pass pass[2];	/* PIECE_PILOT, PIECE_MAIN */
 	struct tracer_guide *g;		/* NULL until built (or unguided) */
+	double *ratio;			/* light_paths: B's samples per path
+					 * per angle, with the guide; or NULL */
 	/* rank 0's own thread: the caller's scene, or one it built */
 	const struct tracer_scene *scene;
 	struct tracer_scene own;

@@ -19,6 +19,7 @@ struct held_trace {
 	struct tracer_scene scene;
 	struct tracer_lens lens;
 	struct tracer_guide guide;
+	double *ratio;		/* B's samples per path per angle, or NULL */
 	int have_guide, failed;
 };
 
@@ -57,6 +58,7 @@ static void drop(struct worker *w, int id)
 
 			tracer_scene_free(&h->scene);
 			tracer_lens_free(&h->lens);
+			free(h->ratio);
 			free(h->job_buf);
 			free(h);
 			w->t[i] = w->t[--w->n];
@@ -110,17 +112,41 @@ static void start_job(struct worker *w, int len)
 	}
 }
 
-static void take_guide(struct worker *w)
+/* The guide of a trace, and with light_paths its n_theta B ratios after
+ * it (farm_proto.h); a malformed one goes to rank 0 as an error. */
+static void take_guide(struct worker *w, int len)
 {
-	struct farm_guide_msg *gm = malloc(sizeof(*gm));
+	struct farm_guide_msg *gm = malloc(len > 0 ? (size_t)len : 1);
 	struct held_trace *h;
+	struct stray_error err;
+	size_t nr;
 
-	MPI_Recv(gm, gm ? (int)sizeof(*gm) : 0, MPI_BYTE, 0, TAG_GUIDE,
-		 MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-	if (gm && (h = find(w, (int)gm->trace))) {
-		h->guide = gm->g;
-		h->have_guide = 1;
+	MPI_Recv(gm, gm ? len : 0, MPI_BYTE, 0, TAG_GUIDE, MPI_COMM_WORLD,
+		 MPI_STATUS_IGNORE);
+	if (!gm || (size_t)len < sizeof(*gm) || !(h = find(w, (int)gm->trace))) {
+		free(gm);
+		return;
 	}
+	nr = ((size_t)len - sizeof(*gm)) / sizeof(double);
+	stray_error_clear(&err);
+	if (nr * sizeof(double) != (size_t)len - sizeof(*gm) ||
+	    (nr && nr != h->job.o.n_theta) ||
+	    (!nr && h->job.o.light_paths))
+		stray_error_set_value(&err, STRAY_EINVAL, "mpi",
+			"guide message of the wrong size (bytes)", len);
+	else if (nr && !(h->ratio = malloc(nr * sizeof(double))))
+		stray_error_set(&err, STRAY_ENOMEM, "mpi", "out of memory");
+	if (err.code) {
+		if (!h->failed)
+			send_error(&err);
+		h->failed = 1;
+		free(gm);
+		return;
+	}
+	h->guide = gm->g;
+	if (nr)
+		memcpy(h->ratio, gm + 1, nr * sizeof(double));
+	h->have_guide = 1;
 	free(gm);
 }
 
@@ -149,9 +175,14 @@ static void run_task(struct worker *w)
 	p.batch = msg[2];
 	p.theta_first = msg[3];
 	p.theta_n = msg[4];
+	p.light = 0;
 	po = h->job.o;
-	if (p.pass == PIECE_PILOT)
+	if (p.pass == PIECE_PILOT) {
 		tracer_pilot_opts(&h->job.o, &po);
+		p.light = po.light_paths;	/* B's statistics too */
+	} else if (h->ratio) {
+		po.light_ratio = h->ratio;	/* sized by the pilot */
+	}
 	if (p.pass != PIECE_PILOT && po.guide && !h->have_guide &&
 	    tracer_pilot_wanted(&po))
 		stray_error_set(&err, STRAY_EINVAL, "guide",
@@ -190,7 +221,7 @@ int farm_serve(void)
 			start_job(&w, len);
 			break;
 		case TAG_GUIDE:
-			take_guide(&w);
+			take_guide(&w, len);
 			break;
 		case TAG_TASK:
 			run_task(&w);

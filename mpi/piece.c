@@ -6,12 +6,20 @@
 
 #include "piece.h"
 
-size_t piece_payload_len(const struct piece *p)
+/* The doubles before a pilot's encoded s2 (the whole of a main piece's
+ * payload without path records). */
+static size_t fixed_len(const struct piece *p)
 {
 	size_t n = (size_t)p->theta_n;
 
 	return PIECE_HEAD + n * TRACER_ORDERS +
-	       (p->pass == PIECE_PILOT ? 1 + n * TRACER_GUIDE_CELLS : 0);
+	       (p->light ? n * TRACER_LIGHT_STATS : 0);
+}
+
+size_t piece_payload_len(const struct piece *p)
+{
+	return fixed_len(p) + (p->pass == PIECE_PILOT ?
+		1 + (size_t)p->theta_n * TRACER_GUIDE_CELLS : 0);
 }
 
 /*
@@ -121,7 +129,7 @@ static void unpack_s2(const double *q, size_t b, size_t f, size_t n,
 
 /* The payload's doubles; the pilot's s2 part encoded (pack_s2). */
 static size_t pack(const struct piece *p, const struct tracer_result *r,
-		   const double *s2, double *out)
+		   const double *s2, const double *light, double *out)
 {
 	size_t n = (size_t)p->theta_n, b = (size_t)p->batch;
 
@@ -132,10 +140,13 @@ static size_t pack(const struct piece *p, const struct tracer_result *r,
 	       TRACER_ENERGY_N * sizeof(double));
 	memcpy(out + PIECE_HEAD, r->power + b * n * TRACER_ORDERS,
 	       n * TRACER_ORDERS * sizeof(double));
+	if (p->light)	/* batch b's rows of this piece's angles */
+		memcpy(out + PIECE_HEAD + n * TRACER_ORDERS,
+		       light + b * n * TRACER_LIGHT_STATS,
+		       n * TRACER_LIGHT_STATS * sizeof(double));
 	if (p->pass != PIECE_PILOT)
-		return PIECE_HEAD + n * TRACER_ORDERS;
-	return PIECE_HEAD + n * TRACER_ORDERS +
-	       pack_s2(s2, b, n, out + PIECE_HEAD + n * TRACER_ORDERS);
+		return fixed_len(p);
+	return fixed_len(p) + pack_s2(s2, b, n, out + fixed_len(p));
 }
 
 /* A batch's path records (r->paths: that batch alone) after the fixed
@@ -170,10 +181,13 @@ static int run_into(const struct tracer_scene *s,
 {
 	struct tracer_trace_opts o = *po;
 	struct tracer_result r;
-	double *s2 = NULL;
+	double *s2 = NULL, *light = NULL;
 	int rc;
 
 	memset(&r, 0, sizeof(r));
+	if (p->light && (p->pass != PIECE_PILOT || !po->light_paths))
+		return stray_error_set(err, STRAY_EINVAL, "piece",
+			"B statistics asked of a pass without light_paths");
 	if (p->theta_first < 0 || p->theta_n < 1 ||
 	    (size_t)p->theta_first + (size_t)p->theta_n > po->n_theta)
 		return stray_error_set_value(err, STRAY_EINVAL, "piece",
@@ -181,18 +195,25 @@ static int run_into(const struct tracer_scene *s,
 	o.theta_deg = po->theta_deg + p->theta_first;
 	if (po->beam_shift_z)
 		o.beam_shift_z = po->beam_shift_z + p->theta_first;
+	if (po->light_ratio)	/* B's samples per path, per angle */
+		o.light_ratio = po->light_ratio + p->theta_first;
 	o.n_theta = (size_t)p->theta_n;
 	o.threads = 1;		/* ranks, not threads, share the work */
 	o.progress = NULL;
 	if (p->pass == PIECE_PILOT) {
 		s2 = calloc((size_t)o.n_batches * TRACER_GUIDE_CELLS *
 			    o.n_theta, sizeof(double));
-		if (!s2)
+		if (p->light)
+			light = calloc((size_t)o.n_batches * o.n_theta *
+				       TRACER_LIGHT_STATS, sizeof(double));
+		if (!s2 || (p->light && !light)) {
+			free(s2);
 			return stray_error_set(err, STRAY_ENOMEM, "piece",
 					       "out of memory");
+		}
 	}
-	rc = tracer_trace_batches(s, &o, p->pass == PIECE_PILOT ? NULL : g,
-				  p->batch, 1, s2, &r, err);
+	rc = tracer_trace_batches_light(s, &o, p->pass == PIECE_PILOT ? NULL :
+					g, p->batch, 1, s2, light, &r, err);
 	if (!rc && !fixed) {	/* piece_run_alloc: room for the most */
 		size_t n = piece_payload_len(p) + (o.record_paths ?
 			1 + r.paths.n * PIECE_PATH_FIELDS : 0);
@@ -205,7 +226,7 @@ static int run_into(const struct tracer_scene *s,
 			*out = fixed = nb;
 	}
 	if (!rc) {
-		size_t used = pack(p, &r, s2, fixed);
+		size_t used = pack(p, &r, s2, light, fixed);
 
 		if (o.record_paths && len) {
 			pack_paths(p, &r, fixed + used);
@@ -216,6 +237,7 @@ static int run_into(const struct tracer_scene *s,
 	}
 	tracer_result_free(&r);
 	free(s2);
+	free(light);
 	return rc;
 }
 
@@ -244,7 +266,7 @@ int piece_payload_ok(const struct piece *p, int record_paths,
 	size_t head = piece_payload_len(p);
 
 	if (p->pass == PIECE_PILOT) {	/* s2 encoded: at most dense */
-		size_t fixed = PIECE_HEAD + (size_t)p->theta_n * TRACER_ORDERS;
+		size_t fixed = fixed_len(p);
 
 		if (len < fixed + 1 || len > head)
 			return 0;
@@ -317,13 +339,20 @@ int piece_result_alloc(const struct tracer_trace_opts *po,
 }
 
 void piece_apply(const struct piece *p, const double *payload,
-		 struct tracer_result *r, double *s2)
+		 struct tracer_result *r, double *s2, double *light)
 {
 	size_t n = (size_t)p->theta_n, b = (size_t)p->batch;
 	size_t f = (size_t)p->theta_first, nt = r->n_theta;
 
 	r->batch_paths[b] = (uint64_t)payload[0];
-	r->casts += (uint64_t)payload[1];
+	/* a pilot's casts are its paths' (the same in every chunk: once)
+	 * plus its connections (per angle): tracer_trace()'s count, which
+	 * tracer_light_alloc reads; a main pass's count is only reported */
+	if (p->pass == PIECE_PILOT)
+		r->casts += (uint64_t)payload[2] +
+			    (f == 0 ? (uint64_t)(payload[1] - payload[2]) : 0);
+	else
+		r->casts += (uint64_t)payload[1];
 	r->connections += (uint64_t)payload[2];
 	/* every chunk traces the same paths: the energy of one is the batch's */
 	if (f == 0)
@@ -331,9 +360,12 @@ void piece_apply(const struct piece *p, const double *payload,
 		       TRACER_ENERGY_N * sizeof(double));
 	memcpy(r->power + (b * nt + f) * TRACER_ORDERS, payload + PIECE_HEAD,
 	       n * TRACER_ORDERS * sizeof(double));
+	if (p->light && light)
+		memcpy(light + (b * nt + f) * TRACER_LIGHT_STATS,
+		       payload + PIECE_HEAD + n * TRACER_ORDERS,
+		       n * TRACER_LIGHT_STATS * sizeof(double));
 	if (p->pass == PIECE_PILOT && s2)
-		unpack_s2(payload + PIECE_HEAD + n * TRACER_ORDERS, b, f, n,
-			  nt, s2);
+		unpack_s2(payload + fixed_len(p), b, f, n, nt, s2);
 }
 
 size_t piece_plan(int pass, int n_batches, size_t n_theta, int n_chunks,
@@ -355,6 +387,7 @@ size_t piece_plan(int pass, int n_batches, size_t n_theta, int n_chunks,
 			out[k].batch = b;
 			out[k].theta_first = (int)lo;
 			out[k].theta_n = (int)(hi - lo);
+			out[k].light = 0;
 			k++;
 		}
 	return k;

@@ -18,6 +18,8 @@ struct piece {
 	int pass;		/* enum piece_pass */
 	int batch;
 	int theta_first, theta_n;	/* angles [first, first + n) */
+	int light;		/* pilot with opts.light_paths: B's statistics
+				 * too (set from the pass's options, not sent) */
 };
 
 /* Doubles in a piece's payload (the pilot's: at most, its s2 tallies
@@ -25,7 +27,8 @@ struct piece {
 size_t piece_payload_len(const struct piece *p);
 
 /* Payload: batch_paths, casts, connections, energy[TRACER_ENERGY_N],
- * power[theta_n][TRACER_ORDERS], then (pilot) s2[cells][theta_n] as runs
+ * power[theta_n][TRACER_ORDERS], then (p->light) B's pilot statistics
+ * [theta_n][TRACER_LIGHT_STATS], then (pilot) s2[cells][theta_n] as runs
  * of nonzero values (n_runs, then start, length, values per run) or,
  * when not shorter, -1 and all the values (piece.c). */
 #define PIECE_HEAD (3 + TRACER_ENERGY_N)
@@ -72,12 +75,14 @@ int piece_apply_paths(const struct piece *p, const double *payload,
 int piece_result_alloc(const struct tracer_trace_opts *po,
 		       struct tracer_result *r, double **s2);
 
-/* Put a piece's payload into its rows of r (and s2). */
+/* Put a piece's payload into its rows of r (and s2; and, p->light,
+ * light [batches][n_theta][TRACER_LIGHT_STATS]: tracer_light_alloc's). */
 void piece_apply(const struct piece *p, const double *payload,
-		 struct tracer_result *r, double *s2);
+		 struct tracer_result *r, double *s2, double *light);
 
 /* The pieces of a pass in the order handed out: per batch, angle chunks
- * from the last (high angles: most connections) down; n_chunks >= 1. */
+ * from the last (high angles: most connections) down; n_chunks >= 1;
+ * light 0 (the caller sets it for a pilot of opts.light_paths). */
 size_t piece_plan(int pass, int n_batches, size_t n_theta, int n_chunks,
 		  struct piece *out);
 

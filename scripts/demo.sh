@@ -12,7 +12,8 @@
 #   (stray review) -> report
 # Usage: scripts/demo.sh BUILD_DIR [OUT_DIR]
 # DEMO_RAYS (paths per curve) and DEMO_STEP_DEG (photometer step) scale it;
-# DEMO_FRAMES=PX renders PX x PX windows instead of full frames.
+# DEMO_FRAMES=PX renders PX x PX windows instead of full frames (not the
+# flight frames of flightcheck: full always, below).
 set -euo pipefail
 build=${1:-build}
 out=${2:-$build/demo}
@@ -227,8 +228,12 @@ for c in fc_ref4 fc_ref4_r08; do
 	awk -F, '/^#/ || /^theta/ { next } $1 > 0 { printf "%s,%.10g\n", $1, 2e-3 * $2 }
 		BEGIN { print "theta_deg,alpha" }' "$out/$c.csv" > "$out/${c}_lens.csv"
 done
-fc_px=${DEMO_FRAMES:-0}	# >= 512 px: a 256 px window holds ~1 calibrator
-if [ "$fc_px" -gt 0 ] && [ "$fc_px" -lt 512 ]; then fc_px=512; fi
+# Full frames even in the small demo (~4 s): windows calibrate by luck.
+# With 512-1024 px windows 4-8 of the 10-35 stars that cannot be missed
+# were found (at least 30 % needed) for truth curves of seeds 2 and 3
+# and with light-side paths; the seed-1 detector-side curve passed at
+# 512 px.  Full frames passed with all of them.
+fc_px=0
 "$build/tests/flightcheck/make_flight" "$out/flight_frames" "$out/flight.aem" \
 	"$out/fc_ref4_r08_lens.csv" 1.7 12 "$fc_px" 30 85
 "$stray" flightcheck "$out/flight_frames" --aem "$out/flight.aem" \

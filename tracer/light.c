@@ -220,6 +220,7 @@ static void pilot_angle(struct worker_ctx *w, int b, size_t j,
 	double *st = w->light_pilot + ((size_t)b * w->o->n_theta + j) *
 				      TRACER_LIGHT_STATS;
 	uint64_t base = stream_base(w, j, b), k, c0 = out->casts;
+	uint64_t n0 = out->connections;
 	int g;
 
 	for (k = 0; k < TRACER_LIGHT_PILOT; k++) {
@@ -241,7 +242,11 @@ static void pilot_angle(struct worker_ctx *w, int b, size_t j,
 	}
 	st[0] += TRACER_LIGHT_PILOT;
 	st[2] += (double)(out->casts - c0);
-	out->casts = c0;	/* the pilot's casts count A's paths alone */
+	/* the pilot's casts and connections count A's paths alone: so a
+	 * pilot piece's casts - connections are its paths' own casts,
+	 * the same in every angle chunk (mpi/piece.c sums them once) */
+	out->casts = c0;
+	out->connections = n0;
 }
 
 void tracer_light_batch(struct worker_ctx *w, int b, uint64_t n_a,

@@ -54,6 +54,35 @@ static void test_mpi_trace_identical(void **state)
 	assert_true(file_has("n4.err", "stray-mpi: stats: ranks 4"));
 }
 
+/* Strategy B (--light-paths) through the farm: the pilot pieces return
+ * B's statistics, rank 0 sizes B and sends the ratios with the guide;
+ * 2 ranks, 3 ranks in angle chunks (the pilot's casts summed once per
+ * batch: tracer_light_alloc reads them) and one rank give the bytes of
+ * one process, and B did run (the curve is not --no-light-paths'). */
+#define LIGHT_ARGS "trace --scene ref4 --set segments=96 " \
+	"--angles 0:80:8,88.5,89,89.5 --rays 30000 --seed 7"
+
+static void test_mpi_trace_light_paths(void **state)
+{
+	(void)state;
+	assert_int_equal(shell("timeout 60 %s " LIGHT_ARGS " --light-paths "
+			       "--threads 1 --out l1.csv", bin("stray")), 0);
+	assert_int_equal(shell("timeout 60 %s " LIGHT_ARGS " --no-light-paths "
+			       "--out a1.csv", bin("stray")), 0);
+	assert_false(same_bytes("l1.csv", "a1.csv"));
+	assert_int_equal(shell("timeout 60 %s " LIGHT_ARGS " --light-paths "
+			       "--out ls.csv", bin("stray-mpi")), 0);
+	assert_true(same_bytes("l1.csv", "ls.csv"));
+	assert_int_equal(shell("timeout 90 mpirun --oversubscribe -n 2 %s "
+			       LIGHT_ARGS " --light-paths --out l2.csv",
+			       bin("stray-mpi")), 0);
+	assert_true(same_bytes("l1.csv", "l2.csv"));
+	assert_int_equal(shell("timeout 90 mpirun --oversubscribe -n 3 %s "
+			       "--angle-chunks 3 " LIGHT_ARGS " --light-paths "
+			       "--out l3.csv", bin("stray-mpi")), 0);
+	assert_true(same_bytes("l1.csv", "l3.csv"));
+}
+
 /* A different seed changes the bytes: the comparison can fail. */
 static void test_mpi_trace_seed_matters(void **state)
 {
@@ -144,6 +173,7 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_mpi_trace_identical),
 		cmocka_unit_test(test_mpi_trace_seed_matters),
+		cmocka_unit_test(test_mpi_trace_light_paths),
 		cmocka_unit_test(test_mpi_sweep_identical),
 		cmocka_unit_test(test_mpi_refuses_path_records),
 		cmocka_unit_test(test_mpi_sweep_bad_design),

@@ -45,7 +45,7 @@ static void run_scrambled(const struct tracer_scene *s,
 		buf = malloc(piece_payload_len(p) * sizeof(double));
 		stray_error_clear(&err);
 		assert_int_equal(piece_run(s, po, g, p, buf, &err), 0);
-		piece_apply(p, buf, r, pass == PIECE_PILOT ? *s2 : NULL);
+		piece_apply(p, buf, r, pass == PIECE_PILOT ? *s2 : NULL, NULL);
 		free(buf);
 	}
 }
@@ -186,7 +186,7 @@ static void test_pieces_path_records(void **state)
 						 &err), 0);
 		assert_true(piece_payload_ok(p, 1, buf, len));
 		assert_false(piece_payload_ok(p, 1, buf, len - 1));
-		piece_apply(p, buf, &parts, NULL);
+		piece_apply(p, buf, &parts, NULL, NULL);
 		assert_int_equal(piece_apply_paths(p, buf, tables), 0);
 	}
 	for (i = 0; i < 8; i++) {
@@ -215,6 +215,85 @@ static void test_pieces_path_records(void **state)
 	tracer_scene_free(&s);
 }
 
+/*
+ * Strategy B (opts.light_paths) in pieces: pilot pieces in 3 angle chunks
+ * in a scrambled order return B's statistics beside s2, and their casts
+ * are summed once per batch, so the pilot assembled is the whole
+ * pilot's (light rows, casts: what tracer_light_alloc reads); its ratios
+ * and guide then give main pieces the bits of tracer_trace().
+ */
+static void test_pieces_light(void **state)
+{
+	const double th[] = { 0, 60, 80, 88.5, 89, 89.5 };
+	struct tracer_trace_opts o, po;
+	struct tracer_scene s;
+	struct tracer_result whole, one, pilot, parts;
+	struct tracer_guide g;
+	struct stray_error err;
+	struct piece plan[8 * 3];
+	size_t n, i, nl = 8 * 6 * TRACER_LIGHT_STATS;
+	double *s2, *s2_one, *light, *light_one, ratio[6], *buf = NULL;
+
+	(void)state;
+	ref4(&s);
+	tracer_trace_defaults(&o);
+	o.theta_deg = th;
+	o.n_theta = 6;
+	o.n_paths = 20000;
+	o.n_batches = 8;
+	o.light_paths = 1;
+	stray_error_clear(&err);
+	assert_int_equal(tracer_trace(&s, &o, &whole, &err), 0);
+	tracer_pilot_opts(&o, &po);
+	s2_one = calloc(8 * TRACER_GUIDE_CELLS * 6, sizeof(double));
+	light_one = calloc(nl, sizeof(double));
+	light = calloc(nl, sizeof(double));
+	assert_non_null(s2_one);
+	assert_non_null(light_one);
+	assert_non_null(light);
+	assert_int_equal(tracer_trace_batches_light(&s, &po, NULL, 0, 8,
+		s2_one, light_one, &one, &err), 0);
+	n = piece_plan(PIECE_PILOT, 8, 6, 3, plan);
+	assert_int_equal(piece_result_alloc(&po, &pilot, &s2), 0);
+	for (i = 0; i < n; i++) {
+		struct piece p = plan[(i * 7 + 3) % n];
+		size_t len;
+
+		p.light = 1;
+		assert_int_equal(piece_run_alloc(&s, &po, NULL, &p, &buf, &len,
+						 &err), 0);
+		assert_true(piece_payload_ok(&p, 0, buf, len));
+		assert_false(piece_payload_ok(&p, 0, buf, len + 1));
+		piece_apply(&p, buf, &pilot, s2, light);
+	}
+	assert_memory_equal(light, light_one, nl * sizeof(double));
+	assert_memory_equal(s2, s2_one, 8 * TRACER_GUIDE_CELLS * 6 *
+			    sizeof(double));
+	assert_int_equal(pilot.casts, one.casts);
+	assert_int_equal(tracer_guide_from_pilot(&g, &pilot, s2), 0);
+	tracer_light_alloc(&pilot, light, ratio);
+	assert_true(ratio[5] > 0.0);	/* B does run at 89.5 deg */
+	o.light_ratio = ratio;
+	run_scrambled(&s, &o, &g, PIECE_MAIN, 3, &parts, NULL);
+	assert_memory_equal(whole.power, parts.power, (size_t)8 * 6 *
+			    TRACER_ORDERS * sizeof(double));
+	/* a light flag on a pass without light_paths is refused */
+	po.light_paths = 0;
+	plan[0].light = 1;
+	assert_int_equal(piece_run_alloc(&s, &po, NULL, &plan[0], &buf, &n,
+					 &err), STRAY_EINVAL);
+	free(buf);
+	free(s2);
+	free(s2_one);
+	free(light);
+	free(light_one);
+	tracer_result_free(&whole);
+	tracer_result_free(&one);
+	tracer_result_free(&pilot);
+	tracer_result_free(&parts);
+	tracer_scene_free(&s);
+}
+
 /* Bad pieces are refused with an error, never traced out of range. */
 static void test_pieces_bad_range(void **state)
 {
@@ -222,7 +301,7 @@ static void test_pieces_bad_range(void **state)
 	struct tracer_trace_opts o;
 	struct tracer_scene s;
 	struct stray_error err;
-	struct piece p = { PIECE_MAIN, 0, 1, 2 };
+	struct piece p = { PIECE_MAIN, 0, 1, 2, 0 };
 	double buf[64];
 
 	(void)state;
@@ -249,6 +328,7 @@ int main(void)
 		cmocka_unit_test(test_pieces_angle_chunks),
 		cmocka_unit_test(test_pieces_guide_matters),
 		cmocka_unit_test(test_pieces_path_records),
+		cmocka_unit_test(test_pieces_light),
 		cmocka_unit_test(test_pieces_bad_range),
 	};
 
