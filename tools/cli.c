@@ -46,28 +46,36 @@ int cli_fail(const char *cmd, const struct stray_error *err)
 	return stray_status_is_bad_input(err->code) ? CLI_USAGE : CLI_FAIL;
 }
 
+/* "stray <cmd>: <fmt ...>" into full. */
+static void command_line(char *full, size_t size, const char *cmd,
+			 const char *fmt, va_list ap)
+{
+	char msg[1024];
+
+	vsnprintf(msg, sizeof(msg), fmt, ap);
+	snprintf(full, size, "%s %s: %s", cli.prog, cmd, msg);
+}
+
 int cli_fail_line(const char *cmd, int code, const char *fmt, ...)
 {
-	char msg[1024], full[1400];
+	char full[1400];
 	va_list ap;
 
 	va_start(ap, fmt);
-	vsnprintf(msg, sizeof(msg), fmt, ap);
+	command_line(full, sizeof(full), cmd, fmt, ap);
 	va_end(ap);
-	snprintf(full, sizeof(full), "%s %s: %s", cli.prog, cmd, msg);
 	error_line(full);
 	return code;
 }
 
 void cli_note(const char *cmd, const char *fmt, ...)
 {
-	char msg[1024], full[1400];
+	char full[1400];
 	va_list ap;
 
 	va_start(ap, fmt);
-	vsnprintf(msg, sizeof(msg), fmt, ap);
+	command_line(full, sizeof(full), cmd, fmt, ap);
 	va_end(ap);
-	snprintf(full, sizeof(full), "%s %s: %s", cli.prog, cmd, msg);
 	if (cli_capture)
 		cli_capture_note(full);
 	else
