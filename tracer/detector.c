@@ -45,6 +45,11 @@ static double sin2_accept(const struct tracer_detector *d)
 	return sin(a) * sin(a);
 }
 
+double tracer_detector_proj_solid_angle(const struct tracer_detector *d)
+{
+	return M_PI * sin2_accept(d);
+}
+
 struct vec3 tracer_detector_sample_dir(const struct tracer_detector *d,
 				       double u1, double u2,
 				       double *proj_solid_angle)
@@ -58,7 +63,7 @@ struct vec3 tracer_detector_sample_dir(const struct tracer_detector *d,
 	x *= sqrt(s2);
 	y *= sqrt(s2);
 	z2 = 1.0 - x * x - y * y;
-	*proj_solid_angle = M_PI * s2;
+	*proj_solid_angle = tracer_detector_proj_solid_angle(d);
 	return frame_to_world(&f, v3(x, y, z2 > 0.0 ? sqrt(z2) : 0.0));
 }
 

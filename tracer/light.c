@@ -54,19 +54,25 @@ double tracer_light_pdf_ratio(const struct worker_ctx *w, size_t j,
 	return cos_d * f_a / beam_area(w, j);
 }
 
+/* n_B pB / (n_A pA) of one single-scatter path: the balance heuristic
+ * (Veach 1997, ch. 9) weighs A by 1 / (1 + r) and B by r / (1 + r). */
+static double mis_ratio(const struct worker_ctx *w, size_t j, uint64_t n_b,
+			uint64_t n_a, double cos_d, double f_a)
+{
+	return (double)n_b / (double)n_a * tracer_light_pdf_ratio(w, j, cos_d,
+								   f_a);
+}
+
 double tracer_light_weight_a(const struct worker_ctx *w, size_t j,
 			     uint64_t n_a, double cos_d, double f_a)
 {
 	uint64_t n_b = tracer_light_count(w->light_ratio[j], n_a);
-	double r;
 
 	if (n_b == 0)
 		return 1.0;
 	if (w->o->light_weights == TRACER_LIGHT_ONLY)
 		return 0.0;
-	r = (double)n_b / (double)n_a * tracer_light_pdf_ratio(w, j, cos_d,
-								f_a);
-	return 1.0 / (1.0 + r);
+	return 1.0 / (1.0 + mis_ratio(w, j, n_b, n_a, cos_d, f_a));
 }
 
 /* One B sample: its estimate (0: none) and what its tallies need. */
@@ -145,7 +151,7 @@ static void sample(const struct worker_ctx *w, size_t j,
 	struct frame fa = frame_from_normal(s->beam.normal), fx;
 	struct tracer_hit h;
 	struct vec3 a, d = w->dir[j], v;
-	double u[4], x, y, r2, cos_p, cos_x, proj, fv;
+	double u[4], x, y, r2, cos_p, cos_x, fv;
 	int k;
 
 	ls->e = 0.0;
@@ -174,9 +180,9 @@ static void sample(const struct worker_ctx *w, size_t j,
 	if (fv <= 0.0)
 		return;
 	cos_p = v3_dot(ls->w, s->det.normal);
-	tracer_detector_sample_dir(&s->det, 0.5, 0.5, &proj);
 	ls->cos_d = v3_dot(d, h.ng);
-	ls->f_a = proj * guide_weight(w, ls->w) * r2 / (cos_p * cos_x);
+	ls->f_a = tracer_detector_proj_solid_angle(&s->det) *
+		  guide_weight(w, ls->w) * r2 / (cos_p * cos_x);
 	ls->e = beam_area(w, j) * fv * cos_x * cos_p / r2;
 	if (w->o->lens)
 		ls->e *= tracer_lens_transmission(w->o->lens,
@@ -279,9 +285,9 @@ void tracer_light_batch(struct worker_ctx *w, int b, uint64_t n_a,
 			if (w->o->light_weights == TRACER_LIGHT_ONLY)
 				wb = 1.0;
 			else {
-				double r = (double)n_b / (double)n_a *
-					   tracer_light_pdf_ratio(w, j,
-						ls.cos_d, ls.f_a);
+				double r = mis_ratio(w, j, n_b, n_a, ls.cos_d,
+						     ls.f_a);
+
 				wb = r / (1.0 + r);
 			}
 			tally(w, j, &ls, (double)n_a / (double)n_b * wb * ls.e,

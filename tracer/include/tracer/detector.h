@@ -51,6 +51,9 @@ struct vec3 tracer_detector_sample_dir(const struct tracer_detector *d,
 /* The (u1, u2) that tracer_detector_sample_dir maps to direction w (a
  * direction the detector accepts): where a path arriving along w lies in
  * primary-sample space, for the guide's density of it. */
+/* The acceptance cone's projected solid angle, pi sin^2(half angle). */
+double tracer_detector_proj_solid_angle(const struct tracer_detector *d);
+
 void tracer_detector_dir_inverse(const struct tracer_detector *d,
 				 struct vec3 w, double *u1, double *u2);
 
