@@ -37,7 +37,7 @@ static size_t pack_s2(const double *s2, size_t b, size_t n, double *out)
 	size_t total = n * TRACER_GUIDE_CELLS, i = 0, k = 1, runs = 0;
 	const double *v = s2 + b * total;
 
-	while (i < total) {	/* the runs' length first: dense if longer */
+	while (i < total) {
 		size_t j;
 
 		for (; i < total && v[i] == 0.0; i++)
@@ -45,32 +45,22 @@ static size_t pack_s2(const double *s2, size_t b, size_t n, double *out)
 		for (j = i; j < total && v[j] != 0.0; j++)
 			;
 		if (j > i) {
-			k += 2 + (j - i);
+			if (k + 2 + (j - i) >= 1 + total)
+				break;	/* not shorter than dense */
+			out[k++] = (double)i;
+			out[k++] = (double)(j - i);
+			memcpy(out + k, v + i, (j - i) * sizeof(double));
+			k += j - i;
 			runs++;
 		}
 		i = j;
 	}
-	if (k >= 1 + total) {
+	if (i < total) {
 		out[0] = PIECE_S2_DENSE;
 		memcpy(out + 1, v, total * sizeof(double));
 		return 1 + total;
 	}
 	out[0] = (double)runs;
-	for (i = 0, k = 1; i < total; ) {
-		size_t j;
-
-		for (; i < total && v[i] == 0.0; i++)
-			;
-		for (j = i; j < total && v[j] != 0.0; j++)
-			;
-		if (j > i) {
-			out[k++] = (double)i;
-			out[k++] = (double)(j - i);
-			memcpy(out + k, v + i, (j - i) * sizeof(double));
-			k += j - i;
-		}
-		i = j;
-	}
 	return k;
 }
 
