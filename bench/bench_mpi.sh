@@ -11,7 +11,7 @@
 #    2 ranks, alternated: its --stats line gives the scene builds, rank
 #    0's start and per-design work (curve kept), bytes per piece.
 # 3. The model's prediction for 2 ranks against the measurement (curve
-#    and sweep; raw, and corrected for the load seen in each pair), and
+#    and sweep; raw, and corrected for the load measured in each run), and
 #    its efficiency at 16, 64, 256 ranks with what limits it: the curve,
 #    and the sweep at 1.5 M (each design to ~1 %), 300 000 and
 #    BENCH_MPI_SWEEP_RAYS (default 30 000) paths per design.
@@ -31,15 +31,32 @@ now() { date +%s.%N; }
 sub() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.6g", a - b }'; }
 div() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.6g", a / b }'; }
 
+# The load of others during a run, in cores: the machine's busy time
+# (/proc/stat: user, nice, system, irq, softirq and steal, the time a
+# virtual machine's host took) less the run's own CPU time, over its
+# wall time.  Measured, not inferred from the run's own share: a run
+# that got a whole core says nothing of the other core.
+hz=$(getconf CLK_TCK)
+busy() { awk '/^cpu / { print $2 + $3 + $4 + $7 + $8 + $9; exit }' /proc/stat; }
+# others TAG B0 B1 T0 T1: appends the others' cores to $tmp/TAG.x (its
+# own CPU time from $tmp/cpu)
+others() {
+	awk -v b0="$2" -v b1="$3" -v hz="$hz" -v w="$(sub "$5" "$4")" '{
+		x = ((b1 - b0) / hz - ($1 + $2)) / w; printf "%.4g ", (x > 0 ? x : 0) }' \
+		"$tmp/cpu" >> "$tmp/$1.x"
+}
+
 # run TAG CMD...: one trace; appends its trace seconds to $tmp/TAG.s,
-# the command's wall time to $tmp/TAG.w and its CPU time (user + sys,
-# all its processes) to $tmp/TAG.c; the curve to $tmp/TAG.csv.
+# the command's wall time to $tmp/TAG.w, its CPU time (user + sys, all
+# its processes) to $tmp/TAG.c and the others' load to $tmp/TAG.x; the
+# curve to $tmp/TAG.csv.
 run() {
-	local tag=$1 t0 t1; shift
-	t0=$(now)
+	local tag=$1 t0 t1 b0 b1; shift
+	b0=$(busy); t0=$(now)
 	/usr/bin/time -o "$tmp/cpu" -f "%U %S" "$@" --out "$tmp/$tag.csv" \
 		> "$tmp/j.json" 2> "$tmp/$tag.err"
-	t1=$(now)
+	t1=$(now); b1=$(busy)
+	others "$tag" "$b0" "$b1" "$t0" "$t1"
 	awk '{ printf "%s ", $1 + $2 }' "$tmp/cpu" >> "$tmp/$tag.c"
 	sed -n 's/.*"seconds":[[:space:]]*\([0-9.e+-]*\).*/\1/p' "$tmp/j.json" \
 		| head -n 1 | tr '\n' ' ' >> "$tmp/$tag.s"
@@ -92,7 +109,7 @@ echo "messages (2 ranks): $(stat n2 bytes_per_remote_piece) bytes per main piece
 # below; the last also at 2 ranks, for the latency of a remote piece.
 # All alternated.
 q=$((rays / 4))
-a1=(trace --scene ref4 --angles "$angles" --seed 3 --json)
+a1=(trace --scene ref4 --angles "$angles" --seed 3 --json --no-light-paths)
 for ((i = 0; i < pairs; i++)); do
 	run ts1 mpirun -n 1 "$smpi" "${a1[@]}" --rays 12800
 	run qk1 mpirun -n 1 "$smpi" "${a1[@]}" --rays "$q"
@@ -104,14 +121,15 @@ done
 grid=(--grid edge_radius=0,0.005,0.01,0.015,0.02,0.03,0.04,0.05
       --grid reflectance=0.02,0.03,0.04,0.05,0.06,0.07,0.08,0.09)
 sweep() {	# sweep TAG N: one 64-design sweep on N ranks, fresh state
-	local t0 t1
+	local t0 t1 b0 b1
 	rm -rf "$tmp/st"
-	t0=$(now)
+	b0=$(busy); t0=$(now)
 	/usr/bin/time -o "$tmp/cpu" -f "%U %S" \
 	mpirun -n "$2" "$smpi" --stats sweep --scene ref4 "${grid[@]}" \
 		--rays "$srays" --seed 3 --state "$tmp/st" --out "$tmp/$1.csv" \
 		> /dev/null 2> "$tmp/$1.err"
-	t1=$(now)
+	t1=$(now); b1=$(busy)
+	others "$1" "$b0" "$b1" "$t0" "$t1"
 	sub "$t1" "$t0" >> "$tmp/$1.w"; echo -n " " >> "$tmp/$1.w"
 	awk '{ printf "%s ", $1 + $2 }' "$tmp/cpu" >> "$tmp/$1.c"
 	# one set of traces: one stats line; its seconds (no mpirun start-up)
@@ -134,18 +152,30 @@ read -r Ts c0 alpha beta < <(awk -v r="$rays" -v q="$q" \
 	function row(i, R, K, y) { p = R / 10 >= 1000 ? (R / 10 > 200000 ? 200000 : R / 10) : 0;
 		a[i, 1] = 1; a[i, 2] = (64 + (p ? 8 : 0)) * K; a[i, 3] = K * (R + p);
 		a[i, 4] = R + p; rhs[i] = y }
+	# least squares of the relative errors (rows weighted by 1 / T^2)
+	# over the unknowns still free; a negative one is held at 0 and the
+	# others fitted again (non-negative least squares, 4 unknowns)
+	function solve(    i, j, k, s, f, m, u, v) {
+		m = 0; for (i = 1; i <= 4; i++) if (free[i]) idx[++m] = i;
+		for (u = 1; u <= m; u++) { for (v = 1; v <= m; v++) { s = 0;
+			for (k = 1; k <= 5; k++) s += a[k, idx[u]] * a[k, idx[v]] / rhs[k] ^ 2;
+			n[u, v] = s }
+			s = 0; for (k = 1; k <= 5; k++) s += a[k, idx[u]] * rhs[k] / rhs[k] ^ 2;
+			n[u, m + 1] = s }
+		for (i = 1; i <= m; i++) for (k = i + 1; k <= m; k++) { f = n[k, i] / n[i, i];
+			for (j = i; j <= m + 1; j++) n[k, j] -= f * n[i, j] }
+		for (i = 1; i <= 4; i++) x[i] = 0;
+		for (i = m; i >= 1; i--) { s = n[i, m + 1];
+			for (j = i + 1; j <= m; j++) s -= n[i, j] * x[idx[j]];
+			x[idx[i]] = s / n[i, i] }
+	}
 	BEGIN { split(t, T, " ");
 	row(1, r, 1, T[1]); row(2, 12800, 1, T[2]); row(3, q, 1, T[3]);
 	row(4, q, 4, T[4]); row(5, 64000, 16, T[5]);
-	for (i = 1; i <= 4; i++) { for (j = 1; j <= 4; j++) { s = 0;
-		for (k = 1; k <= 5; k++) s += a[k, i] * a[k, j] / (a[k, 4] + 1) ^ 2;
-		n[i, j] = s }	# rows weighted by 1/paths: relative errors
-		s = 0; for (k = 1; k <= 5; k++) s += a[k, i] * rhs[k] / (a[k, 4] + 1) ^ 2;
-		n[i, 5] = s }
-	for (i = 1; i <= 4; i++) { for (k = i + 1; k <= 4; k++) { f = n[k, i] / n[i, i];
-		for (j = i; j <= 5; j++) n[k, j] -= f * n[i, j] } }
-	for (i = 4; i >= 1; i--) { s = n[i, 5]; for (j = i + 1; j <= 4; j++) s -= n[i, j] * x[j];
-		x[i] = s / n[i, i] }
+	for (i = 1; i <= 4; i++) free[i] = 1;
+	for (it = 0; it < 4; it++) { solve(); worst = 0;
+		for (i = 1; i <= 4; i++) if (free[i] && x[i] < 0 && (!worst || x[i] < x[worst])) worst = i;
+		if (!worst) break; free[worst] = 0 }
 	for (i = 1; i <= 4; i++) if (x[i] < 0) x[i] = 0;
 	printf "%.6g %.6g %.6g %.6g\n", x[1], x[2], x[3], x[4] }')
 # rank 1 did pr of the many-piece trace's 1024 main pieces (64000 paths,
@@ -188,31 +218,33 @@ pt1=$(model -v ranks=1 | awk 'NR == 2 { print $2 }')
 meas2=$(med n2)
 echo "check, trace at 2 ranks on 2 free cores: model $(printf %.2f "$pred2") s, measured $(printf %.2f "$meas2") s" \
 	"(median), error $(awk -v p="$pred2" -v m="$meas2" 'BEGIN { printf "%+.1f", 100 * (p / m - 1) }') %"
-# The machine is shared: the 1-rank run got share1 = cpu / wall of a
-# core, so others kept X = 2 / share1 - 1 cores' worth of threads
-# runnable; two ranks then get share2 = min(1, 2 / (2 + X)) each.  Per
-# pair: predicted T2 = T1 (model T2 / model T1) share1 / share2.
-loaded() {	# loaded T1S T1W T1C T2 G: per pair "pred:meas:X"
-	awk -v t1="$1" -v w1="$2" -v c1="$3" -v t2="$4" -v g="$5" 'BEGIN {
-	n = split(t1, a, " "); split(w1, w, " "); split(c1, c, " ");
-	split(t2, b, " ");
+# The machine is shared: with X1 cores' worth of others' threads
+# runnable (measured, above) the 1-rank run got share1 = min(1, 2 /
+# (1 + X1)) of a core, and with X2 each of the two ranks got share2 =
+# min(1, 2 / (2 + X2)).  Per pair: predicted T2 = T1 (model T2 / model
+# T1) share1 / share2; on a quiet machine (X = 0) the raw prediction.
+loaded() {	# loaded T1S T1X T2S T2X G: per pair "pred:meas:X1:X2"
+	awk -v t1="$1" -v x1="$2" -v t2="$3" -v x2="$4" -v g="$5" 'BEGIN {
+	n = split(t1, a, " "); split(x1, p, " "); split(t2, b, " ");
+	split(x2, q, " ");
 	for (i = 1; i <= n; i++) {
-		s1 = c[i] / w[i]; if (s1 > 1) s1 = 1;
-		x = 2 / s1 - 1; s2 = 2 / (2 + x); if (s2 > 1) s2 = 1;
-		printf "%.4g:%.4g:%.3g ", a[i] * g * s1 / s2, b[i], x
+		s1 = 2 / (1 + p[i]); if (s1 > 1) s1 = 1;
+		s2 = 2 / (2 + q[i]); if (s2 > 1) s2 = 1;
+		printf "%.4g:%.4g:%.3g:%.3g ", a[i] * g * s1 / s2, b[i], p[i], q[i]
 	} }'
 }
-check_loaded() {	# check_loaded LABEL T1S T1W T1C T2 G
-	local pl="" ml="" xl="" v p2 m2 x xm xlo xhi label=$1; shift
+check_loaded() {	# check_loaded LABEL T1S T1X T2S T2X G
+	local pl="" ml="" xl="" v p2 m2 x1 x2 xm xlo xhi label=$1; shift
 	for v in $(loaded "$@"); do
-		IFS=: read -r p2 m2 x <<< "$v"; pl+="$p2 "; ml+="$m2 "; xl+="$x "
+		IFS=: read -r p2 m2 x1 x2 <<< "$v"; pl+="$p2 "; ml+="$m2 "
+		xl+="$x1 $x2 "
 	done
 	read -r xm xlo xhi < <(spread $xl)
-	printf '%s under the load measured in each pair (others: %.2f cores busy, %.2f-%.2f):\n' "$label" "$xm" "$xlo" "$xhi"
+	printf '%s under the load measured in each run (others: %.2f cores busy, %.2f-%.2f):\n' "$label" "$xm" "$xlo" "$xhi"
 	show "  model / measured (target within 10 %)" "$pl" "$ml"
 }
-check_loaded "check, trace at 2 ranks" "$(vals n1)" "$(vals n1 w)" "$(vals n1 c)" \
-	"$(vals n2)" "$(div "$pred2" "$pt1")"
+check_loaded "check, trace at 2 ranks" "$(vals n1)" "$(vals n1 x)" \
+	"$(vals n2)" "$(vals n2 x)" "$(div "$pred2" "$pt1")"
 echo "model, 127-angle curve at $rays paths (efficiency against the model's 1 rank):"
 model -v ranks="1 2 16 64 256"
 
@@ -239,8 +271,8 @@ meas2=$(med s2)
 printf '  per path (67 angles, scaled to this sweep): alpha %.3g s, beta %.3g s\n' "$salpha" "$sbeta"
 echo "check, sweep at 2 ranks on 2 free cores: model $(printf %.2f "$pred2") s, measured $(printf %.2f "$meas2") s" \
 	"(set, median), error $(awk -v p="$pred2" -v m="$meas2" 'BEGIN { printf "%+.1f", 100 * (p / m - 1) }') %"
-check_loaded "check, sweep at 2 ranks" "$(vals s1)" "$(vals s1 w)" "$(vals s1 c)" \
-	"$(vals s2)" "$(div "$pred2" "$pt1")"
+check_loaded "check, sweep at 2 ranks" "$(vals s1)" "$(vals s1 x)" \
+	"$(vals s2)" "$(vals s2 x)" "$(div "$pred2" "$pt1")"
 for r in 1500000 300000 "$srays"; do
 	echo "model, 64-design sweep at $r paths per design:"
 	smodel -v R="$r" -v ranks="1 2 16 64 256"

@@ -146,19 +146,34 @@ static int offset_factor(struct diag_eval *e, const struct diag_state *s,
 struct fine_curve {
 	const double *th, *a, *la;
 	size_t m;
+	size_t hint;	/* the last point found (fine_find) */
 };
 
-/* alpha at off-axis angle phi, log-linear between the fine points
- * (sorted by angle), held constant beyond them. */
-static double fine_at(const struct fine_curve *f, double phi)
+/*
+ * lo with th[lo] <= phi < th[lo + 1], for th[0] < phi < th[m - 1] and th
+ * strictly increasing: the one interval a binary search finds, searched
+ * outward from the last one (a beam average asks for points close
+ * together: a few steps, not a search of every point per call).
+ */
+static size_t fine_find(struct fine_curve *f, double phi)
 {
-	const double *th = f->th, *a = f->a, *la = f->la;
-	size_t m = f->m, lo = 0, hi = m - 1;
+	const double *th = f->th;
+	size_t lo = f->hint < f->m - 1 ? f->hint : 0, hi, step = 1;
 
-	if (phi <= th[0])
-		return a[0];
-	if (phi >= th[m - 1])
-		return a[m - 1];
+	if (th[lo] <= phi) {		/* gallop up; th[m - 1] > phi */
+		hi = lo + 1;
+		while (th[hi] <= phi) {
+			lo = hi;
+			hi = lo + step < f->m - 1 ? lo + step : f->m - 1;
+			step *= 2;
+		}
+	} else {			/* gallop down; th[0] < phi */
+		do {
+			hi = lo;
+			lo = lo > step ? lo - step : 0;
+			step *= 2;
+		} while (th[lo] > phi);
+	}
 	while (hi - lo > 1) {
 		size_t mid = (lo + hi) / 2;
 
@@ -167,6 +182,23 @@ static double fine_at(const struct fine_curve *f, double phi)
 		else
 			hi = mid;
 	}
+	f->hint = lo;
+	return lo;
+}
+
+/* alpha at off-axis angle phi, log-linear between the fine points
+ * (sorted by angle), held constant beyond them. */
+static double fine_at(struct fine_curve *f, double phi)
+{
+	const double *th = f->th, *a = f->a, *la = f->la;
+	size_t m = f->m, lo, hi;
+
+	if (phi <= th[0])
+		return a[0];
+	if (phi >= th[m - 1])
+		return a[m - 1];
+	lo = fine_find(f, phi);
+	hi = lo + 1;
 	/* quadratic in log alpha through lo, hi and the nearer outer
 	 * neighbour (Lagrange), where all three are positive */
 	{
@@ -219,7 +251,7 @@ static void beam_quad_init(struct beam_quad *q, double b, double g)
  * the disk |(u, v)| <= b, weighted exp(-2 r^2 / g^2) when g > 0 (polar
  * midpoint rule); an axisymmetric baffle sees off-axis angle
  * sqrt((theta + u)^2 + v^2) (small angles). */
-static double beam_mean(const struct fine_curve *f, double theta,
+static double beam_mean(struct fine_curve *f, double theta,
 			const struct beam_quad *q)
 {
 	double sum = 0.0, sw = 0.0;
@@ -304,6 +336,7 @@ static int beam_factor(struct diag_eval *e, const struct diag_state *s,
 	f.a = al;
 	f.la = la;
 	f.m = (size_t)k;
+	f.hint = 0;
 	beam_quad_init(&q, b, s->beam_gauss_deg);
 	a0 = th[0] <= 1.0 ? beam_mean(&f, 0.0, &q) / fine_at(&f, 0.0) : 1.0;
 	for (i = 0; i < e->n; i++) {

@@ -71,42 +71,35 @@ static int cholesky(double *c, size_t n)
  * Covariance of the log10 residuals, C = (diag(s_m/m)^2 + relcov) /
  * ln(10)^2 (first order), whitened through its Cholesky factor L:
  * chi2 = |L^-1 r|^2 (generalised least squares).  The factor of the last
- * C is kept (e->chol_*): relcov depends on the geometry blend and the
- * floor/leak share only, so a fit of re-weighted or post-processed
- * causes factors it once, not per evaluation (n^3 / 6 each, the fit's
- * largest cost); the same C gives the same factor, bit for bit.
+ * C is kept, keyed by what C is made of (relcov and the measurement's
+ * diagonal): relcov depends on the geometry blend and the floor/leak
+ * share only, so a fit of re-weighted or post-processed causes factors
+ * it once, not per evaluation (n^3 / 6 each, the fit's largest cost); the
+ * same C gives the same factor, bit for bit.  Only C's lower triangle is
+ * made: all the factor and the substitution read.
  */
 static int whiten(struct diag_eval *e, const struct diag_data *d,
 		  const double *relcov, const double *r, double *w,
-		  double *cov)
+		  double *diag)
 {
 	size_t i, k, n = d->n;
+	double *key = e->chol_in, *L = e->chol_out;
 
-	for (i = 0; i < n; i++)
-		for (k = 0; k < n; k++) {
-			double rm = d->sigma[i] / d->alpha[i];
+	for (i = 0; i < n; i++) {
+		double rm = d->sigma[i] / d->alpha[i];
 
-			cov[i * n + k] = (relcov[i * n + k] +
-					  (i == k ? rm * rm : 0.0)) /
-					 (M_LN10 * M_LN10);
-		}
-	if (e->chol_n == n &&
-	    memcmp(e->chol_in, cov, n * n * sizeof(*cov)) == 0) {
-		memcpy(cov, e->chol_out, n * n * sizeof(*cov));
-	} else {
-		double *in = realloc(e->chol_in, 2 * n * n * sizeof(*in));
-
-		e->chol_n = 0;
-		if (in) {
-			e->chol_in = in;
-			e->chol_out = in + n * n;
-			memcpy(e->chol_in, cov, n * n * sizeof(*cov));
-		}
-		e->chol_ok = cholesky(cov, n);
-		if (in) {
-			memcpy(e->chol_out, cov, n * n * sizeof(*cov));
-			e->chol_n = n;
-		}
+		diag[i] = rm * rm;
+	}
+	if (e->chol_ok < 0 || memcmp(key, relcov, n * n * sizeof(*key)) ||
+	    memcmp(key + n * n, diag, n * sizeof(*key))) {
+		memcpy(key, relcov, n * n * sizeof(*key));
+		memcpy(key + n * n, diag, n * sizeof(*key));
+		for (i = 0; i < n; i++)
+			for (k = 0; k <= i; k++)
+				L[i * n + k] = (relcov[i * n + k] +
+						(i == k ? diag[i] : 0.0)) /
+					       (M_LN10 * M_LN10);
+		e->chol_ok = cholesky(L, n);
 	}
 	if (!e->chol_ok)
 		return 0;
@@ -114,10 +107,29 @@ static int whiten(struct diag_eval *e, const struct diag_data *d,
 		double t = r[i];
 
 		for (k = 0; k < i; k++)
-			t -= cov[i * n + k] * w[k];
-		w[i] = t / cov[i * n + i];
+			t -= L[i * n + k] * w[k];
+		w[i] = t / L[i * n + i];
 	}
 	return 1;
+}
+
+/* e->chol_in, one block for n: whiten's key (relcov, the diagonal), the
+ * factor (e->chol_out), and diag_chi2's work (5 n + n^2) after it; made
+ * once per evaluator, not per evaluation (a fit makes thousands). */
+static double *chi2_work(struct diag_eval *e, size_t n)
+{
+	if (e->chol_n != n) {
+		double *b = realloc(e->chol_in, (3 * n * n + 6 * n) *
+					       sizeof(*b));
+
+		if (!b)
+			return NULL;
+		e->chol_in = b;
+		e->chol_out = b + n * n + n;
+		e->chol_n = n;
+		e->chol_ok = -1;	/* no factor kept */
+	}
+	return e->chol_out + n * n;
 }
 
 int diag_chi2(struct diag_eval *e, const struct diag_data *d,
@@ -126,8 +138,8 @@ int diag_chi2(struct diag_eval *e, const struct diag_data *d,
 	      struct stray_error *err)
 {
 	size_t i, n = d->n;
-	double *a = malloc((4 * n + 2 * n * n) * sizeof(*a));
-	double *sg, *r, *w, *rel, *cov, c = 0.0;
+	double *a = chi2_work(e, n);
+	double *sg, *r, *w, *dg, *rel, c = 0.0;
 	int rc;
 
 	if (!a)
@@ -136,8 +148,8 @@ int diag_chi2(struct diag_eval *e, const struct diag_data *d,
 	sg = a + n;
 	r = sg + n;
 	w = r + n;
-	rel = w + n;
-	cov = rel + n * n;
+	dg = w + n;
+	rel = dg + n;
 	rc = diag_eval_model(e, s, a, sg, rel, err);
 	for (i = 0; !rc && i < n; i++) {
 		double m = fmax(a[i], MODEL_TINY);
@@ -151,7 +163,7 @@ int diag_chi2(struct diag_eval *e, const struct diag_data *d,
 		if (model)
 			model[i] = a[i];
 	}
-	if (!rc && !whiten(e, d, rel, r, w, cov))
+	if (!rc && !whiten(e, d, rel, r, w, dg))
 		for (i = 0; i < n; i++)	/* not SPD: the diagonal alone */
 			w[i] = r[i] / (sqrt(fmax(rel[i * n + i], 0.0) +
 				pow(d->sigma[i] / d->alpha[i], 2)) / M_LN10);
@@ -160,7 +172,6 @@ int diag_chi2(struct diag_eval *e, const struct diag_data *d,
 		if (white)
 			white[i] = w[i];
 	}
-	free(a);
 	*chi2 = c;
 	return rc;
 }

@@ -12,6 +12,7 @@
 #include "tracer/guide.h"
 #include "tracer/integrator.h"
 #include "tracer/rng.h"
+#include "beam_screen.h"
 #include "light.h"
 
 /* Per-path state threaded through the vertex loop. */
@@ -100,100 +101,20 @@ static void dump_vertex(struct path_state *ps, struct vec3 p, int group)
 
 /*
  * The shadow rays of one point (the detector point or a scatter vertex) to
- * the angles of the sweep: the angles are screened a block at a time by a
- * loop the compiler vectorises, the survivors get the exact tests in angle
- * order, and the candidates are traced as packets (tracer_scene_occluded_fan)
- * and tallied in angle order: the same rays, the same sums, the same bits.
+ * the angles of the sweep: the angles are screened a block at a time
+ * (beam_screen.c), those it cannot decide get the exact test, and the
+ * candidates are traced as packets (tracer_scene_occluded_fan) and
+ * tallied in angle order: the same rays, the same sums, the same bits.
  */
-#define BLOCK 64		/* angles screened at once */
+#define BLOCK TRACER_SCREEN_BLOCK
 #define FAN (2 * BLOCK)		/* candidates gathered before tracing */
 
-/*
- * keep[k] = 0 only where angle j0 + k surely fails the exact tests: the
- * source is behind the aperture (beam_ok), or, with n given, below the
- * surface, or the line through p along it passes the aperture's centre
- * c further than its radius R (necessary for tracer_beam_covers: the
- * distance of c from the line bounds |q| from below), with a margin far
- * above rounding so no angle the exact test takes is dropped.
- */
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-/* 4 doubles a lane where the CPU has AVX2 (chosen at load time) */
-__attribute__((target_clones("avx2", "default")))
-#endif
-static void screen_one_beam(const struct worker_ctx *w, const double *ok,
-			    size_t j0, size_t m, struct vec3 p,
-			    const struct vec3 *n, double *keep)
+/* Lit from p by angle j, given its screen class (keep). */
+static bool lit(const struct worker_ctx *w, double keep, size_t j,
+		struct vec3 d, struct vec3 p)
 {
-	const struct tracer_beam *b = &w->s->beam;
-	const double *restrict dx = w->dir_x + j0, *restrict dy = w->dir_y + j0,
-		     *restrict dz = w->dir_z + j0, *restrict okj = ok + j0;
-	struct vec3 v = v3_sub(b->center, p);
-	double l2 = v3_dot(v, v), r2;
-	double nx = n ? n->x : 0.0, ny = n ? n->y : 0.0, nz = n ? n->z : 0.0;
-	double nmin = n ? -1e-9 : -1.0, *restrict kp = keep;
-	size_t k;
-
-	r2 = b->radius_mm * b->radius_mm * (1.0 + 1e-6) + 1e-9 * l2 + 1e-9;
-	for (k = 0; k < m; k++) {
-		double a = dx[k] * v.x + dy[k] * v.y + dz[k] * v.z;
-		double cn = dx[k] * nx + dy[k] * ny + dz[k] * nz, okk = okj[k];
-
-		/* branch-free, so the loop vectorises */
-		kp[k] = (l2 - a * a <= r2) & (cn > nmin) ? okk : 0.0;
-	}
-}
-
-/* The same with a beam centre per angle (opts.beam_shift_z). */
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-static void screen_shifted(const struct worker_ctx *w, const double *ok,
-			   size_t j0, size_t m, struct vec3 p,
-			   const struct vec3 *n, double *keep)
-{
-	const struct tracer_beam *b = &w->s->beam;
-	const double *restrict dx = w->dir_x + j0, *restrict dy = w->dir_y + j0,
-		     *restrict dz = w->dir_z + j0, *restrict okj = ok + j0,
-		     *restrict cx = w->beam_cx + j0, *restrict cy = w->beam_cy + j0,
-		     *restrict cz = w->beam_cz + j0;
-	double R2 = b->radius_mm * b->radius_mm * (1.0 + 1e-6) + 1e-9;
-	double nx = n ? n->x : 0.0, ny = n ? n->y : 0.0, nz = n ? n->z : 0.0;
-	double nmin = n ? -1e-9 : -1.0, *restrict kp = keep;
-	size_t k;
-
-	for (k = 0; k < m; k++) {
-		/* v: p to the angle's beam centre */
-		double vx = cx[k] - p.x, vy = cy[k] - p.y, vz = cz[k] - p.z;
-		double l2 = vx * vx + vy * vy + vz * vz;
-		double a = dx[k] * vx + dy[k] * vy + dz[k] * vz;
-		double cn = dx[k] * nx + dy[k] * ny + dz[k] * nz, okk = okj[k];
-
-		kp[k] = (l2 - a * a <= R2 + 1e-9 * l2) & (cn > nmin) ? okk :
-			0.0;
-	}
-}
-
-static void screen(const struct worker_ctx *w, const double *ok, size_t j0,
-		   size_t m, struct vec3 p, const struct vec3 *n, double *keep)
-{
-	if (w->o->beam_shift_z)
-		screen_shifted(w, ok, j0, m, p, n, keep);
-	else
-		screen_one_beam(w, ok, j0, m, p, n, keep);
-}
-
-/* tracer_beam_covers with angle j's beam (its own centre with
- * opts.beam_shift_z). */
-static bool covers(const struct worker_ctx *w, size_t j, struct vec3 d,
-		   struct vec3 p)
-{
-	struct tracer_beam b;
-
-	if (!w->o->beam_shift_z)
-		return tracer_beam_covers(&w->s->beam, d, p);
-	b = w->s->beam;
-	b.center = v3(w->beam_cx[j], w->beam_cy[j], w->beam_cz[j]);
-	return tracer_beam_covers(&b, d, p);
+	return keep == TRACER_SCREEN_YES ||
+	       (keep == TRACER_SCREEN_ASK && tracer_screen_covers(w, j, d, p));
 }
 
 /*
@@ -244,12 +165,12 @@ static void connect_direct(struct worker_ctx *w, struct path_state *ps,
 		size_t m = nt - j0 < BLOCK ? nt - j0 : BLOCK;
 
 		/* cheap culling first: no ray for these */
-		screen(w, w->direct_ok, j0, m, x, NULL, keep);
+		tracer_screen(w, w->direct_ok, j0, m, x, NULL, keep);
 		for (k = 0; k < m; k++) {
 			size_t j = j0 + k;
 			struct vec3 d = w->dir[j];
 
-			if (keep[k] == 0.0 || !covers(w, j, d, x))
+			if (!lit(w, keep[k], j, d, x))
 				continue;
 			jj[n] = j;
 			cs[n] = v3_dot(d, s->det.normal);
@@ -290,28 +211,37 @@ static void connect_vertex(struct worker_ctx *w, struct path_state *ps,
 {
 	struct vec3 o = tracer_offset_origin(h->p, h->ng), dirs[FAN];
 	int order = depth < TRACER_ORDERS - 1 ? depth : TRACER_ORDERS - 1;
-	double cs[FAN];
+	double cs[FAN], fv_last = 0.0;
 	size_t jj[FAN], j0, n = 0, k, nt = w->o->n_theta;
 	unsigned char occ[FAN];
 	double keep[BLOCK];
+	struct vec3 d_last = v3(0.0, 0.0, 0.0);	/* not a direction */
 
 	for (j0 = 0; j0 < nt; j0 += BLOCK) {
 		size_t m = nt - j0 < BLOCK ? nt - j0 : BLOCK;
 
 		/* cheap culling first: below the surface, outside the
 		 * aperture seen from the vertex, or a zero BRDF: no ray */
-		screen(w, w->beam_ok, j0, m, h->p, &h->ng, keep);
+		tracer_screen(w, w->beam_ok, j0, m, h->p, &h->ng, keep);
 		for (k = 0; k < m; k++) {
 			size_t j = j0 + k;
 			struct vec3 d = w->dir[j];
 			double cos_d, fv;
 
-			if (keep[k] == 0.0)
+			if (keep[k] == TRACER_SCREEN_NO)
 				continue;
 			cos_d = v3_dot(d, h->ng);
-			if (cos_d <= 0.0 || !covers(w, j, d, h->p))
+			if (cos_d <= 0.0 || !lit(w, keep[k], j, d, h->p))
 				continue;
-			fv = mat->ops->eval(mat, wo, frame_to_local(f, d));
+			/* a direction repeated with other beam centres
+			 * (opts.beam_shift_z) side by side: one evaluation */
+			if (d.x != d_last.x || d.y != d_last.y ||
+			    d.z != d_last.z) {
+				fv_last = mat->ops->eval(mat, wo,
+							 frame_to_local(f, d));
+				d_last = d;
+			}
+			fv = fv_last;
 			if (fv <= 0.0)
 				continue;
 			jj[n] = j;

@@ -9,7 +9,7 @@ TRACER_LDLIBS := -lembree3 -lassimp -lcjson -lpthread
 $(TRACER_OBJ): EXTRA_CFLAGS += -Itracer/include -I/usr/include/cjson -D_DEFAULT_SOURCE
 # the angle screen of the next-event connections is written to vectorise
 # (no reassociation: the same bits as scalar code)
-$(B)/obj/tracer/integrator.o: EXTRA_CFLAGS += -ftree-vectorize
+$(B)/obj/tracer/beam_screen.o: EXTRA_CFLAGS += -ftree-vectorize -fno-trapping-math
 $(B)/obj/tools/cmd_trace.o: EXTRA_CFLAGS += -Itracer/include
 
 $(TRACER_LIB): $(TRACER_OBJ)

@@ -53,7 +53,9 @@ struct diag_eval {
 	/* the last geometry blend: its key, alpha then relcov (n + n^2) */
 #define DIAG_BLEND_KEY (DIAG_GEO_N + 3)
 	double blend_key[DIAG_BLEND_KEY], *blend_alpha;
-	/* the last residual covariance and its Cholesky factor (fit.c) */
+	/* fit.c: what the last residual covariance was made of, its
+	 * Cholesky factor (chol_ok 1, 0 not SPD, -1 none) and diag_chi2's
+	 * work, one block for chol_n angles */
 	double *chol_in, *chol_out;
 	size_t chol_n;
 	int chol_ok;
