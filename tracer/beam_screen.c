@@ -119,6 +119,92 @@ void tracer_screen(const struct worker_ctx *w, const double *ok, size_t j0,
 		screen_one_beam(w, ok, j0, m, p, n, keep);
 }
 
+/*
+ * The arc of source angles that can light p.  d(theta) = (0, sin, cos), so
+ * d.v = rho cos(theta - psi), rho and psi the polar form of (v.z, v.y).  The
+ * line from p along d passes c no further than the meeting point q, so
+ * |v|^2 - (d.v)^2 <= |q|^2 <= R^2; and d.v = t - d.q >= -R (t >= 0).  With
+ * |v|^2 > 2 R^2 the two give d.v >= sqrt(|v|^2 - R^2) > R: one arc,
+ * |theta - psi| <= acos(kappa), kappa = sqrt(|v|^2 - R^2) / rho.  Widened
+ * by RANGE_MARGIN (kappa's rounding moves acos by at most sqrt(2e-12)
+ * near kappa = 1); an arc that would wrap past +-180 deg: all angles.
+ */
+#define RANGE_MARGIN 1e-5	/* rad */
+
+static size_t first_at_least(const double *th, size_t n, double x)
+{
+	size_t lo = 0, hi = n;
+
+	while (lo < hi) {
+		size_t mid = lo + (hi - lo) / 2;
+
+		if (th[mid] < x)
+			lo = mid + 1;
+		else
+			hi = mid;
+	}
+	return lo;
+}
+
+/* The arc for the beam centred at c, [*a, *z] deg; 0: none, 1: an arc,
+ * -1: all angles may. */
+static int arc(const struct tracer_beam *b, struct vec3 c, struct vec3 p,
+	       double *a, double *z)
+{
+	struct vec3 v = v3_sub(c, p);
+	double l2 = v3_dot(v, v), r2 = b->radius_mm * b->radius_mm;
+	double rho = sqrt(v.y * v.y + v.z * v.z), kappa, half, psi;
+
+	if (!(l2 > 2.1 * r2))
+		return -1;
+	kappa = rho > 0.0 ? sqrt(l2 - r2) / rho : INFINITY;
+	if (kappa > 1.0 + 1e-12)	/* no direction reaches the disk */
+		return 0;
+	half = acos(fmin(kappa, 1.0)) + RANGE_MARGIN;
+	psi = atan2(v.y, v.z);
+	*a = (psi - half) * (180.0 / M_PI);
+	*z = (psi + half) * (180.0 / M_PI);
+	return *a < -180.0 || *z > 180.0 ? -1 : 1;
+}
+
+void tracer_screen_range(const struct worker_ctx *w, struct vec3 p,
+			 size_t *lo, size_t *hi)
+{
+	const struct tracer_beam *b = &w->s->beam;
+	const double *th = w->o->theta_deg;
+	size_t n = w->o->n_theta;
+	double a = INFINITY, z = -INFINITY;
+	int k, m = w->o->beam_shift_z ? w->n_shifts : 1;
+
+	*lo = 0;
+	*hi = n;
+	if (!w->angles_sorted || m < 0)
+		return;
+	for (k = 0; k < m; k++) {	/* the union of every centre's arc */
+		/* the centre as trace.c's beam_center puts it */
+		struct vec3 c = !w->o->beam_shift_z || w->shifts[k] == 0.0 ?
+			b->center : v3_sub(b->center,
+					   v3_scale(b->normal, w->shifts[k]));
+		double ak, zk;
+		int r = arc(b, c, p, &ak, &zk);
+
+		if (r < 0)
+			return;
+		if (r > 0) {
+			a = fmin(a, ak);
+			z = fmax(z, zk);
+		}
+	}
+	if (a > z) {		/* no centre's arc: no angle */
+		*hi = 0;
+		return;
+	}
+	*lo = first_at_least(th, n, a);
+	*hi = first_at_least(th, n, z);
+	while (*hi < n && th[*hi] <= z)	/* equal to z: inside */
+		++*hi;
+}
+
 bool tracer_screen_covers(const struct worker_ctx *w, size_t j,
 			  struct vec3 d, struct vec3 p)
 {

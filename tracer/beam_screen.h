@@ -28,6 +28,14 @@ void tracer_screen(const struct worker_ctx *w, const double *ok, size_t j0,
 		   size_t m, struct vec3 p, const struct vec3 *n,
 		   double *keep);
 
+/*
+ * [*lo, *hi): the angles outside which none can light p (one beam, the
+ * angles sorted: w->angles_sorted), a necessary condition with a margin;
+ * else all of them.  Only the angles inside need the screen.
+ */
+void tracer_screen_range(const struct worker_ctx *w, struct vec3 p,
+			 size_t *lo, size_t *hi);
+
 /* tracer_beam_covers with angle j's beam (its own centre with
  * opts.beam_shift_z). */
 bool tracer_screen_covers(const struct worker_ctx *w, size_t j,

@@ -157,11 +157,12 @@ static void connect_direct(struct worker_ctx *w, struct path_state *ps,
 	const struct tracer_scene *s = w->s;
 	struct vec3 o = tracer_offset_origin(x, s->det.normal), dirs[FAN];
 	double cs[FAN];
-	size_t jj[FAN], j0, n = 0, k, nt = w->o->n_theta;
+	size_t jj[FAN], j0, n = 0, k, lo, nt;
 	unsigned char occ[FAN];
 	double keep[BLOCK];
 
-	for (j0 = 0; j0 < nt; j0 += BLOCK) {
+	tracer_screen_range(w, x, &lo, &nt);
+	for (j0 = lo; j0 < nt; j0 += BLOCK) {
 		size_t m = nt - j0 < BLOCK ? nt - j0 : BLOCK;
 
 		/* cheap culling first: no ray for these */
@@ -212,12 +213,13 @@ static void connect_vertex(struct worker_ctx *w, struct path_state *ps,
 	struct vec3 o = tracer_offset_origin(h->p, h->ng), dirs[FAN];
 	int order = depth < TRACER_ORDERS - 1 ? depth : TRACER_ORDERS - 1;
 	double cs[FAN], fv_last = 0.0;
-	size_t jj[FAN], j0, n = 0, k, nt = w->o->n_theta;
+	size_t jj[FAN], j0, n = 0, k, lo, nt;
 	unsigned char occ[FAN];
 	double keep[BLOCK];
 	struct vec3 d_last = v3(0.0, 0.0, 0.0);	/* not a direction */
 
-	for (j0 = 0; j0 < nt; j0 += BLOCK) {
+	tracer_screen_range(w, h->p, &lo, &nt);	/* the angles that may light it */
+	for (j0 = lo; j0 < nt; j0 += BLOCK) {
 		size_t m = nt - j0 < BLOCK ? nt - j0 : BLOCK;
 
 		/* cheap culling first: below the surface, outside the

@@ -19,6 +19,12 @@ struct worker_ctx {
 	double *beam_ok;		/* 1: the source is in front of the aperture */
 	double *direct_ok;		/* 1: ... and the detector accepts it */
 	double *beam_cx, *beam_cy, *beam_cz;	/* beam centre per angle */
+	int angles_sorted;		/* theta ascending in [-180, 180]:
+					 * tracer_screen_range may prune */
+#define TRACER_RANGE_SHIFTS 16
+	/* opts.beam_shift_z's distinct values (n_shifts < 0: more) */
+	double shifts[TRACER_RANGE_SHIFTS];
+	int n_shifts;
 	struct tracer_path_table *batch_tables;
 	double *batch_maps;		/* [batch][pixel] */
 	struct frame focal_frame;	/* the pupil's frame (focal cells) */

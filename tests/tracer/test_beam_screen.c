@@ -6,10 +6,13 @@
  * around ref4's aperture, points put on the beam disk's rim and on the
  * aperture plane (where rounding decides: those must be ASK or right),
  * grazing angles up to 90 deg, one beam and a beam centre per angle
- * (opts.beam_shift_z, the pivot-offset pass).  And it decides: random
+ * (opts.beam_shift_z, the pivot-offset pass); no angle outside
+ * tracer_screen_range's arc lights a point.  And it decides: random
  * points leave ASK (the exact test's call) to a few in a million angles,
- * or the screen would cost what it saves.  The comparison can fail: a
- * margin of 0 or a sign slip in |q|^2 makes rim points disagree.
+ * or the screen would cost what it saves, and the arc leaves out most
+ * angles.  The comparisons can fail: a margin of 0 or a sign slip in
+ * |q|^2 makes rim points disagree, an arc without its margin drops rim
+ * points' angles.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -48,7 +51,7 @@ static void setup_angles(int shifted)
 	for (j = 0; j < N_ANG; j++) {
 		/* 0..90 in uneven steps, 90 itself and a hair below it */
 		fx.theta[j] = j + 2 >= N_ANG ? 90.0 - (N_ANG - 1 - j) * 1e-7 :
-			      90.0 * j / (N_ANG - 3);
+			      89.9 * j / (N_ANG - 3);
 		fx.shift[j] = shifted ? (double)(j % 7) * 2.5 - 3.0 : 0.0;
 	}
 	fx.o.theta_deg = fx.theta;
@@ -65,6 +68,11 @@ static void setup_angles(int shifted)
 	w->beam_cx = w->direct_ok + N_ANG;
 	w->beam_cy = w->beam_cx + N_ANG;
 	w->beam_cz = w->beam_cy + N_ANG;
+	/* as trace.c's run_pass: sorted, the shifts' distinct values */
+	w->angles_sorted = 1;
+	w->n_shifts = shifted ? 7 : 1;
+	for (j = 0; j < (size_t)w->n_shifts; j++)
+		w->shifts[j] = shifted ? (double)j * 2.5 - 3.0 : 0.0;
 	for (j = 0; j < N_ANG; j++) {
 		struct vec3 d = tracer_source_dir(fx.theta[j]);
 		struct vec3 c = v3_sub(fx.s.beam.center,
@@ -85,6 +93,7 @@ static void setup_angles(int shifted)
 struct tally {
 	long yes, no, ask;	/* ask: not grazing the aperture plane */
 	long grazing;		/* d.N <= 1e-6: the exact test's, by design */
+	long pruned;		/* outside tracer_screen_range */
 };
 
 /* Screen p (normal n or none) against every angle; each YES and NO
@@ -92,8 +101,18 @@ struct tally {
 static void check_point(struct vec3 p, const struct vec3 *n, struct tally *t)
 {
 	double keep[TRACER_SCREEN_BLOCK];
-	size_t j0, k;
+	size_t j0, k, lo, hi;
 
+	/* no angle outside the range lights p */
+	tracer_screen_range(&fx.w, p, &lo, &hi);
+	assert_true(lo <= hi && hi <= N_ANG);
+	for (k = 0; k < N_ANG; k++)
+		if (k < lo || k >= hi) {
+			assert_false(fx.w.beam_ok[k] > 0.0 &&
+				     tracer_screen_covers(&fx.w, k, fx.dir[k],
+							  p));
+			t->pruned++;
+		}
 	for (j0 = 0; j0 < N_ANG; j0 += TRACER_SCREEN_BLOCK) {
 		size_t m = N_ANG - j0 < TRACER_SCREEN_BLOCK ?
 			   N_ANG - j0 : TRACER_SCREEN_BLOCK;
@@ -173,15 +192,20 @@ static void rim_points(struct tracer_rng *g, struct tally *t)
 static void run_case(int shifted)
 {
 	struct tracer_rng g;
-	struct tally rnd = { 0, 0, 0, 0 }, rim = { 0, 0, 0, 0 };
+	struct tally rnd = { 0, 0, 0, 0, 0 }, rim = { 0, 0, 0, 0, 0 };
 
 	setup_angles(shifted);
 	tracer_rng_init(&g, 11 + (uint64_t)shifted, 0);
 	random_points(&g, &rnd);
 	rim_points(&g, &rim);
-	print_message("random points: %ld yes, %ld no, %ld asked, %ld grazing; "
-		      "rim points: %ld yes, %ld no, %ld asked\n", rnd.yes,
-		      rnd.no, rnd.ask, rnd.grazing, rim.yes, rim.no, rim.ask);
+	print_message("random points: %ld yes, %ld no, %ld asked, %ld grazing, "
+		      "%ld outside the range; rim points: %ld yes, %ld no, "
+		      "%ld asked, %ld outside\n", rnd.yes, rnd.no, rnd.ask,
+		      rnd.grazing, rnd.pruned, rim.yes, rim.no, rim.ask,
+		      rim.pruned);
+	/* the range prunes: most random points see the disk over a few
+	 * tens of degrees at most */
+	assert_true(rnd.pruned * 2 > rnd.yes + rnd.no + rnd.ask + rnd.grazing);
 	/* both classes occur, and random points are decided */
 	assert_true(rnd.yes > 10000 && rnd.no > 10000);
 	assert_true(rnd.ask * 100000 < rnd.yes + rnd.no + rnd.ask);
