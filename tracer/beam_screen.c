@@ -6,13 +6,15 @@
  *
  * With v = c - p (c the disk's centre, N its normal), a = d.v, dn = d.N and
  * t = v.N / dn the distance along d to the plane, the meeting point is
- * q = d t - v and |q|^2 = t^2 - 2 t a + |v|^2: one division and a few
- * products an angle, against a call of tracer_beam_covers for every
- * angle the old screen (the line's distance from c, a necessary
- * condition) let through.  Where the sum is within a margin far above
- * its rounding of the radius (or t of 0), the angle is left to
- * tracer_beam_covers itself: every decision is the exact test's, so the
- * rays and their bits are those of testing every angle exactly.
+ * q = d t - v and |q|^2 = t^2 - 2 t a + |v|^2: a few products an angle
+ * (multiplied through by dn^2, no division), against a call of
+ * tracer_beam_covers for every angle the old screen (the line's distance
+ * from c, a necessary condition) let through.  Where the sum is within a
+ * margin far above its rounding of the radius (or t of 0), the angle is
+ * left to tracer_beam_covers itself: every decision is the exact test's,
+ * so the rays and their bits are those of testing every angle exactly.
+ * And only one arc of the angles is screened at all (tracer_screen_range,
+ * below).
  */
 #include <math.h>
 
