@@ -148,6 +148,33 @@ static size_t first_at_least(const double *th, size_t n, double x)
 	return lo;
 }
 
+void tracer_screen_setup(struct worker_ctx *w)
+{
+	const struct tracer_trace_opts *o = w->o;
+	size_t j;
+
+	w->angles_sorted = 1;
+	w->n_shifts = 0;
+	for (j = 0; j < o->n_theta; j++) {
+		double z = o->beam_shift_z ? o->beam_shift_z[j] : 0.0;
+		int k;
+
+		if (!(fabs(o->theta_deg[j]) <= 180.0) ||
+		    (j > 0 && o->theta_deg[j] < o->theta_deg[j - 1]))
+			w->angles_sorted = 0;
+		for (k = 0; k < w->n_shifts && w->shifts[k] != z; k++)
+			;
+		if (w->n_shifts < 0 || k < w->n_shifts)
+			continue;	/* too many already, or seen */
+		if (k == TRACER_RANGE_SHIFTS) {
+			w->n_shifts = -1;	/* the range: all angles */
+			continue;
+		}
+		w->shifts[k] = z;
+		w->n_shifts = k + 1;
+	}
+}
+
 /* The arc for the beam centred at c, [*a, *z] deg; 0: none, 1: an arc,
  * -1: all angles may. */
 static int arc(const struct tracer_beam *b, struct vec3 c, struct vec3 p,

@@ -28,6 +28,10 @@ void tracer_screen(const struct worker_ctx *w, const double *ok, size_t j0,
 		   size_t m, struct vec3 p, const struct vec3 *n,
 		   double *keep);
 
+/* Before a pass: w->angles_sorted and the beam shifts' distinct values
+ * (w->shifts, w->n_shifts), from w->o. */
+void tracer_screen_setup(struct worker_ctx *w);
+
 /*
  * [*lo, *hi): the angles outside which none can light p (one beam, the
  * angles sorted: w->angles_sorted), a necessary condition with a margin;

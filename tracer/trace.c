@@ -15,6 +15,7 @@
 #include "tracer/cancel.h"
 #include "tracer/guide.h"
 #include "tracer/integrator.h"
+#include "beam_screen.h"
 #include "light.h"
 
 void tracer_trace_defaults(struct tracer_trace_opts *o)
@@ -280,21 +281,7 @@ static int run_pass(const struct tracer_scene *s,
 		w.beam_cy[j] = c.y;
 		w.beam_cz[j] = c.z;
 	}
-	w.angles_sorted = 1;
-	for (j = 0; j < o->n_theta; j++) {
-		double z = o->beam_shift_z ? o->beam_shift_z[j] : 0.0;
-		int k;
-
-		if (!(fabs(o->theta_deg[j]) <= 180.0) ||
-		    (j > 0 && o->theta_deg[j] < o->theta_deg[j - 1]))
-			w.angles_sorted = 0;
-		for (k = 0; k < w.n_shifts && w.shifts[k] != z; k++)
-			;
-		if (w.n_shifts >= 0 && k == w.n_shifts)
-			w.n_shifts = k < TRACER_RANGE_SHIFTS ? k + 1 : -1;
-		if (w.n_shifts > k)
-			w.shifts[k] = z;
-	}
+	tracer_screen_setup(&w);
 	pthread_mutex_init(&w.lock, NULL);
 	run_workers(&w, o->threads);
 	pthread_mutex_destroy(&w.lock);

@@ -69,10 +69,9 @@ static void setup_angles(int shifted)
 	w->beam_cy = w->beam_cx + N_ANG;
 	w->beam_cz = w->beam_cy + N_ANG;
 	/* as trace.c's run_pass: sorted, the shifts' distinct values */
-	w->angles_sorted = 1;
-	w->n_shifts = shifted ? 7 : 1;
-	for (j = 0; j < (size_t)w->n_shifts; j++)
-		w->shifts[j] = shifted ? (double)j * 2.5 - 3.0 : 0.0;
+	tracer_screen_setup(w);
+	assert_true(w->angles_sorted);
+	assert_int_equal(w->n_shifts, shifted ? 7 : 1);
 	for (j = 0; j < N_ANG; j++) {
 		struct vec3 d = tracer_source_dir(fx.theta[j]);
 		struct vec3 c = v3_sub(fx.s.beam.center,
