@@ -62,7 +62,7 @@ static void screen_one_beam(const struct worker_ctx *w, const double *ok,
 	double r2 = b->radius_mm * b->radius_mm;
 	double an_margin = MARGIN * (sqrt(l2) + 1.0);
 	double nx = n ? n->x : 0.0, ny = n ? n->y : 0.0, nz = n ? n->z : 0.0;
-	double nmin = n ? -1e-9 : -1.0, *kp = keep;
+	double nmin = n ? -1e-9 : -1.0;
 	size_t k;
 
 	for (k = 0; k < m; k++) {
@@ -72,7 +72,7 @@ static void screen_one_beam(const struct worker_ctx *w, const double *ok,
 		double c = classify(okj[k], an, dn, a, l2, r2, an_margin);
 
 		/* branch-free, so the loop vectorises */
-		kp[k] = (cn > nmin ? 1.0 : 0.0) * c;
+		keep[k] = (cn > nmin ? 1.0 : 0.0) * c;
 	}
 }
 
@@ -92,7 +92,7 @@ static void screen_shifted(const struct worker_ctx *w, const double *ok,
 	struct vec3 N = b->normal;
 	double r2 = b->radius_mm * b->radius_mm;
 	double nx = n ? n->x : 0.0, ny = n ? n->y : 0.0, nz = n ? n->z : 0.0;
-	double nmin = n ? -1e-9 : -1.0, *kp = keep;
+	double nmin = n ? -1e-9 : -1.0;
 	size_t k;
 
 	for (k = 0; k < m; k++) {
@@ -107,7 +107,7 @@ static void screen_shifted(const struct worker_ctx *w, const double *ok,
 		double c = classify(okj[k], an, dn, a, l2, r2,
 				    MARGIN * (l2 + 1.0));
 
-		kp[k] = (cn > nmin ? 1.0 : 0.0) * c;
+		keep[k] = (cn > nmin ? 1.0 : 0.0) * c;
 	}
 }
 

@@ -150,6 +150,30 @@ static void opts(struct tracer_trace_opts *o, const double *th, size_t n)
 	o->threads = 1;
 }
 
+/* The N_TRACES designs, farmed as one set at the angles th (fail_at:
+ * as simulate's). */
+static void farm_designs(const double *th, size_t n, int fail_at,
+			 struct tracer_scene *sc, struct tracer_trace_opts *o,
+			 struct got *g)
+{
+	int i;
+
+	for (i = 0; i < N_TRACES; i++)
+		scene(i, &sc[i]);
+	opts(o, th, n);
+	simulate(o, sc, g, fail_at);
+}
+
+static void release(struct tracer_scene *sc, struct got *g)
+{
+	int i;
+
+	for (i = 0; i < N_TRACES; i++) {
+		tracer_result_free(&g->r[i]);
+		tracer_scene_free(&sc[i]);
+	}
+}
+
 static void test_set_bits_of_each_trace(void **state)
 {
 	const double th[] = { 0, 10, 25, 40, 60, 80 };
@@ -159,10 +183,7 @@ static void test_set_bits_of_each_trace(void **state)
 	int i;
 
 	(void)state;
-	for (i = 0; i < N_TRACES; i++)
-		scene(i, &sc[i]);
-	opts(&o, th, 6);
-	simulate(&o, sc, &g, 0);
+	farm_designs(th, 6, 0, sc, &o, &g);
 	for (i = 0; i < N_TRACES; i++) {
 		struct tracer_result whole;
 		struct stray_error err;
@@ -184,10 +205,7 @@ static void test_set_bits_of_each_trace(void **state)
 				TRACER_ORDERS * sizeof(double));
 		tracer_result_free(&whole);
 	}
-	for (i = 0; i < N_TRACES; i++) {
-		tracer_result_free(&g.r[i]);
-		tracer_scene_free(&sc[i]);
-	}
+	release(sc, &g);
 }
 
 /* Affinity: a rank stays on the traces whose scene it built while they
@@ -250,18 +268,11 @@ static void test_set_caller_failure(void **state)
 	struct tracer_scene sc[N_TRACES];
 	struct tracer_trace_opts o;
 	struct got g;
-	int i;
 
 	(void)state;
-	for (i = 0; i < N_TRACES; i++)
-		scene(i, &sc[i]);
-	opts(&o, th, 2);
-	simulate(&o, sc, &g, 1);
+	farm_designs(th, 2, 1, sc, &o, &g);
 	assert_int_equal(g.n_done, 1);
-	for (i = 0; i < N_TRACES; i++) {
-		tracer_result_free(&g.r[i]);
-		tracer_scene_free(&sc[i]);
-	}
+	release(sc, &g);
 }
 
 int main(void)

@@ -20,6 +20,22 @@ static void test_cmd_trace_help(void **state)
 	assert_string_equal(r.err, "");
 }
 
+/* The two files differ only in their command line (diff -I). */
+static int same_but_command(const char *a, const char *b)
+{
+	char *argv[] = { "diff", "-q", "-I", "^# command: ", (char *)a,
+			 (char *)b, NULL };
+	pid_t pid = fork();
+	int st;
+
+	if (pid == 0) {
+		execvp("diff", argv);
+		_exit(127);
+	}
+	waitpid(pid, &st, 0);
+	return WIFEXITED(st) && WEXITSTATUS(st) == 0;
+}
+
 static void trace_to(const char *out, const char *threads)
 {
 	char *argv[] = { "stray", "trace", "--scene", "ref4", "--angles",
@@ -55,37 +71,10 @@ static void test_cmd_trace_curve_csv(void **state)
 			    c.extra[3][k], c.alpha[k], 1e-9 * c.alpha[k]);
 	assert_string_equal(c.extra_name[1], "order1");
 	stray_curve_free(&c);
-	{	/* bit-identical for any thread count (but the command line) */
-		char *argv[] = { "diff", "-q", "-I", "^# command: ", a, b,
-				 NULL };
-		pid_t pid = fork();
-		int st;
-
-		if (pid == 0) {
-			execvp("diff", argv);
-			_exit(127);
-		}
-		waitpid(pid, &st, 0);
-		assert_int_equal(WEXITSTATUS(st), 0);
-	}
+	/* bit-identical for any thread count (but the command line) */
+	assert_true(same_but_command(a, b));
 	unlink(a);
 	unlink(b);
-}
-
-/* The two files differ only in their command line (diff -I). */
-static int same_but_command(const char *a, const char *b)
-{
-	char *argv[] = { "diff", "-q", "-I", "^# command: ", (char *)a,
-			 (char *)b, NULL };
-	pid_t pid = fork();
-	int st;
-
-	if (pid == 0) {
-		execvp("diff", argv);
-		_exit(127);
-	}
-	waitpid(pid, &st, 0);
-	return WIFEXITED(st) && WEXITSTATUS(st) == 0;
 }
 
 static void trace_light(const char *out, const char *flag)

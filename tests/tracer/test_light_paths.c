@@ -290,24 +290,33 @@ static void assert_pieces(const struct tracer_scene *s,
 	}
 }
 
+/* The pieces' trace on ref4: five angles up to grazing, 20 000 paths in
+ * 8 batches. */
+#define PIECE_N 5
+static const double piece_theta[PIECE_N] = { 0, 80, 88.5, 89, 89.5 };
+
+static void piece_trace(struct tracer_scene *s, struct tracer_trace_opts *o)
+{
+	load("ref4", NULL, 0, s);
+	tracer_trace_defaults(o);
+	o->theta_deg = piece_theta;
+	o->n_theta = PIECE_N;
+	o->n_paths = 20000;
+	o->n_batches = 8;
+}
+
 /* Pieces (batch ranges x angle subsets) give the whole pass's bits, as
  * mpi/ assembles them; B's streams follow the angle, not its index. */
 static void test_light_pieces_identical(void **state)
 {
-	const double th[] = { 0, 80, 88.5, 89, 89.5 };
-	const double ratio[] = { 0, 0.1, 0.2, 0.3, 0.5 };
+	const double ratio[PIECE_N] = { 0, 0.1, 0.2, 0.3, 0.5 };
 	struct tracer_trace_opts o;
 	struct tracer_scene s;
 	struct tracer_result whole;
 	struct stray_error err;
 
 	(void)state;
-	load("ref4", NULL, 0, &s);
-	tracer_trace_defaults(&o);
-	o.theta_deg = th;
-	o.n_theta = 5;
-	o.n_paths = 20000;
-	o.n_batches = 8;
+	piece_trace(&s, &o);
 	o.guide = 0;
 	o.light_ratio = ratio;
 	stray_error_clear(&err);
@@ -325,29 +334,23 @@ static void test_light_pieces_identical(void **state)
  */
 static void test_light_farm_flow(void **state)
 {
-	const double th[] = { 0, 80, 88.5, 89, 89.5 };
 	struct tracer_trace_opts o, po;
 	struct tracer_scene s;
 	struct tracer_result whole, pilot;
 	struct tracer_guide g;
 	struct stray_error err;
-	double ratio[5], *s2, *lp;
+	double ratio[PIECE_N], *s2, *lp;
 
 	(void)state;
-	load("ref4", NULL, 0, &s);
-	tracer_trace_defaults(&o);
-	o.theta_deg = th;
-	o.n_theta = 5;
-	o.n_paths = 20000;
-	o.n_batches = 8;
+	piece_trace(&s, &o);
 	o.light_paths = 1;
 	stray_error_clear(&err);
 	assert_int_equal(tracer_trace(&s, &o, &whole, &err), 0);
 	assert_true(tracer_pilot_wanted(&o));
 	tracer_pilot_opts(&o, &po);
-	s2 = calloc((size_t)po.n_batches * TRACER_GUIDE_CELLS * 5,
+	s2 = calloc((size_t)po.n_batches * TRACER_GUIDE_CELLS * PIECE_N,
 		    sizeof(double));
-	lp = calloc((size_t)po.n_batches * 5 * TRACER_LIGHT_STATS,
+	lp = calloc((size_t)po.n_batches * PIECE_N * TRACER_LIGHT_STATS,
 		    sizeof(double));
 	assert_non_null(s2);
 	assert_non_null(lp);
@@ -355,7 +358,7 @@ static void test_light_farm_flow(void **state)
 		po.n_batches, s2, lp, &pilot, &err), 0);
 	assert_int_equal(tracer_guide_from_pilot(&g, &pilot, s2), 0);
 	tracer_light_alloc(&pilot, lp, ratio);
-	assert_true(ratio[4] > 0.0);	/* B at 89.5 deg */
+	assert_true(ratio[PIECE_N - 1] > 0.0);	/* B at 89.5 deg */
 	assert_true(ratio[0] == 0.0);	/* none where nothing scatters */
 	o.light_ratio = ratio;
 	assert_pieces(&s, &o, &g, &whole);
